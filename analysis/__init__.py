@@ -1,0 +1,43 @@
+"""Numerical error analysis of strapdown inertial navigation algorithms.
+
+Conventions (stated once, used everywhere in :mod:`analysis` and :mod:`derivations`)
+-----------------------------------------------------------------------------------
+Quaternions
+    Scalar first, ``(q0, q1, q2, q3)``, stored as arrays of shape ``(..., 4)``.
+    The product ``∘`` is Hamilton's (``i*j = k``).
+Vectors
+    Arrays of shape ``(..., 3)``; leading axes are batch or time.
+Frames
+    E is the body frame (the papers' E or x), I the reference (inertial) frame
+    (the papers' I or ξ).  The attitude quaternion Λ maps E to I:
+    ``v_I = Λ ∘ v_E ∘ Λ̄``, with kinematics ``2 Λ' = Λ ∘ ω`` where ω is the body
+    rate resolved in E.
+Rotation vector
+    ``φ`` with ``Λ = (cos(|φ|/2), sin(|φ|/2) φ/|φ|)``.
+Dual numbers
+    ``x + s x°`` with ``s² = 0`` (:class:`analysis.dual.Dual`).  A dual vector is
+    ``Φ = φ + s φ°``, a biquaternion ``θ = Λ + s M``.  By the transfer principle
+    (Kotelnikov–Study) the dual part of ``f(x + s x°)`` is the directional
+    derivative ``f'(x) x°``: the dual extension of a real formula is forward-mode
+    differentiation, and every real routine here that is written with the
+    operations of :mod:`analysis.dual` serves dual arguments unchanged.
+Apparent velocity
+    ``W_E = 2 vect(Λ̄ ∘ M)``, ``W_I = 2 vect(M ∘ Λ̄)``
+    (Lebedev & Panov 1989, eq. (1.3)).
+Units
+    SI throughout; angles in radians inside the code.  Degrees and deg/h appear
+    only at the edges (CLI and reports).
+
+Sources are cited by author and year:
+Lebedev & Panov (1989); Plotnikov (1999); Budennyi, Kalinovsky, Panov et al.
+(Part 2, early 2000s); Hrechka & Koroliov.
+"""
+
+from importlib.metadata import PackageNotFoundError, version as _version
+
+try:
+    __version__ = _version("strapdown-analysis")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0.1.0"
+
+__all__ = ["__version__"]

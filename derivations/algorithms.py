@@ -1,0 +1,372 @@
+"""Multi-sample rotation-vector (coning) algorithms as data.
+
+An algorithm over a step ``H = N h`` takes the ``N`` gyro increments
+``p_1 … p_N`` (``p_j = ∫ ω dt`` over the j-th sample interval) and returns the
+rotation-vector increment
+
+    Δφ = P + Σ c · [dot factors] · (nested cross product of the p_j),
+    P = p_1 + … + p_N,
+
+with exact rational coefficients ``c``.  Evaluated on dual vectors
+``q_j = p_j + s b_j`` the same data gives the velocity (sculling) counterpart
+(transfer principle, Lebedev & Panov 1989, eq. (2.5)); there is no second
+definition.
+
+Term syntax
+-----------
+``cross`` is a nested pair of 1-based sample indices: ``(1, 2)`` is
+``p_1 × p_2`` and ``(1, (2, 4))`` is ``p_1 × (p_2 × p_4)``.  ``dots`` is a
+tuple of index pairs whose dot products multiply the term: ``((2, 3),)`` with
+cross ``(2, 3)`` is ``(p_2 · p_3) p_2 × p_3``.
+
+TOML files (see :func:`load_toml`)::
+
+    name = "my-3-sample"
+    samples = 3
+    description = "coning-optimal three-sample algorithm"
+    [cross]            # coefficient of p_i × p_j
+    "1,3" = "9/20"
+    "1,2" = "27/40"
+    "2,3" = "27/40"
+    [triple]           # coefficient of p_i × (p_j × p_k)
+    [dot_cross]        # coefficient of (p_i · p_j)(p_k × p_l), key "i,j;k,l"
+
+The second-order condition (the sum rule that reproduces the
+``H³/12 ω × ω'`` term of the exact increment) is
+``Σ c_ij (j − i) = N³/12`` over the pairwise terms.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Union
+
+__all__ = [
+    "Term",
+    "Algorithm",
+    "REGISTRY",
+    "get",
+    "names",
+    "register",
+    "load_toml",
+    "second_order_defect",
+]
+
+Expr = Union[int, tuple]
+
+
+def _leaves(expr) -> list:
+    if isinstance(expr, int):
+        return [expr]
+    a, b = expr
+    return _leaves(a) + _leaves(b)
+
+
+@dataclass(frozen=True)
+class Term:
+    """One nonlinear term ``coefficient · Π(p_i·p_j) · cross``.
+
+    Attributes
+    ----------
+    coefficient : Fraction
+        Exact coefficient.
+    cross : tuple
+        Nested cross product of 1-based sample indices, e.g. ``(1, (2, 4))``.
+    dots : tuple of (int, int)
+        Dot-product factors ``(p_i · p_j)``.
+    """
+
+    coefficient: Fraction
+    cross: tuple
+    dots: tuple = ()
+
+    @property
+    def degree(self) -> int:
+        """Degree in the increments (number of p factors)."""
+        return len(_leaves(self.cross)) + 2 * len(self.dots)
+
+    def indices(self) -> list:
+        out = _leaves(self.cross)
+        for i, j in self.dots:
+            out += [i, j]
+        return out
+
+    def __str__(self) -> str:
+        def show(e):
+            if isinstance(e, int):
+                return f"p{e}"
+            a, b = e
+            sa = show(a)
+            sb = show(b) if isinstance(b, int) else f"({show(b)})"
+            sa = sa if isinstance(a, int) else f"({sa})"
+            return f"{sa}×{sb}"
+
+        dots = "".join(f"(p{i}·p{j})" for i, j in self.dots)
+        return f"{self.coefficient} {dots}{show(self.cross)}"
+
+
+@dataclass(frozen=True)
+class Algorithm:
+    """An N-sample rotation-vector algorithm as exact data.
+
+    Attributes
+    ----------
+    name : str
+        Registry name.
+    samples : int
+        Number N of gyro increments per step H = N h.
+    terms : tuple of Term
+        Nonlinear terms added to P = Σ p_j.
+    description : str
+        One line for listings.
+    reference : str
+        Source (author, year, equation or table).
+    """
+
+    name: str
+    samples: int
+    terms: tuple = field(default_factory=tuple)
+    description: str = ""
+    reference: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.samples, int) or isinstance(self.samples, bool) or self.samples < 1:
+            raise ValueError(f"Expected `samples` to be a positive integer, got {self.samples!r}")
+        for term in self.terms:
+            if not isinstance(term.coefficient, Fraction):
+                raise TypeError(f"Expected an exact Fraction coefficient in algorithm {self.name!r}, got {term.coefficient!r}")
+            if isinstance(term.cross, int):
+                raise ValueError(f"Expected a cross product in every term of {self.name!r}, got the bare index {term.cross}")
+            bad = [i for i in term.indices() if not (1 <= i <= self.samples)]
+            if bad:
+                raise ValueError(f"Expected sample indices in 1..{self.samples} in algorithm {self.name!r}, got {bad[0]}")
+
+    @property
+    def pairwise(self) -> dict:
+        """Coefficients ``{(i, j): c}`` of the plain terms ``p_i × p_j``, folded to i < j."""
+        out: dict = {}
+        for t in self.terms:
+            if t.dots or not (isinstance(t.cross[0], int) and isinstance(t.cross[1], int)):
+                continue
+            i, j = t.cross
+            if i == j:
+                continue
+            key, sign = ((i, j), 1) if i < j else ((j, i), -1)
+            out[key] = out.get(key, Fraction(0)) + sign * t.coefficient
+        return {k: v for k, v in sorted(out.items()) if v != 0}
+
+    @property
+    def max_degree(self) -> int:
+        return max((t.degree for t in self.terms), default=1)
+
+
+def second_order_defect(algorithm: Algorithm) -> Fraction:
+    """``Σ c_ij (j − i) − N³/12``: zero iff the second-order condition holds.
+
+    With ``p_j = h ω + (j − (N+1)/2) h² ω' + …`` the pairwise terms give
+    ``Σ c_ij (j − i) h³ ω × ω'``, and the exact increment needs
+    ``H³/12 ω × ω' = N³ h³/12 ω × ω'``.
+
+    >>> second_order_defect(get("two-sample"))
+    Fraction(0, 1)
+    """
+    n = algorithm.samples
+    total = sum((c * (j - i) for (i, j), c in algorithm.pairwise.items()), Fraction(0))
+    return total - Fraction(n**3, 12)
+
+
+def _cross_terms(pairs: dict) -> tuple:
+    return tuple(Term(Fraction(c), (i, j)) for (i, j), c in pairs.items())
+
+
+def _expand_sum_cross(left, right, c) -> list:
+    """Terms of ``c (Σ_{i∈left} p_i) × (Σ_{j∈right} p_j)`` by bilinearity."""
+    return [Term(Fraction(c), (i, j)) for i in left for j in right]
+
+
+def _lebedev_panov(order: int) -> Algorithm:
+    """Nested four-sample algorithm of Lebedev & Panov (1989), eq. (2.2), as printed."""
+    terms: list = []
+    if order >= 4:
+        terms += _expand_sum_cross((1, 2), (3, 4), Fraction(2, 3))
+    if order >= 6:
+        terms += [Term(Fraction(32, 15), (1, 3)), Term(Fraction(32, 15), (2, 4))]
+        terms += _expand_sum_cross((1, 2), (3, 4), Fraction(-8, 9))
+        terms += [Term(Fraction(32, 45), (1, (2, 4))), Term(Fraction(-32, 45), (4, (1, 3)))]
+        terms += [Term(Fraction(-64, 45), (2, 3)), Term(Fraction(64, 45), (2, 3), ((2, 3),))]
+    return Algorithm(
+        f"lebedev-panov-{order}",
+        4,
+        tuple(terms),
+        description=f"nested four-sample algorithm (2.2) truncated to order {order}",
+        reference="Lebedev & Panov (1989), eq. (2.2)",
+    )
+
+
+REGISTRY: dict = {}
+
+
+def register(algorithm: Algorithm) -> Algorithm:
+    """Add ``algorithm`` to :data:`REGISTRY` (by its name) and return it."""
+    REGISTRY[algorithm.name] = algorithm
+    return algorithm
+
+
+def get(name: str) -> Algorithm:
+    """Registry algorithm by name; ``ValueError`` listing the names if unknown."""
+    try:
+        return REGISTRY[name]
+    except KeyError:
+        raise ValueError(f"Expected `algorithm` to be one of {', '.join(names())}, got {name!r}") from None
+
+
+def names() -> list:
+    """Registry names in a stable order."""
+    return list(REGISTRY)
+
+
+register(Algorithm("two-sample", 2, _cross_terms({(1, 2): Fraction(2, 3)}), "two-sample coning algorithm, 2/3 p1×p2", "Miller (1983); Bortz (1971) second-order condition"))
+register(
+    Algorithm(
+        "optimal-3",
+        3,
+        _cross_terms({(1, 3): Fraction(9, 20), (2, 3): Fraction(27, 40), (1, 2): Fraction(27, 40)}),
+        "coning-optimal three-sample algorithm, 9/20 p1×p3 + 27/40 p2×(p3−p1)",
+        "Ignagni (1990), Algorithm 7",
+    )
+)
+for _order in (2, 4, 6):
+    register(_lebedev_panov(_order))
+
+
+# Budennyi, Kalinovsky, Panov et al. (Part 2), Table 1.  Their formula (1), which
+# says which constant multiplies which cross product, was lost in print.  The
+# reconstruction below uses the time-symmetric basis of four-sample pairwise
+# terms; it is the only assignment of a1..a4 to that basis for which all five
+# algorithms satisfy the second-order condition (weights j − i = 1, 3, 4, 2),
+# and Tables 2 and 3 confirm it (see reports/algorithms.md and derivations.md).
+PANOV_BASIS = {
+    "a1": ((2, 3),),
+    "a2": ((1, 4),),
+    "a3": ((1, 3), (2, 4)),
+    "a4": ((1, 2), (3, 4)),
+}
+PANOV_TABLE_1 = {
+    1: ("0", "16/9", "0", "0"),
+    2: ("0", "0", "4/3", "0"),
+    3: ("22/45", "22/45", "22/45", "32/45"),
+    4: ("184/315", "112/315", "212/315", "52/105"),
+    5: ("654/945", "526/945", "334/945", "736/945"),
+}
+
+
+def _panov(number: int) -> Algorithm:
+    terms = []
+    for key, value in zip(("a1", "a2", "a3", "a4"), PANOV_TABLE_1[number]):
+        c = Fraction(value)
+        if c:
+            terms += [Term(c, pair) for pair in PANOV_BASIS[key]]
+    return Algorithm(
+        f"panov-4s-{number}",
+        4,
+        tuple(terms),
+        description=f"four-sample fourth-order algorithm {number}: "
+        + ", ".join(f"{k}={v}" for k, v in zip(("a1", "a2", "a3", "a4"), PANOV_TABLE_1[number])),
+        reference="Budennyi, Kalinovsky, Panov et al. (Part 2), Table 1; formula (1) reconstructed",
+    )
+
+
+for _number in range(1, 6):
+    register(_panov(_number))
+
+
+# ---------------------------------------------------------------- TOML files
+def _fraction(value, where: str) -> Fraction:
+    if isinstance(value, bool) or not isinstance(value, (str, int)):
+        raise ValueError(f"{where}: expected an exact fraction as a string such as \"27/40\", got {value!r}")
+    try:
+        return Fraction(value)
+    except (ValueError, ZeroDivisionError):
+        raise ValueError(f"{where}: expected an exact fraction such as \"27/40\", got {value!r}") from None
+
+
+def _indices(key: str, count: int, where: str, samples: int) -> tuple:
+    parts = [s.strip() for s in key.split(",")]
+    try:
+        idx = tuple(int(s) for s in parts)
+    except ValueError:
+        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}") from None
+    if len(idx) != count:
+        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}")
+    bad = [i for i in idx if not 1 <= i <= samples]
+    if bad:
+        raise ValueError(f"{where}: expected sample indices in 1..{samples}, got {bad[0]}")
+    return idx
+
+
+def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
+    """Read a user algorithm from a TOML file (syntax in the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    allow_inconsistent : bool, keyword-only
+        Accept an algorithm that violates the second-order condition.
+
+    Raises
+    ------
+    ValueError
+        Malformed file (the message names the file, the key and the problem),
+        or an algorithm that misses the second-order condition.
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise ValueError(f"{path}: file not found") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML ({exc})") from None
+    known = {"name", "samples", "description", "reference", "cross", "triple", "dot_cross"}
+    extra = sorted(set(data) - known)
+    if extra:
+        raise ValueError(f"{path}: unknown key {extra[0]!r} (expected one of {', '.join(sorted(known))})")
+    samples = data.get("samples")
+    if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
+        raise ValueError(f"{path}: key 'samples' must be a positive integer, got {samples!r}")
+    terms = []
+    for table, count in (("cross", 2), ("triple", 3), ("dot_cross", None)):
+        entries = data.get(table, {})
+        if not isinstance(entries, dict):
+            raise ValueError(f"{path}: [{table}] must be a table, got {type(entries).__name__}")
+        for key, value in entries.items():
+            where = f"{path}: [{table}] key {key!r}"
+            c = _fraction(value, where)
+            if table == "cross":
+                i, j = _indices(key, 2, where, samples)
+                terms.append(Term(c, (i, j)))
+            elif table == "triple":
+                i, j, k = _indices(key, 3, where, samples)
+                terms.append(Term(c, (i, (j, k))))
+            else:
+                if key.count(";") != 1:
+                    raise ValueError(f"{where}: expected \"i,j;k,l\" for (p_i·p_j)(p_k×p_l)")
+                left, right = key.split(";")
+                i, j = _indices(left, 2, where, samples)
+                k, m = _indices(right, 2, where, samples)
+                terms.append(Term(c, (k, m), ((i, j),)))
+    name = data.get("name", path.stem)
+    if not isinstance(name, str):
+        raise ValueError(f"{path}: key 'name' must be a string, got {name!r}")
+    alg = Algorithm(name, samples, tuple(terms), str(data.get("description", "")), str(data.get("reference", str(path.name))))
+    defect = second_order_defect(alg)
+    if defect != 0 and not allow_inconsistent:
+        total = defect + Fraction(samples**3, 12)
+        raise ValueError(
+            f"{path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {total}, "
+            f"expected N³/12 = {Fraction(samples**3, 12)} (pass --allow-inconsistent to accept it)"
+        )
+    return alg
