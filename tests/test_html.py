@@ -36,7 +36,7 @@ $$
 |---|---:|---|
 | optimal-3 | 1.2e-3 | $|\delta| \leq \varepsilon$ |
 
-![Drift against step](figures/drift-step.png)
+![Drift against step $h$](figures/drift-step.png)
 
 A broken one: $\frac{1}{$.
 """
@@ -75,6 +75,7 @@ def test_figures_are_embedded_as_data_uris(staging, page):
     assert len(srcs) == 1
     prefix = "data:image/png;base64,"
     assert srcs[0].startswith(prefix)
+    assert 'alt="Drift against step $h$"' in page  # math in an attribute stays TeX
     assert base64.b64decode(srcs[0][len(prefix) :]) == (staging / "figures" / "drift-step.png").read_bytes()
 
 

@@ -257,6 +257,8 @@ def _convert(page: _Page, text: str, math: MathRenderer) -> None:
             return f'<div class="math-block">{math.render(item.tex, display=True)}</div>'
         return m.group(0)
 
+    # Inside tags (alt, title, href) math stays TeX source.
+    body = re.sub(r"<[^<>]*MATHTOKEN[^<>]*>", lambda t: _TOKEN_RE.sub(lambda m: html.escape("$" + found[int(m.group(1))].tex + "$", quote=True), t.group(0)), body)
     body = re.sub(r"<p>MATHTOKEN(\d{5})Z</p>", block, body)
     # Render in document order so that id prefixes are stable.
     body = _TOKEN_RE.sub(lambda m: math.render(found[int(m.group(1))].tex, display=found[int(m.group(1))].display), body)
