@@ -250,15 +250,16 @@ def table(results: dict, duration: float) -> str:
         lines += [
             f"**{LABELS[case]}**, sampled at {RATE:.0f} Hz for {duration:g} s",
             "",
-            "| method | drift [deg/h] | attitude error at end [rad] | " + ("\\|ΔW_I\\| at end [m/s] | " if dual else "") + "samples/s | drift: smsfusion / this | speed: this / smsfusion |",
-            "|---|---:|---:|" + ("---:|" if dual else "") + "---:|---:|---:|",
+            "| method | drift [deg/h] | attitude error at end [rad] | " + ("\\|ΔW_I\\| at end [m/s] | " if dual else "") + "samples/s | drift: smsfusion / this | " + ("\\|ΔW_I\\|: smsfusion / this | " if dual else "") + "speed: this / smsfusion |",
+            "|---|---:|---:|" + ("---:|" if dual else "") + "---:|---:|" + ("---:|" if dual else "") + "---:|",
         ]
         for r in runs:
             is_peer = r.method.startswith("smsfusion")
             acc = "" if is_peer else _ratio(abs(peer.drift_deg_h) / max(abs(r.drift_deg_h), 1e-300))
             spd = "" if is_peer else _ratio(r.rate / peer.rate)
             vel = f"{r.vel_err_end:.2e} | " if dual else ""
-            lines.append(f"| {r.method} | {r.drift_deg_h:.3g} | {r.att_err_end:.2e} | {vel}{r.rate:,.0f} | {acc} | {spd} |")
+            vel_ratio = ("| " if is_peer else f"{_ratio(peer.vel_err_end / r.vel_err_end)} | ") if dual else ""
+            lines.append(f"| {r.method} | {r.drift_deg_h:.3g} | {r.att_err_end:.2e} | {vel}{r.rate:,.0f} | {acc} | {vel_ratio}{spd} |")
         lines.append("")
     return "\n".join(lines)
 
