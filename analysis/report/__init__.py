@@ -39,12 +39,21 @@ SEED = 20261122
 
 @dataclass(frozen=True)
 class Section:
-    """A report section: ``name`` is its file stem, ``order`` its place in the index."""
+    """A report section: ``name`` is its file stem, ``order`` its place in the index.
+
+    ``page`` is the file the index links to (``<name>.md`` when empty).
+    """
 
     name: str
     title: str
     order: int
     summary: str = ""
+    page: str = ""
+
+    @property
+    def link(self) -> str:
+        """File the index links to, relative to the report directory."""
+        return self.page or f"{self.name}.md"
 
 
 @dataclass(frozen=True)

@@ -25,5 +25,5 @@ def build(ctx) -> None:
         s = module.SECTION
         if s.name == "index":
             continue
-        lines.append(f"| [{s.title}]({s.name}.md) | {s.summary} |")
+        lines.append(f"| [{s.title}]({s.link}) | {s.summary} |")
     ctx.write_text("README.md", "\n".join(lines))
