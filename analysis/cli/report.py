@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -12,8 +11,9 @@ from . import Result
 def _run(args) -> Result:
     from ..report import generate
 
-    argv = ["strapdown", "report"] + sys.argv[2:] if sys.argv[1:2] == ["report"] else ["strapdown report"]
-    command = " ".join(a for a in argv if a != "--json")
+    # The stamp names what determines the content (mode and sections), not where it was
+    # written, so that regenerations into different directories stay byte-identical.
+    command = "strapdown report" + (" --quick" if args.quick else "") + (" --only " + " ".join(args.only) if args.only else "")
     start = time.perf_counter()
     names = generate(Path(args.out), only=args.only, quick=args.quick, show_progress=not args.no_progress, command=command)
     elapsed = time.perf_counter() - start
