@@ -258,8 +258,10 @@ def _as_motions(motion):
     return motions, True
 
 
-#: Algorithm steps (batch points × steps) handled per chunk: the working set
-#: stays in cache, and the chunks only set how the work is cut, not the result.
+#: Work is cut into chunks of at most ``CHUNK_STEPS`` algorithm steps (batch
+#: points × steps) and ``TIME_CHUNK`` consecutive steps, so that the working set
+#: stays small; the attitude is carried from one time chunk to the next.  The
+#: chunking sets how the work is cut, not the result.
 CHUNK_STEPS = 65536
 TIME_CHUNK = 16384
 

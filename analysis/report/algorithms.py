@@ -525,9 +525,11 @@ def _order_figure(plt, study):
         for name, (big_h, drifts, slope) in study[eps].items():
             ax.loglog(big_h, drifts, "o-", ms=3, label=f"{name} ({slope:.2f})")
         ax.set_xlabel("step H [s]")
-        ax.set_title(f"ε = {eps:g} (ν = 2π s⁻¹, ϑ = 10°)")
+        ax.set_title(f"ε = {eps:g} (ν = 2π s⁻¹, ϑ = 10°); fitted slope in brackets")
+        ax.set_ylim(top=ax.get_ylim()[1] * 300)
+        ax.legend(fontsize=6, loc="upper left", ncol=2)
+        ax.xaxis.set_minor_formatter(plt.NullFormatter())
     axes[0].set_ylabel("constant drift [deg/h]")
-    axes[1].legend(fontsize=7, loc="lower right")
     return fig
 
 
