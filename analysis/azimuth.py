@@ -40,6 +40,7 @@ __all__ = [
     "AzimuthMonteCarlo",
     "azimuth_monte_carlo",
     "check_latitude",
+    "gradient",
 ]
 
 
@@ -139,7 +140,7 @@ def _theory():
     first = sp.lambdify(args, g.first_order_mse(generic=True), modules="math", cse=True)
     bias = sp.lambdify(args, g.bias_second_order(generic=True), modules="math", cse=True)
     mse4 = sp.lambdify(args, g.mse_fourth_order(generic=True), modules="math", cse=True)
-    b14 = sp.lambdify((g.phi, g.beta0, g.gamma0, g.D_xi, g.D_eta), g.bound14_rocking(), modules="math")
+    b14 = sp.lambdify((g.phi, g.beta0, g.gamma0, g.D_xi, g.D_eta), g.bound14_rocking(), modules="numpy")
     return coeff_fn, first, bias, mse4, b14
 
 
@@ -166,7 +167,7 @@ def bound14(latitude, beta0, gamma0, sigma_xi, sigma_eta) -> float:
     latitude = check_latitude(latitude)
     beta0, gamma0 = as_float(beta0, "beta0"), as_float(gamma0, "gamma0")
     sx, se = _sigmas(sigma_xi, sigma_eta)
-    return math.sqrt(_theory()[4](latitude, beta0, gamma0, sx * sx, se * se))
+    return math.sqrt(float(_theory()[4](latitude, beta0, gamma0, sx * sx, se * se)))
 
 
 def bound15(latitude, sigma_xi) -> float:
@@ -230,14 +231,18 @@ class AzimuthErrorKernel:
     rocking : GaussianRocking | SineRocking | NarrowbandRocking — rocking model
     n_steps : int — samples per trial
     dt : float or None — sample interval [s]; None for independent instants
-    estimate : str — ``"known"``: α* with the true β0, γ0 (11);
-        ``"sample-mean"``: α̂* with the sample means of the trial (16)
+    estimate : str
+        ``"known"``: the error ``σ(β0 + ξ, γ0 + η) − σ*`` of (12) at every
+        sample (α* from the true β0, γ0, eq. (11));
+        ``"sample-mean"``: the alignment error ``σ(β̂0, γ̂0) − σ*`` of the
+        estimate (16) from the ``n_steps`` samples of a trial (one error per
+        trial).  With one sample it is the error of (12).
 
     Notes
     -----
-    With ``estimate="sample-mean"`` the kernel also returns per trial the
-    bounds (14) and (15) evaluated, as the paper prescribes after (16), with
-    the sample means and sample variances of the trial.
+    With ``estimate="sample-mean"`` the kernel also returns, per trial, the
+    squares of the bounds (14) and (15) evaluated as the paper prescribes after
+    (16): with the sample means and the sample variances of the trial.
     """
 
     latitude: float
@@ -268,14 +273,14 @@ class AzimuthErrorKernel:
         if self.estimate == "known":
             As, Bs = _components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
             return _error(xi, eta, sphi, cphi, As, Bs)
-        b_hat, g_hat = xi.mean(axis=1, keepdims=True), eta.mean(axis=1, keepdims=True)
+        b_hat, g_hat = xi.mean(axis=1), eta.mean(axis=1)
         dxi = xi.var(axis=1)  # 1/n normalisation, as in (16)
         deta = eta.var(axis=1)
-        As, Bs = _components(b_hat, g_hat, sphi, cphi)
-        errors = _error(xi, eta, sphi, cphi, As, Bs)
-        b14 = np.array([bound14(self.latitude, bb, gg, math.sqrt(dx), math.sqrt(de)) for bb, gg, dx, de in zip(b_hat[:, 0], g_hat[:, 0], dxi, deta)])
-        b15 = abs(math.tan(self.latitude)) * np.sqrt(dxi)
-        return errors, np.stack([b14 * b14, b15 * b15], axis=-1)
+        As, Bs = _components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
+        errors = _error(b_hat, g_hat, sphi, cphi, As, Bs)[:, None]
+        b14sq = np.broadcast_to(_theory()[4](self.latitude, b_hat, g_hat, dxi, deta), dxi.shape)
+        b15sq = math.tan(self.latitude) ** 2 * dxi
+        return errors, np.stack([b14sq, b15sq], axis=-1)
 
 
 @dataclass(frozen=True)
@@ -352,3 +357,17 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     scale = theory["rms_first_order"] if theory["rms_first_order"] > 0 else 1e-12
     result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress)
     return AzimuthMonteCarlo(result, bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi), theory)
+
+
+def gradient(latitude, beta0, gamma0) -> tuple:
+    """``(∂σ/∂β, ∂σ/∂γ)`` at (β0, γ0) [rad/rad]: the first-order sensitivity of the azimuth.
+
+    >>> g = gradient(math.radians(45), 0.0, 0.0)
+    >>> round(g[0], 12), round(g[1], 12)
+    (1.0, 0.0)
+    """
+    latitude = check_latitude(latitude)
+    c = _theory()[0](latitude, as_float(beta0, "beta0"), as_float(gamma0, "gamma0"))
+    As, Bs, a10, a01, b10, b01 = c[0], c[1], c[2], c[3], c[2 + 9], c[3 + 9]
+    r2 = As * As + Bs * Bs
+    return (As * b10 - Bs * a10) / r2, (As * b01 - Bs * a01) / r2
