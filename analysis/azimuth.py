@@ -120,7 +120,9 @@ def _error(beta, gamma, sphi, cphi, As, Bs):
     A *= As
     B *= Bs
     A += B
-    return np.arctan2(num, A, out=num)
+    if isinstance(num, np.ndarray):
+        return np.arctan2(num, A, out=num)
+    return np.arctan2(num, A)
 
 
 # --------------------------------------------------------------------- theory

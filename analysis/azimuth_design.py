@@ -66,7 +66,7 @@ def admissible_amplitude(budget, latitude, averaging_time, frequencies, *, rocki
 
     Examples
     --------
-    >>> d = admissible_amplitude(math.radians(0.1), math.radians(45), 60.0, [0.05, 0.2])
+    >>> d = admissible_amplitude(math.radians(0.1), math.radians(45), 60.0, [0.05, 0.2], rocking="narrowband")
     >>> bool(d["amplitude"][1] > d["amplitude"][0])
     True
     """
