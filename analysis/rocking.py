@@ -249,14 +249,19 @@ class NarrowbandRocking:
         x[:, 0] = s0[:, 0]
         if n_steps == 1:
             return x
-        w = g.standard_normal((n, n_steps - 1, 2)) @ LQ.T  # w_k, k = 0 .. n_steps-2
-        x[:, 1] = (s0 @ F.T)[:, 0] + w[:, 0, 0]
+        z = g.standard_normal((2, n, n_steps - 1))
+        w0 = z[0] * LQ[0, 0]  # w_k = LQ z_k, components written out (no small matmuls)
+        w1 = z[1] * LQ[1, 1]
+        w1 += LQ[1, 0] * z[0]
+        x[:, 1] = (s0 @ F.T)[:, 0] + w0[:, 0]
         if n_steps == 2:
             return x
         # Cayley–Hamilton: x_k − t x_{k−1} + d x_{k−2} = c·w_{k−1} + c·(F − tI) w_{k−2}
         t, d = np.trace(F), np.linalg.det(F)
         g2 = (F - t * np.eye(2))[0]
-        u = w[:, 1:, 0] + w[:, :-1, :] @ g2
+        u = w0[:, :-1] * g2[0]
+        u += w0[:, 1:]
+        u += g2[1] * w1[:, :-1]
         # initial conditions of the transposed direct form from the past outputs x_1, x_0
         zi = np.stack([t * x[:, 1] - d * x[:, 0], -d * x[:, 1]], axis=-1)
         x[:, 2:], _ = signal.lfilter([1.0], [1.0, -t, d], u, axis=-1, zi=zi)

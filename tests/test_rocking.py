@@ -46,7 +46,8 @@ def test_narrowband_equals_state_recursion():
     g = np.random.default_rng(4)
     F, Q = m.discretisation(dt)
     s = g.standard_normal((3, 2)) @ np.linalg.cholesky(np.diag([1.0, m.omega0**2])).T
-    w = g.standard_normal((3, n - 1, 2)) @ np.linalg.cholesky(Q).T
+    z = g.standard_normal((2, 3, n - 1))
+    w = np.einsum("ij,jtk->tki", np.linalg.cholesky(Q), z)  # w[trial, step, component]
     ref = [s[:, 0]]
     for k in range(n - 1):
         s = s @ F.T + w[:, k]
