@@ -1,0 +1,356 @@
+"""Azimuth error of analytical gyrocompassing on a rocking base (SymPy).
+
+Hrechka & Koroliov write the azimuth from two horizontal gyros as
+``α = −arctan(f2/f1) + σ`` with the tilt correction (their eq. (2) and the
+unnumbered lines after it)
+
+    σ = arctan(B/A),   A = cos φ cos γ + sin φ cos β sin γ,   B = sin φ sin β,
+
+φ the latitude and β, γ the tilts measured by the accelerometers.  On a rocking
+base ``β = β0 + ξ``, ``γ = γ0 + η`` with zero-mean random ξ, η (4), and the
+first-order estimate uses the stable tilts: ``σ* = arctan(B*/A*)`` (11).
+
+This module derives, from the definition alone,
+
+* the Taylor parts ``A = A* + ζ1``, ``B = B* + ζ2`` of (5)–(10);
+* bound (14) and its simplification (15);
+* the series of the error ``σ − σ*`` to third order in (ξ, η), from which the
+  second-order bias ``E(σ − σ*)`` and the mean-square error to fourth order
+  follow (neither is in the paper).
+
+The error series uses the angle form ``σ − σ* = Im log(1 + w)``,
+``w = ((A − A*) + i(B − B*)) / (A* + iB*)``, which equals the difference of the
+two arctangents whenever ``A, A* > 0`` and is the wrapped angle difference
+otherwise.
+
+Moments: ξ and η are independent and symmetric, with variances ``Dξ, Dη`` and
+fourth moments ``κξ Dξ²``, ``κη Dη²`` (κ = 3 for a Gaussian, 3/2 for a
+sinusoid with random phase).
+
+References
+----------
+Hrechka & Koroliov, "Estimation of the azimuth error of a self-orienting SINS
+under random rocking", eqs. (2), (4)–(15).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+
+__all__ = [
+    "phi",
+    "beta0",
+    "gamma0",
+    "xi",
+    "eta",
+    "D_xi",
+    "D_eta",
+    "kappa_xi",
+    "kappa_eta",
+    "D_zeta1",
+    "D_zeta2",
+    "components",
+    "taylor_components",
+    "linear_parts",
+    "coefficient_symbols",
+    "coefficient_values",
+    "generic_error_series",
+    "error_series",
+    "expectation",
+    "first_order_mse",
+    "bias_second_order",
+    "mse_fourth_order",
+    "bound13_series",
+    "bound14",
+    "bound14_rocking",
+    "bound15",
+]
+
+phi, beta0, gamma0 = sp.symbols("varphi beta_0 gamma_0", real=True)
+xi, eta = sp.symbols("xi eta", real=True)
+D_xi, D_eta = sp.symbols("D_xi D_eta", nonnegative=True)
+kappa_xi, kappa_eta = sp.symbols("kappa_xi kappa_eta", positive=True)
+D_zeta1, D_zeta2 = sp.symbols("D_zeta1 D_zeta2", nonnegative=True)
+
+# A polynomial in (ξ, η) is a dict {(i, j): coefficient of ξ^i η^j}.
+Poly2 = dict
+
+
+def components(beta, gamma, latitude=phi):
+    """``(A, B)`` of the tilt correction ``σ = arctan(B/A)``.
+
+    Parameters
+    ----------
+    beta, gamma : sympy expressions — tilts β, γ [rad]
+    latitude : sympy expression — latitude φ [rad]
+
+    Returns
+    -------
+    (A, B) : tuple of sympy expressions
+
+    References
+    ----------
+    Hrechka & Koroliov, the lines after eq. (2), with ``cos γ`` in the first
+    term of A (see :func:`linear_parts` for why).
+
+    >>> components(0, 0)
+    (cos(varphi), 0)
+    """
+    A = sp.cos(latitude) * sp.cos(gamma) + sp.sin(latitude) * sp.cos(beta) * sp.sin(gamma)
+    B = sp.sin(latitude) * sp.sin(beta)
+    return A, B
+
+
+def _mul(p: Poly2, q: Poly2, order: int) -> Poly2:
+    out: Poly2 = {}
+    for (i, j), a in p.items():
+        for (k, m), b in q.items():
+            if i + j + k + m <= order:
+                key = (i + k, j + m)
+                out[key] = out.get(key, 0) + a * b
+    return out
+
+
+def _add(*polys: Poly2, scale=None) -> Poly2:
+    out: Poly2 = {}
+    for n, p in enumerate(polys):
+        c = 1 if scale is None else scale[n]
+        for key, a in p.items():
+            out[key] = out.get(key, 0) + c * a
+    return out
+
+
+def _clean(p: Poly2) -> Poly2:
+    out = {}
+    for key in sorted(p):
+        value = sp.simplify(sp.expand(p[key]))
+        if value != 0:
+            out[key] = value
+    return out
+
+
+def _trig_series(angle0, var, order: int):
+    """``(cos(angle0 + var), sin(angle0 + var))`` as polynomials in ``var`` to ``order``."""
+    c0, s0 = sp.cos(angle0), sp.sin(angle0)
+    cos_p, sin_p = {}, {}
+    for n in range(order + 1):
+        # d^n/dx^n cos(x) at angle0 and likewise for sin
+        dcos = [c0, -s0, -c0, s0][n % 4] / sp.factorial(n)
+        dsin = [s0, c0, -s0, -c0][n % 4] / sp.factorial(n)
+        key = (n, 0) if var is xi else (0, n)
+        cos_p[key], sin_p[key] = dcos, dsin
+    return cos_p, sin_p
+
+
+@lru_cache(maxsize=None)
+def taylor_components(order: int = 3) -> tuple:
+    """Taylor polynomials of A and B in (ξ, η) about (β0, γ0), to total degree ``order``.
+
+    Returns
+    -------
+    (A, B) : tuple of dict
+        ``{(i, j): coefficient of ξ^i η^j}``; the ``(0, 0)`` entries are A*, B*.
+
+    References
+    ----------
+    Hrechka & Koroliov, eqs. (5), (8) (there to first order).
+    """
+    cb, sb = _trig_series(beta0, xi, order)
+    cg, sg = _trig_series(gamma0, eta, order)
+    A = _add({(0, 0): 0}, _mul(cg, {(0, 0): sp.cos(phi)}, order), _mul(_mul(cb, sg, order), {(0, 0): sp.sin(phi)}, order))
+    B = _mul(sb, {(0, 0): sp.sin(phi)}, order)
+    return _clean(A), _clean(B)
+
+
+@lru_cache(maxsize=None)
+def linear_parts() -> dict:
+    """A*, B* and the first-order parts ζ1, ζ2 of (5)–(10), derived.
+
+    Returns
+    -------
+    dict
+        ``A_star`` (6), ``B_star`` (9), ``zeta1`` (7), ``zeta2`` (10), as sympy
+        expressions in φ, β0, γ0, ξ, η.
+
+    References
+    ----------
+    Hrechka & Koroliov, eqs. (5)–(10).
+
+    >>> linear_parts()["zeta2"]
+    xi*sin(varphi)*cos(beta_0)
+    """
+    A, B = taylor_components(1)
+    zeta1 = A.get((1, 0), 0) * xi + A.get((0, 1), 0) * eta
+    zeta2 = B.get((1, 0), 0) * xi + B.get((0, 1), 0) * eta
+    return {"A_star": A[(0, 0)], "B_star": B.get((0, 0), 0), "zeta1": sp.expand(zeta1), "zeta2": sp.expand(zeta2)}
+
+
+def coefficient_symbols(order: int = 3) -> tuple:
+    """Symbols ``A*, B*`` and the Taylor coefficients ``a_ij, b_ij`` (1 ≤ i + j ≤ order).
+
+    ``A = A* + Σ a_ij ξ^i η^j``, ``B = B* + Σ b_ij ξ^i η^j``.
+    """
+    keys = [(i, n - i) for n in range(1, order + 1) for i in range(n, -1, -1)]
+    a = {k: sp.Symbol(f"a_{k[0]}{k[1]}", real=True) for k in keys}
+    b = {k: sp.Symbol(f"b_{k[0]}{k[1]}", real=True) for k in keys}
+    return sp.Symbol("A_s", real=True), sp.Symbol("B_s", real=True), a, b
+
+
+@lru_cache(maxsize=None)
+def coefficient_values(order: int = 3) -> dict:
+    """Values of the symbols of :func:`coefficient_symbols` for the gyrocompass A, B."""
+    As, Bs, a, b = coefficient_symbols(order)
+    A, B = taylor_components(order)
+    values = {As: A[(0, 0)], Bs: B.get((0, 0), sp.Integer(0))}
+    for k in a:
+        values[a[k]] = A.get(k, sp.Integer(0))
+        values[b[k]] = B.get(k, sp.Integer(0))
+    return values
+
+
+@lru_cache(maxsize=None)
+def generic_error_series(order: int = 3) -> dict:
+    """Series of ``σ − σ* = arg(A + iB) − arg(A* + iB*)`` in (ξ, η) to total degree ``order``.
+
+    Generic in A*, B* and the Taylor coefficients (:func:`coefficient_symbols`).
+    Uses ``σ − σ* = Im log(1 + w) = v − uv + u²v − v³/3 + O(4)`` with
+    ``u + iv = w = (a + ib)/(A* + iB*)``, ``a = A − A*``, ``b = B − B*``.
+
+    Returns
+    -------
+    dict
+        ``{(i, j): coefficient of ξ^i η^j}`` (no constant term).
+    """
+    if order not in (1, 2, 3):
+        raise ValueError(f"Expected `order` in {{1, 2, 3}}, got {order}")
+    As, Bs, ca, cb = coefficient_symbols(order)
+    R2 = As**2 + Bs**2
+    a = {k: v for k, v in ca.items()}
+    b = {k: v for k, v in cb.items()}
+    u = _add(a, b, scale=[As / R2, Bs / R2])
+    v = _add(b, a, scale=[As / R2, -Bs / R2])
+    uv = _mul(u, v, order)
+    u2v = _mul(u, uv, order)
+    v3 = _mul(v, _mul(v, v, order), order)
+    series = _add(v, uv, u2v, v3, scale=[1, -1, 1, sp.Rational(-1, 3)])
+    return {k: sp.factor(sp.expand(c)) for k, c in sorted(series.items())}
+
+
+def error_series(order: int = 3) -> dict:
+    """Series of ``σ − σ*`` for the gyrocompass A, B, in φ, β0, γ0 (unsimplified).
+
+    >>> s = error_series(1)
+    >>> sp.simplify(s[(1, 0)].subs({beta0: 0, gamma0: 0}))
+    tan(varphi)
+    """
+    values = coefficient_values(order)
+    return {k: c.subs(values) for k, c in generic_error_series(order).items()}
+
+
+def _moment(i: int, j: int):
+    """``E ξ^i η^j`` for independent, symmetric ξ, η (to fourth order)."""
+    def one(n, D, kappa):
+        if n % 2:
+            return 0
+        return {0: 1, 2: D, 4: kappa * D**2}.get(n, None)
+
+    mi, mj = one(i, D_xi, kappa_xi), one(j, D_eta, kappa_eta)
+    if mi is None or mj is None:
+        raise ValueError(f"moment E ξ^{i} η^{j} is beyond fourth order")
+    return mi * mj
+
+
+def expectation(poly: Poly2):
+    """Expectation of a polynomial in (ξ, η) of total degree ≤ 4, in Dξ, Dη, κξ, κη.
+
+    >>> expectation({(2, 0): 1, (1, 1): 5, (0, 4): 1})
+    D_eta**2*kappa_eta + D_xi
+    """
+    return sp.expand(sum((c * _moment(i, j) for (i, j), c in poly.items()), sp.Integer(0)))
+
+
+def _degree(poly: Poly2, n: int) -> Poly2:
+    return {k: v for k, v in poly.items() if sum(k) == n}
+
+
+def _specialise(expr, generic: bool, order: int):
+    return expr if generic else expr.subs(coefficient_values(order))
+
+
+@lru_cache(maxsize=None)
+def first_order_mse(*, generic: bool = False):
+    """``E L²`` of the linear error ``L = (A* ζ2 − B* ζ1)/(A*² + B*²)``.
+
+    This is the exact mean-square error to second order in the rocking.  With
+    ``generic`` the result is in the symbols of :func:`coefficient_symbols`.
+    """
+    L = _degree(generic_error_series(1), 1)
+    return _specialise(sp.factor(expectation(_mul(L, L, 2))), generic, 1)
+
+
+@lru_cache(maxsize=None)
+def bias_second_order(*, generic: bool = False):
+    """Second-order bias ``E(σ − σ*) = ½ (σ_ββ Dξ + σ_γγ Dη) + O(4)``.
+
+    Not in the paper.  Vanishes for β0 = 0 (σ is odd in β there).
+    """
+    Q = _degree(generic_error_series(2), 2)
+    return _specialise(sp.factor(expectation(Q)), generic, 2)
+
+
+@lru_cache(maxsize=None)
+def mse_fourth_order(*, generic: bool = False):
+    """Mean-square error ``E(σ − σ*)²`` to fourth order: ``E L² + E Q² + 2 E L C``.
+
+    L, Q, C are the first-, second- and third-degree parts of the error series;
+    the odd third-order moments vanish.  Not in the paper.
+    """
+    s = generic_error_series(3)
+    L, Q, C = _degree(s, 1), _degree(s, 2), _degree(s, 3)
+    fourth = _add(_mul(L, L, 2), _mul(Q, Q, 4), _mul(L, C, 4), scale=[1, 1, 2])
+    return _specialise(expectation(fourth), generic, 3)
+
+
+def bound13_series():
+    """First-order part of ``B/A − B*/A*`` (Taylor of x/y about (B*, A*)), as printed before (14)."""
+    p = linear_parts()
+    return sp.expand(-p["B_star"] / p["A_star"] ** 2 * p["zeta1"] + p["zeta2"] / p["A_star"])
+
+
+def bound14(Dz1=D_zeta1, Dz2=D_zeta2):
+    """Right-hand side of bound (14) on δ², in terms of Dζ1, Dζ2.
+
+    ``δ² ≤ (B*/A*²)² Dζ1 + 2 |B*/A*³| √(Dζ1 Dζ2) + Dζ2 / A*²``.
+
+    References
+    ----------
+    Hrechka & Koroliov, eq. (14).
+    """
+    p = linear_parts()
+    As, Bs = p["A_star"], p["B_star"]
+    return (Bs / As**2) ** 2 * Dz1 + 2 * sp.Abs(Bs / As**3) * sp.sqrt(Dz1 * Dz2) + Dz2 / As**2
+
+
+@lru_cache(maxsize=None)
+def bound14_rocking():
+    """Bound (14) on δ² with ``Dζ1, Dζ2`` expressed through Dξ, Dη (ξ, η independent)."""
+    p = linear_parts()
+    Dz1 = expectation(_as_poly(sp.expand(p["zeta1"] ** 2)))
+    Dz2 = expectation(_as_poly(sp.expand(p["zeta2"] ** 2)))
+    return bound14(Dz1, Dz2)
+
+
+def bound15():
+    """Bound (15): ``δ ≤ tan φ √Dξ`` (returned as the bound on δ).
+
+    Obtained from (14) by setting β0 = γ0 = 0 (the paper's "discard the first
+    order terms"); :func:`bound14_rocking` reduces to its square there.
+    """
+    return sp.tan(phi) * sp.sqrt(D_xi)
+
+
+def _as_poly(expr) -> Poly2:
+    poly = sp.Poly(sp.expand(expr), xi, eta)
+    return {m: c for m, c in zip(poly.monoms(), poly.coeffs())}
