@@ -142,7 +142,10 @@ def _theory():
     first = sp.lambdify(args, g.first_order_mse(generic=True), modules="math", cse=True)
     bias = sp.lambdify(args, g.bias_second_order(generic=True), modules="math", cse=True)
     mse4 = sp.lambdify(args, g.mse_fourth_order(generic=True), modules="math", cse=True)
-    b14 = sp.lambdify((g.phi, g.beta0, g.gamma0, g.D_xi, g.D_eta), g.bound14_rocking(), modules="numpy")
+    # The radicand Dζ1·Dζ2 of (14) is a product of variances (≥ 0); evaluated in expanded
+    # form it can round to about −1e-20 when one variance vanishes, so clip it at zero.
+    sqrt_nonneg = {"sqrt": lambda x: np.sqrt(np.maximum(x, 0.0))}
+    b14 = sp.lambdify((g.phi, g.beta0, g.gamma0, g.D_xi, g.D_eta), g.bound14_rocking(), modules=[sqrt_nonneg, "numpy"])
     return coeff_fn, first, bias, mse4, b14
 
 
