@@ -314,7 +314,7 @@ def build(ctx) -> None:
         "$\\sigma = \\arctan(B/A)$, $A = \\cos\\varphi\\cos\\gamma + \\sin\\varphi\\cos\\beta\\sin\\gamma$, $B = \\sin\\varphi\\sin\\beta$.",
         "The package evaluates it as the angle of $(A + iB)/(A^* + iB^*)$ (the arctangent difference for $A, A^* > 0$,",
         "the wrapped angle otherwise). ξ and η are independent and zero-mean; $\\sigma_\\xi, \\sigma_\\eta$ are their standard",
-        "deviations (a sinusoid has amplitude $\\sigma\\sqrt2$).",
+        "deviations (a sinusoid has amplitude $\\sigma\\sqrt{2}$).",
         "",
         "## 1. Derivation (SymPy, `derivations/gyrocompass.py`)",
         "",
