@@ -207,54 +207,90 @@ def _segments(schedule, n_steps, step):
     return [(starts[i], starts[i + 1]) for i in range(len(schedule))]
 
 
-def _loop(nu, y, dq, target_a, target_b, segments, maps, mask, rho, step, ref):
-    """The splitting recursion (sequential; plain floats for speed).
+def _loop_horizontal(nu, dq, target, segments, maps, rho, step):
+    """Splitting recursion with correction on components 1 and 3 (references "pure", "tilt").
 
-    ``ref`` is None, or the external reference (N+1 rows of 4) for the
-    affine kinematic step ``ν ← μ_{n+1} + (ν − μ_n)∘Δq`` of the first variant.
+    ``target`` holds (m1, m3) per step.  Sequential by nature; plain floats for speed.
     """
     n0, n1, n2, n3 = nu
-    y = list(y)
+    y1 = y3 = 0.0
     out = [(n0, n1, n2, n3)]
-    outy = [tuple(y)]
+    outy = [(0.0, 0.0)]
     grow = math.exp(rho * step * 0.5)
+    sqrt = math.sqrt
     norm_flow = rho > 0.0
     for (i0, i1), (e11, e12, e21, e22, f1, f2) in zip(segments, maps):
         for n in range(i0, i1):
-            v = [n0, n1, n2, n3]
-            ma = target_a[n]
-            for j in mask:
-                vj, yj, mj = v[j], y[j], ma[j]
-                v[j] = e11 * vj + e12 * yj + f1 * mj
-                y[j] = e21 * vj + e22 * yj + f2 * mj
-            a0, a1, a2, a3 = v
+            m1, m3 = target[n]
+            a1 = e11 * n1 + e12 * y1 + f1 * m1
+            y1 = e21 * n1 + e22 * y1 + f2 * m1
+            a3 = e11 * n3 + e12 * y3 + f1 * m3
+            y3 = e21 * n3 + e22 * y3 + f2 * m3
+            a0, a2 = n0, n2
             if norm_flow:
-                r0 = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
-                s = math.sqrt(grow / (1.0 - r0 + r0 * grow))
-                a0, a1, a2, a3 = a0 * s, a1 * s, a2 * s, a3 * s
+                r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
+                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
+                a0, a1, a2, a3 = a0 * f, a1 * f, a2 * f, a3 * f
             b0, b1, b2, b3 = dq[n]
-            if ref is not None:
-                p0, p1, p2, p3 = ref[n]
-                a0, a1, a2, a3 = a0 - p0, a1 - p1, a2 - p2, a3 - p3
             c0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
             c1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
             c2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
             c3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
-            if ref is not None:
-                p0, p1, p2, p3 = ref[n + 1]
-                c0, c1, c2, c3 = c0 + p0, c1 + p1, c2 + p2, c3 + p3
             if norm_flow:
-                r0 = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
-                s = math.sqrt(grow / (1.0 - r0 + r0 * grow))
-                c0, c1, c2, c3 = c0 * s, c1 * s, c2 * s, c3 * s
-            v = [c0, c1, c2, c3]
-            mb = target_b[n]
-            for j in mask:
-                vj, yj, mj = v[j], y[j], mb[j]
+                r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
+                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
+                c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
+            n0, n2 = c0, c2
+            n1 = e11 * c1 + e12 * y1 + f1 * m1
+            y1 = e21 * c1 + e22 * y1 + f2 * m1
+            n3 = e11 * c3 + e12 * y3 + f1 * m3
+            y3 = e21 * c3 + e22 * y3 + f2 * m3
+            out.append((n0, n1, n2, n3))
+            outy.append((y1, y3))
+    nu_out = np.array(out)
+    y_out = np.zeros_like(nu_out)
+    y_out[:, [1, 3]] = np.array(outy)
+    return nu_out, y_out
+
+
+def _loop_external(nu, dq, ref, segments, maps, rho, step):
+    """Splitting recursion of the first variant: every component corrected toward ``ref``,
+    with the exact kinematic step ``ν ← μ_{n+1} + (ν − μ_n)∘Δq`` of (1.5)."""
+    v = list(nu)
+    y = [0.0, 0.0, 0.0, 0.0]
+    out = [tuple(v)]
+    outy = [tuple(y)]
+    grow = math.exp(rho * step * 0.5)
+    sqrt = math.sqrt
+    norm_flow = rho > 0.0
+    for (i0, i1), (e11, e12, e21, e22, f1, f2) in zip(segments, maps):
+        for n in range(i0, i1):
+            p, q = ref[n], ref[n + 1]
+            for j in range(4):
+                vj, yj, mj = v[j], y[j], p[j]
                 v[j] = e11 * vj + e12 * yj + f1 * mj
                 y[j] = e21 * vj + e22 * yj + f2 * mj
-            n0, n1, n2, n3 = v
-            out.append((n0, n1, n2, n3))
+            a0, a1, a2, a3 = v
+            if norm_flow:
+                r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
+                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
+                a0, a1, a2, a3 = a0 * f, a1 * f, a2 * f, a3 * f
+            a0, a1, a2, a3 = a0 - p[0], a1 - p[1], a2 - p[2], a3 - p[3]
+            b0, b1, b2, b3 = dq[n]
+            c0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3 + q[0]
+            c1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2 + q[1]
+            c2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1 + q[2]
+            c3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0 + q[3]
+            if norm_flow:
+                r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
+                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
+                c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
+            v = [c0, c1, c2, c3]
+            for j in range(4):
+                vj, yj, mj = v[j], y[j], q[j]
+                v[j] = e11 * vj + e12 * yj + f1 * mj
+                y[j] = e21 * vj + e22 * yj + f2 * mj
+            out.append(tuple(v))
             outy.append(tuple(y))
     return np.array(out), np.array(outy)
 
@@ -301,41 +337,23 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
         raise ValueError(f"Expected `rotation` with shape (N, 4), N >= 1, got shape {dq.shape}")
     n_steps = dq.shape[0]
     nu0 = as_array(initial, "initial", last=4)
-    ref = None
+    segments = _segments(stage.schedule, n_steps, h)
+    maps = [_correction_map(k, l, stage.c, 0.5 * h) for _, k, l in stage.schedule]
+    start = tuple(float(v) for v in nu0)
     if stage.reference == "external":
         if reference is None:
             raise ValueError("Expected `reference` (the external attitude μ) for a stage with reference 'external', got None")
         ref = as_array(reference, "reference", last=4)
         if ref.shape != (n_steps + 1, 4):
             raise ValueError(f"Expected `reference` with shape ({n_steps + 1}, 4), got shape {ref.shape}")
-        target_a, target_b = ref[:-1], ref[1:]
-        mask = (0, 1, 2, 3)
-    else:
-        if force is None:
-            raise ValueError(f"Expected `force` for a stage with reference {stage.reference!r}, got None")
-        f = as_array(force, "force", last=3)
-        if f.shape != (n_steps, 3):
-            raise ValueError(f"Expected `force` with shape ({n_steps}, 3), got shape {f.shape}")
-        m = accelerometer_quaternion(f, gravity) if stage.reference == "pure" else tilt_quaternion(f)
-        target_a = target_b = m
-        mask = (1, 3)
-    segments = _segments(stage.schedule, n_steps, h)
-    maps = [_correction_map(k, l, stage.c, 0.5 * h) for _, k, l in stage.schedule]
-    list_a = target_a.tolist()
-    list_b = list_a if target_b is target_a else target_b.tolist()
-    return _loop(
-        tuple(float(v) for v in nu0),
-        (0.0, 0.0, 0.0, 0.0),
-        dq.tolist(),
-        list_a,
-        list_b,
-        segments,
-        maps,
-        mask,
-        stage.rho,
-        h,
-        None if ref is None else ref.tolist(),
-    )
+        return _loop_external(start, dq.tolist(), ref.tolist(), segments, maps, stage.rho, h)
+    if force is None:
+        raise ValueError(f"Expected `force` for a stage with reference {stage.reference!r}, got None")
+    f = as_array(force, "force", last=3)
+    if f.shape != (n_steps, 3):
+        raise ValueError(f"Expected `force` with shape ({n_steps}, 3), got shape {f.shape}")
+    m = accelerometer_quaternion(f, gravity) if stage.reference == "pure" else tilt_quaternion(f)
+    return _loop_horizontal(start, dq.tolist(), m[:, [1, 3]].tolist(), segments, maps, stage.rho, h)
 
 
 # ---------------------------------------------------------------------------
