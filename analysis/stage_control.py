@@ -46,7 +46,7 @@ def schuler_period(gravity: float = 9.81, earth_radius: float = 6.371e6) -> floa
     >>> round(schuler_period() / 60.0, 2)
     84.39
     """
-    return 2.0 * np.pi * np.sqrt(positive(earth_radius, "earth_radius") / positive(gravity, "gravity"))
+    return float(2.0 * np.pi * np.sqrt(positive(earth_radius, "earth_radius") / positive(gravity, "gravity")))
 
 
 def classify_poles(poles, *, rtol: float = 1e-9) -> str:

@@ -388,7 +388,7 @@ def build(ctx) -> None:
         "",
         f"### Result (step {step:g} s)",
         "",
-        "| | peak \|Δψ\| [rad] | peak \|Δθ\| [rad] | peak \|Δγ\| [rad] | peak tilt √(Δθ²+Δγ²) [rad] | peak tilt for 1200 ≤ t ≤ 1800 s [rad] |",
+        "| | peak \\|Δψ\\| [rad] | peak \\|Δθ\\| [rad] | peak \\|Δγ\\| [rad] | peak tilt √(Δθ²+Δγ²) [rad] | peak tilt for 1200 ≤ t ≤ 1800 s [rad] |",
         "|---|---|---|---|---|---|",
         f"| after stage 1 | {peak[0, 0]:.3e} | {peak[0, 1]:.3e} | {peak[0, 2]:.3e} | {tilt[0]:.3e} | {tilt_acc[0]:.3e} |",
         f"| after two stages | {peak[1, 0]:.3e} | {peak[1, 1]:.3e} | {peak[1, 2]:.3e} | {tilt[1]:.3e} | {tilt_acc[1]:.3e} |",
@@ -434,7 +434,7 @@ def build(ctx) -> None:
     lines += [
         f"### Variants (step {vstep:g} s)",
         "",
-        "| variant | stage 1: peak \|Δθ\| | two stages: peak \|Δθ\| | stage 1: peak tilt | two stages: peak tilt | tilt ratio |",
+        "| variant | stage 1: peak \\|Δθ\\| | two stages: peak \\|Δθ\\| | stage 1: peak tilt | two stages: peak tilt | tilt ratio |",
         "|---|---|---|---|---|---|",
     ]
     vres = {}
@@ -487,7 +487,7 @@ def build(ctx) -> None:
         f"Strang splitting (exact correction flow, exact norm flow, exact kinematic step). Difference from the run with",
         f"h = {steps[-1]:g} s over the first {conv_sc.duration:g} s (rocking and acceleration included):",
         "",
-        "| step h [s] | max \|Δν⁺\| after two stages | max \|angle-error difference\| [rad] | ratio to the next step |",
+        "| step h [s] | max \\|Δν⁺\\| after two stages | max \\|angle-error difference\\| [rad] | ratio to the next step |",
         "|---|---|---|---|",
     ]
     diffs = []
