@@ -470,6 +470,10 @@ def build(ctx) -> None:
         "  run, and the stage follows with an error of about $\\dot d/l$ plus Schuler oscillations. The paper's",
         "  invariance derivation uses $\\omega_3 = -V_1/R$, $\\omega_1 = V_3/R$, i.e. a non-rotating Earth; with Ω = 0",
         "  the residual falls to the sensor-error level (table above).",
+        f"* **Yaw.** Neither stage corrects yaw (components 0 and 2 of ν carry no correction), so the second stage",
+        f"  cannot reduce it: the simulated yaw error stays at {peak[0, 0]:.1e} → {peak[1, 0]:.1e} rad (coupling of tilt errors and",
+        "  drift in the azimuth-free frame), far below the paper's 3·10⁻² rad after stage 1, whose reduction to",
+        "  3.5·10⁻³ rad the model does not reproduce.",
         "* **c = 2 with the tilt quaternion.** A static pitch of 0.1 rad is estimated as "
         f"{_static_tilt(st_tilt2, ctx):.4f} rad with c = 2 and {_static_tilt(stage1[0], ctx):.4f} rad with c = 1:",
         "  the factor c must match the quaternion, c = 2 for the whole-angle (1.4) and c = 1 for the half-angle (1.10).",
