@@ -1,0 +1,168 @@
+"""Exponential rates of the first-variant stage, checked against simulation.
+
+The perturbation equations (3.1) of Plotnikov (1999), ``2z' = z∘ω − kz − y``,
+``y' = lz``, are linear in ``x = (z, y) ∈ R⁸``.  This module gives
+
+* the state matrix for a constant body rate ω, and the exact exponential rate
+  (slowest real part) from its eigenvalues;
+* the rate at rest in closed form, from the roots of ``2s² + ks + l``
+  (:mod:`derivations.lyapunov`): ``k/4`` when ``k² < 8l``;
+* a guaranteed rate for any time-varying rate with ``|ω(t)| ≤ ϖ``, from the
+  strict Lyapunov function ``W = V + ε z·y`` (:mod:`derivations.lyapunov`);
+* the rate measured on a simulation of the stage (:func:`analysis.multistage.run_stage`
+  with the external reference), to check the three.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import sympy as sp
+from scipy.linalg import eigh
+
+from . import quaternion as quat
+from .multistage import Stage, run_stage
+from .validation import as_float, as_vector, positive
+
+__all__ = ["perturbation_matrix", "exact_rate", "rest_rate", "strict_rate_bound", "simulated_rate"]
+
+
+def perturbation_matrix(k, l, omega=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """State matrix A of (3.1) for a constant body rate: ``x' = A x``, ``x = (z, y)``.
+
+    Parameters
+    ----------
+    k : float
+        Position gain [1/s].
+    l : float
+        Integral gain [1/s²].
+    omega : array_like, shape (3,)
+        Body rate ω [rad/s].
+
+    Returns
+    -------
+    ndarray, shape (8, 8)
+    """
+    k, l = as_float(k, "k"), as_float(l, "l")
+    w = quat.vector_to_quat(as_vector(omega, "omega"))
+    right = quat.multiply(np.eye(4), w).T  # column i: e_i ∘ ω
+    a = np.zeros((8, 8))
+    a[:4, :4] = 0.5 * (right - k * np.eye(4))
+    a[:4, 4:] = -0.5 * np.eye(4)
+    a[4:, :4] = l * np.eye(4)
+    return a
+
+
+def exact_rate(k, l, omega=(0.0, 0.0, 0.0)) -> float:
+    """Exponential decay rate ``−max Re λ(A)`` [1/s] for a constant body rate."""
+    return float(-np.linalg.eigvals(perturbation_matrix(k, l, omega)).real.max())
+
+
+@lru_cache(maxsize=1)
+def _rest_roots():
+    from derivations.lyapunov import derive, symbols
+
+    k, l, *_ = symbols()
+    return sp.lambdify((k, l), derive().rate_roots, "numpy")
+
+
+def rest_rate(k, l) -> float:
+    """Rate at rest from the roots of ``2s² + ks + l`` [1/s]: ``k/4`` if ``k² < 8l``.
+
+    >>> rest_rate(0.01, 5e-5)
+    0.0025
+    """
+    k, l = as_float(k, "k"), as_float(l, "l")
+    roots = np.asarray(_rest_roots()(k + 0j, l + 0j), dtype=complex)
+    return float(-roots.real.max())
+
+
+@lru_cache(maxsize=1)
+def _strict_matrices():
+    from derivations.lyapunov import strict_bound_matrices, symbols
+
+    k, l, *_ = symbols()
+    eps, wbar = sp.symbols("epsilon varpi", positive=True)
+    m, p_plus, p_minus = strict_bound_matrices(k, l, eps, wbar)
+    return sp.lambdify((k, l, eps, wbar), (m, p_plus, p_minus), "numpy")
+
+
+def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
+    """Guaranteed decay rate of |x| for any body rate with ``|ω(t)| ≤ ϖ``.
+
+    With ``W = V + εz·y`` and ``ξ = (|z|, |y|)``: ``−W' ≥ ξᵀMξ`` and
+    ``W ≤ ξᵀP₊ξ``.  If ``P₋ > 0`` (so W is positive definite) and γ is the
+    smallest generalised eigenvalue of ``(M, P₊)``, then ``M − γP₊ ⪰ 0``,
+    ``W' ≤ −γW`` and ``|x(t)| ≤ C e^{−γt/2}``.  ε is chosen on a grid to
+    maximise γ.
+
+    Parameters
+    ----------
+    k, l : float
+        Gains [1/s], [1/s²], both > 0.
+    omega_max : float
+        Bound ϖ on |ω| [rad/s], >= 0.
+    samples : int
+        Grid size for ε.
+
+    Returns
+    -------
+    rate : float
+        γ/2 [1/s] (a lower bound of the true rate).
+    eps : float
+        The ε that attains it.
+    """
+    k, l = positive(k, "k"), positive(l, "l")
+    wbar = as_float(omega_max, "omega_max")
+    if wbar < 0:
+        raise ValueError(f"Expected `omega_max` >= 0, got {wbar:g}")
+    f = _strict_matrices()
+    eps_hi = min(8 * k * l / (8 * l + (k + wbar) ** 2), np.sqrt(2 * l), k)
+    best = (0.0, 0.0)
+    for eps in np.linspace(0.0, eps_hi, samples + 2)[1:-1]:
+        m, p_plus, p_minus = (np.array(x, dtype=float) for x in f(k, l, eps, wbar))
+        if np.linalg.eigvalsh(p_minus).min() <= 0:
+            continue
+        gamma = float(eigh(m, p_plus, eigvals_only=True).min())
+        if gamma > 0 and gamma / 2 > best[0]:
+            best = (gamma / 2, float(eps))
+    return float(best[0]), best[1]
+
+
+def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=None, z0=(0.0, 0.02, -0.01, 0.015)) -> float:
+    """Decay rate of ``V = l|z|² + ½|y|²`` measured on a simulation of the stage [1/s].
+
+    The body turns at the constant rate ω relative to a fixed frame; stage 1 is
+    fed with the exact attitude as external reference (c = 1, ρ = 0) and starts
+    from ``ν(0) = μ(0) + z0``.  The rate is half the slope of ``log V`` fitted by
+    least squares over the second half of the run.
+
+    Parameters
+    ----------
+    k, l : float
+        Gains [1/s], [1/s²], > 0.
+    omega : array_like, shape (3,)
+        Body rate [rad/s].
+    step : float
+        Integration step [s].
+    duration : float, optional
+        Run length [s]; default ``14 / rest_rate``.
+    z0 : array_like, shape (4,)
+        Initial perturbation.
+    """
+    k, l = positive(k, "k"), positive(l, "l")
+    w = as_vector(omega, "omega")
+    h = positive(step, "step")
+    end = 14.0 / rest_rate(k, l) if duration is None else positive(duration, "duration")
+    n = int(np.ceil(end / h))
+    t = np.arange(n + 1) * h
+    mu = quat.rotvec_to_quat(t[:, None] * w)
+    dq = np.broadcast_to(quat.rotvec_to_quat(w * h), (n, 4))
+    stage = Stage.constant(k, l, "external", rho=0.0)
+    nu, y = run_stage(stage, h, dq, reference=mu, initial=mu[0] + np.asarray(z0, dtype=float))
+    z = nu - mu
+    v = l * np.sum(z * z, axis=1) + 0.5 * np.sum(y * y, axis=1)
+    sel = t >= 0.5 * t[-1]
+    slope = np.polyfit(t[sel], np.log(v[sel]), 1)[0]
+    return float(-slope / 2.0)

@@ -1,0 +1,76 @@
+"""CLI: strapdown stability, strapdown multistage, strapdown derive lyapunov."""
+
+import json
+
+import pytest
+
+from analysis.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_stability_json(capsys):
+    code, out, _ = run(capsys, "stability", "--k", "0.01", "--l", "5e-5", "--json")
+    data = json.loads(out)
+    assert code == 0
+    assert data["poles"] == [[pytest.approx(-0.005), pytest.approx(-0.005)], [pytest.approx(-0.005), pytest.approx(0.005)]]
+    assert data["damping"] == [pytest.approx(2**-0.5)] * 2
+    assert data["natural_frequency_rad_s"] == [pytest.approx(5e-5**0.5)] * 2
+    assert data["stability"] == "asymptotically stable"
+    assert data["peak_tilt_error_rad"] > 0.1
+    assert data["g_m_s2"] == 9.81 and data["R_m"] == 6.371e6
+
+
+def test_stability_schuler(capsys):
+    code, out, _ = run(capsys, "stability", "--schuler", "--accel", "5", "--accel-duration", "60", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["peak_tilt_error_rad"] == 0.0 and data["stability"] == "marginal"
+    assert data["l_per_s2"] == pytest.approx(9.81 / 6.371e6) and data["k_per_s"] == 0.0
+
+
+def test_unstable_is_flagged(capsys):
+    code, out, _ = run(capsys, "stability", "--k", "-0.01", "--l", "5e-5", "--json")
+    assert code == 0 and json.loads(out)["stability"] == "unstable"
+
+
+@pytest.mark.parametrize(
+    "argv,match",
+    [
+        (["--k", "nan", "--l", "1e-5"], "`k` to be finite"),
+        (["--k", "0.01", "--l", "inf"], "`l` to be finite"),
+        (["--k", "fast", "--l", "1e-5"], "invalid float"),
+        (["--k", "0.01"], "--l"),
+        (["--k", "0.01", "--l", "1e-5", "--accel-duration", "0"], "accel_duration"),
+        (["--schuler", "--k", "0.1"], "either"),
+    ],
+)
+def test_stability_bad_input(capsys, argv, match):
+    try:
+        code = main(["stability", *argv])
+    except SystemExit as exc:  # argparse errors
+        code = exc.code
+    _, err = capsys.readouterr()
+    assert code == 2 and match in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_derive_lyapunov(capsys):
+    code, out, _ = run(capsys, "derive", "lyapunov", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["Vdot"] == "-k*l*(z0**2 + z1**2 + z2**2 + z3**2)"
+    assert data["V"].startswith("l*z0**2") and data["Vdot_equals_minus_l_k_z_zbar"] is True
+
+
+def test_multistage_short(capsys):
+    code, out, _ = run(capsys, "multistage", "--duration", "1300", "--step", "0.1", "--json")
+    data = json.loads(out)
+    assert code == 0 and len(data["stages"]) == 2
+    assert data["stages"][0]["peak_pitch_error_rad"] > 5 * data["stages"][1]["peak_pitch_error_rad"]
+
+
+def test_multistage_zero_length(capsys):
+    code, _, err = run(capsys, "multistage", "--duration", "0")
+    assert code == 2 and "`duration` > 0" in err

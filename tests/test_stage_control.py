@@ -1,0 +1,72 @@
+"""python-control analysis of the stage loop."""
+
+import control
+import numpy as np
+import pytest
+
+from analysis.stage_control import StageLoop, classify_poles, root_locus_k, root_locus_l
+
+
+def test_poles_damping_natural_frequency():
+    loop = StageLoop(0.01, 5e-5)
+    wn, zeta, p = loop.damp()
+    np.testing.assert_allclose(np.sort_complex(p), np.sort_complex(np.roots([1, 0.01, 5e-5])), rtol=1e-12)
+    np.testing.assert_allclose(wn, np.sqrt(5e-5))
+    np.testing.assert_allclose(zeta, 0.01 / (2 * np.sqrt(5e-5)))
+
+
+@pytest.mark.parametrize(
+    "k,l,label",
+    [(0.01, 5e-5, "asymptotically stable"), (0.0, 1.54e-6, "marginal"), (0.01, 0.0, "marginal"), (-0.01, 5e-5, "unstable"), (0.01, -1e-5, "unstable"), (0.0, 0.0, "unstable")],
+)
+def test_stability_flags(k, l, label):
+    assert StageLoop(k, l).stability == label
+
+
+def test_complementary_filter():
+    loop = StageLoop(0.015, 1.25e-4)
+    w = np.logspace(-5, 0, 50)
+    hg = control.frequency_response(loop.gyro_highpass(), w)
+    ha = control.frequency_response(loop.accel_lowpass(), w)
+    total = hg.magnitude * np.exp(1j * hg.phase) + ha.magnitude * np.exp(1j * ha.phase)
+    np.testing.assert_allclose(total, 1.0, atol=1e-12)
+    assert hg.magnitude[0] < 1e-5 and ha.magnitude[-1] < 0.02
+
+
+def test_root_loci_match_characteristic_roots():
+    ks = np.array([0.0, 0.005, 0.02])
+    loci = root_locus_k(5e-5, ks)
+    for row, k in zip(loci, ks):
+        np.testing.assert_allclose(np.sort_complex(row), np.sort_complex(np.roots([1, k, 5e-5])), atol=1e-12)
+    loci = root_locus_l(0.01, [1e-5, 1e-4])
+    np.testing.assert_allclose(np.sort_complex(loci[1]), np.sort_complex(np.roots([1, 0.01, 1e-4])), atol=1e-12)
+
+
+def test_peak_scales_linearly_and_matches_small_gain_limit():
+    loop = StageLoop(0.01, 5e-5)
+    p20, p2 = loop.peak_tilt_error(20.0, 20.0), loop.peak_tilt_error(2.0, 20.0)
+    assert p20 == pytest.approx(10 * p2, rel=1e-9)
+    # A very fast loop follows the accelerometer: peak → a/g.
+    assert StageLoop(100.0, 1e4).peak_tilt_error(20.0, 20.0) == pytest.approx(20 / 9.81, rel=1e-3)
+
+
+def test_classify_repeated_axis_pole():
+    assert classify_poles([1j, 1j, -1j, -1j]) == "unstable"
+    assert classify_poles([]) == "asymptotically stable"
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_bad_values(bad):
+    with pytest.raises(ValueError, match="finite"):
+        StageLoop(bad, 1e-5)
+    with pytest.raises(ValueError):
+        StageLoop(0.01, 1e-5).peak_tilt_error(bad, 20.0)
+
+
+def test_bad_types_and_durations():
+    with pytest.raises(TypeError, match="`k`"):
+        StageLoop("fast", 1e-5)
+    with pytest.raises(ValueError, match="accel_duration"):
+        StageLoop(0.01, 1e-5).peak_tilt_error(20.0, 0.0)
+    with pytest.raises(ValueError, match="horizon"):
+        StageLoop(0.01, 1e-5).peak_tilt_error(20.0, 20.0, horizon=10.0)
