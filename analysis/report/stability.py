@@ -149,7 +149,7 @@ def build(ctx) -> None:
         "$2\\dot z = z\\circ\\omega - kz - y$, $\\dot y = lz$ (ω pure, the body rate). SymPy quaternion algebra",
         "(`derivations/lyapunov.py`) builds (3.2) and differentiates it along (3.1):",
         "",
-        f"$$V = l\\,z\\circ\\bar z + \\frac{1}{2}\\,y\\circ\\bar y = {_latex(ly.V)}$$",
+        f"$$V = l\\,z\\circ\\bar z + \\frac{{1}}{{2}}\\,y\\circ\\bar y = {_latex(ly.V)}$$",
         "",
         f"$$\\dot V = {_latex(ly.Vdot)}$$",
         "",
