@@ -254,9 +254,13 @@ PANOV_BASIS = {
     "a3": ((1, 3), (2, 4)),
     "a4": ((1, 2), (3, 4)),
 }
+# Row 2 as printed in Table 1 reads (0, 0, 4/3, 0).  That algorithm,
+# 4/3 (p1×p3 + p2×p4), contradicts the paper's own Table 2 (k12 = 124) and
+# Table 3 (u_a and simulated u*); the row (4/3, 4/3, 0, 0), i.e.
+# 4/3 (p2×p3 + p1×p4), reproduces all of them (see reports/derivations.md).
 PANOV_TABLE_1 = {
     1: ("0", "16/9", "0", "0"),
-    2: ("0", "0", "4/3", "0"),
+    2: ("4/3", "4/3", "0", "0"),
     3: ("22/45", "22/45", "22/45", "32/45"),
     4: ("184/315", "112/315", "212/315", "52/105"),
     5: ("654/945", "526/945", "334/945", "736/945"),
