@@ -73,6 +73,9 @@ __all__ = [
     "express",
     "ORDER4_BASIS",
     "fourth_order_coefficients",
+    "canonical_basis",
+    "ErrorCoefficients",
+    "error_coefficients",
     "lie_basis_reduce",
     "word_latex",
     "series_latex",
@@ -458,6 +461,114 @@ def fourth_order_coefficients(algorithm: Algorithm) -> dict:
         ``H = N h``).
     """
     return express(local_error(algorithm).part(5, unit="h"), ORDER4_BASIS)
+
+
+@lru_cache(maxsize=None)
+def canonical_basis(w: int) -> tuple:
+    """Nested products of weight ``w`` independent as vector polynomials in R³.
+
+    Candidates are right-nested words with increasing last pair, tried in the
+    order (length, word) and kept when independent (by value) of those kept
+    before.  For ``w = 5`` this is :data:`ORDER4_BASIS` up to order.
+    """
+    from itertools import combinations_with_replacement, permutations
+
+    from sympy.polys.matrices import DomainMatrix
+
+    cands = set()
+    for n in range(1, w + 1):
+        for letters in combinations_with_replacement(range(_DERIVS), n):
+            if weight(letters) != w:
+                continue
+            for p in permutations(letters):
+                if n == 1 or p[-2] < p[-1]:
+                    cands.add(p)
+    basis, cols = [], []
+    keys: list = []
+    for cand in sorted(cands, key=lambda p: (len(p), p)):
+        col = _flatten(nested(cand))
+        if not col:
+            continue
+        trial = cols + [col]
+        ks = sorted(set().union(*[set(c) for c in trial]))
+        mat = DomainMatrix([[c.get(k, QQ(0)) for c in trial] for k in ks], (len(ks), len(trial)), QQ)
+        if mat.rank() == len(trial):
+            basis.append(cand)
+            cols.append(col)
+    return tuple(basis)
+
+
+@dataclass(frozen=True)
+class ErrorCoefficients:
+    """Leading local error in the convention of Budennyi, Kalinovsky, Panov et al., Table 2.
+
+    ``Δφ_exact − Δφ_algorithm = δ h^(ρ+1) Σ_w k_w x_w + O(h^(ρ+2))`` with h the
+    sample interval (H = N h) and ``δ = 1 / lcm`` of the denominators, so that
+    the ``k_w`` are coprime-denominator integers.
+
+    Attributes
+    ----------
+    order : int or None
+        ρ (None if the error vanishes through h⁷).
+    delta : Fraction
+    coefficients : dict
+        ``{word: Fraction}`` (integers under this normalisation).
+    basis : tuple of words
+    """
+
+    order: int | None
+    delta: Fraction
+    coefficients: dict
+    basis: tuple
+
+    def latex(self, *, dual: bool = False) -> str:
+        """``δφ = δ h^{ρ+1}(Σ k x)`` as LaTeX (``dual=True``: its dual part by the transfer principle)."""
+        if self.order is None:
+            return "\\delta\\varphi = O(h^{8})"
+        series = [(w, c) for w, c in self.coefficients.items() if c]
+        d = sp.latex(sp.Rational(self.delta.numerator, self.delta.denominator))
+        head = f"{d}\\, h^{{{self.order + 1}}}"
+        if not dual:
+            return f"\\delta\\varphi = {head} \\left({series_latex(series)}\\right)"
+        terms = []
+        for w, i, c in dual_words(series):
+            sign = "-" if c < 0 else "+"
+            mag = abs(c)
+            coef = "" if mag == 1 else f"{mag} "
+            terms.append(f"{sign} {coef}{word_latex(w, i)}")
+        body = " ".join(terms).lstrip("+ ")
+        if body.startswith("- "):
+            body = "-" + body[2:]
+        return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
+
+
+@lru_cache(maxsize=None)
+def error_coefficients(algorithm: Algorithm) -> ErrorCoefficients:
+    """Leading local-error coefficients (Table 2 convention, see :class:`ErrorCoefficients`).
+
+    The basis is :data:`ORDER4_BASIS` for ρ = 4 and :func:`canonical_basis`
+    otherwise.
+
+    Examples
+    --------
+    >>> from derivations.algorithms import get
+    >>> e = error_coefficients(get("panov-4s-3"))
+    >>> e.order, e.delta, [int(e.coefficients[w]) for w in ORDER4_BASIS]
+    (4, Fraction(1, 45), [0, 0, 64, 192, -64])
+    """
+    import math
+
+    err = local_error(algorithm)
+    rho = err.order
+    if rho is None:
+        return ErrorCoefficients(None, Fraction(0), {}, ())
+    basis = ORDER4_BASIS if rho == 4 else canonical_basis(rho + 1)
+    raw = express(_scale(err.part(rho + 1, unit="h"), QQ(-1)), basis)
+    lcm = 1
+    for c in raw.values():
+        lcm = lcm * c.denominator // math.gcd(lcm, c.denominator)
+    delta = Fraction(1, lcm)
+    return ErrorCoefficients(rho, delta, {w: c / delta for w, c in raw.items()}, tuple(basis))
 
 
 # ---------------------------------------------------------------------------
