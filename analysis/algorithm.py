@@ -4,6 +4,13 @@ One function, :func:`increment`, evaluates an
 :class:`derivations.algorithms.Algorithm` on real increments ``p`` (coning:
 rotation-vector increment Δφ) or on dual increments ``q = p + s b``
 (sculling: ``ΔΦ = Δφ + s Δφ°``, Lebedev & Panov 1989, eq. (2.5)).
+
+The evaluation works on the three coordinate arrays of each ``p_j``
+separately (each a contiguous or strided ``(...)`` array), and folds the
+pairwise terms by their left factor, ``Σ_ij c_ij p_i × p_j =
+Σ_i p_i × (Σ_j c_ij p_j)``, so that an algorithm with many pairs costs few
+cross products.  The same code serves real and :class:`~analysis.dual.Dual`
+input.
 """
 
 from __future__ import annotations
@@ -13,16 +20,25 @@ import numpy as np
 from derivations.algorithms import Algorithm
 
 from .dual import Dual
-from .quaternion import cross, dot
 
 __all__ = ["increment"]
 
 
-def _expr(expr, p):
+def _cross(a, b):
+    a0, a1, a2 = a
+    b0, b1, b2 = b
+    return (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _expr(expr, comps):
     if isinstance(expr, int):
-        return p[..., expr - 1, :]
+        return comps[expr - 1]
     a, b = expr
-    return cross(_expr(a, p), _expr(b, p))
+    return _cross(_expr(a, comps), _expr(b, comps))
 
 
 def increment(algorithm: Algorithm, p):
@@ -56,17 +72,23 @@ def increment(algorithm: Algorithm, p):
         p = np.asarray(p, dtype=float)
     if p.ndim < 2 or p.shape[-1] != 3 or p.shape[-2] != algorithm.samples:
         raise ValueError(f"Expected `p` with shape (..., {algorithm.samples}, 3) for algorithm {algorithm.name!r}, got shape {p.shape}")
-    total = np.sum(p, axis=-2)
-    # Pairwise terms are folded so that each p_i × p_j is formed once.
+    comps = [tuple(p[..., j, c] for c in range(3)) for j in range(algorithm.samples)]
+    total = [sum((comps[j][c] for j in range(1, algorithm.samples)), comps[0][c]) for c in range(3)]
+    # Pairwise terms folded by their left factor: p_i × (Σ_j c_ij p_j).
+    by_left: dict = {}
     for (i, j), c in algorithm.pairwise.items():
-        total = total + float(c) * cross(p[..., i - 1, :], p[..., j - 1, :])
+        by_left.setdefault(i, []).append((j, float(c)))
+    for i, row in by_left.items():
+        right = [sum(c * comps[j - 1][k] for j, c in row) for k in range(3)]
+        term = _cross(comps[i - 1], right)
+        total = [total[k] + term[k] for k in range(3)]
     for term in algorithm.terms:
         plain_pair = not term.dots and isinstance(term.cross[0], int) and isinstance(term.cross[1], int)
         if plain_pair:
             continue
-        value = _expr(term.cross, p)
+        value = _expr(term.cross, comps)
+        factor = float(term.coefficient)
         for i, j in term.dots:
-            d = dot(p[..., i - 1, :], p[..., j - 1, :])
-            value = value * d[..., None]
-        total = total + float(term.coefficient) * value
-    return total
+            factor = factor * _dot(comps[i - 1], comps[j - 1])
+        total = [total[k] + factor * value[k] for k in range(3)]
+    return np.stack(total, axis=-1)

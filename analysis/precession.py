@@ -147,6 +147,46 @@ class RegularPrecession:
         t0, t1 = np.broadcast_arrays(_time(t0), _time(t1))
         return self._integral(t0, t1, self.nu, self.nutation)
 
+    def grid_increments(self, sample_interval: float, first: int, count: int, *, dual: bool = False):
+        """Increments (2.1) over the uniform samples ``[(k−1)h, kh]``, k = first+1 … first+count.
+
+        The same integrals as :meth:`increments`, written about the sample
+        midpoint ``t_m``: the transverse components of (4.1) are sinusoids of
+        ``νt``, so ``p = (σ ω_1(t_m), σ ω_2(t_m), h ω_3)`` with
+        ``σ = 2 sin(νh/2)/ν``.  This form needs two sines per sample instead of
+        four and has no cancellation between nearly equal cosines.  With dual
+        ν and ϑ the same formula gives ``p + s b``.
+
+        Parameters
+        ----------
+        sample_interval : float
+            Sample interval h [s].
+        first : int
+            Index of the first sample (it starts at ``first · h``).
+        count : int
+            Number of samples.
+        dual : bool, keyword-only
+            Return ``p + s b`` (:class:`Dual`, ``b`` in m/s) instead of ``p`` [rad].
+
+        Returns
+        -------
+        ndarray or Dual, shape (count, 3)
+
+        Examples
+        --------
+        >>> m = RegularPrecession(eps=0.5, nu=2 * np.pi, nutation=0.2)
+        >>> t = np.arange(4) * 0.01
+        >>> bool(np.allclose(m.grid_increments(0.01, 0, 3), m.angle_increments(t[:-1], t[1:]), rtol=1e-13, atol=0))
+        True
+        """
+        h = float(sample_interval)
+        t_mid = (np.arange(first, first + count) + 0.5) * h
+        nu, nut = self._dual_params() if dual else (self.nu, self.nutation)
+        rate = self._rate(t_mid, nu, nut)
+        sigma = 2.0 * np.sin(0.5 * h * nu) / nu
+        scale = np.stack([sigma, sigma, sigma * 0.0 + h], axis=-1)
+        return rate * scale
+
 
 def _time(t):
     if isinstance(t, Dual):

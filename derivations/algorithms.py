@@ -248,18 +248,17 @@ for _order in (2, 4, 6):
 # terms; it is the only assignment of a1..a4 to that basis for which all five
 # algorithms satisfy the second-order condition (weights j − i = 1, 3, 4, 2),
 # and Tables 2 and 3 confirm it (see reports/algorithms.md and derivations.md).
+# Table 1 is quoted as printed except the column of algorithm 2 (see below).
 PANOV_BASIS = {
     "a1": ((2, 3),),
     "a2": ((1, 4),),
     "a3": ((1, 3), (2, 4)),
     "a4": ((1, 2), (3, 4)),
 }
-# Row 2 as printed in Table 1 reads (0, 0, 4/3, 0).  That algorithm,
-# 4/3 (p1×p3 + p2×p4), contradicts the paper's own Table 2 (k12 = 124) and
-# Table 3 (u_a and simulated u*); the row (4/3, 4/3, 0, 0), i.e.
-# 4/3 (p2×p3 + p1×p4), reproduces all of them (see reports/derivations.md).
 PANOV_TABLE_1 = {
     1: ("0", "16/9", "0", "0"),
+    # Printed (0, 0, 4/3, 0); Tables 2 and 3 both require a1 = a2 = 4/3, i.e.
+    # 4/3 (p1×p4 + p2×p3) (erratum, evidence in reports/algorithms.md).
     2: ("4/3", "4/3", "0", "0"),
     3: ("22/45", "22/45", "22/45", "32/45"),
     4: ("184/315", "112/315", "212/315", "52/105"),

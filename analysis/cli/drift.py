@@ -1,0 +1,44 @@
+"""``strapdown drift``: constant drift rate of an algorithm under regular precession."""
+
+from __future__ import annotations
+
+from ..precession import RegularPrecession
+from ..simulator import RAD_PER_S_TO_DEG_PER_H, simulate
+from . import Result
+from ._options import add_algorithm, add_motion, algorithm_from, motion_parameters
+
+
+def _run(args) -> Result:
+    alg = algorithm_from(args)
+    params = motion_parameters(args)
+    motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
+    r = simulate(alg, motion, args.sample_interval, args.duration)
+    data = {
+        "algorithm": alg.name,
+        "samples": alg.samples,
+        "sample_interval": r.sample_interval,
+        "step": r.step,
+        "steps": r.steps,
+        "simulated_duration": float(r.time[-1]),
+        "eps": params["eps"],
+        "nutation_deg": args.nutation_deg,
+        "freq_hz": args.freq_hz,
+        "simulated_drift_deg_per_h": float(r.drift_deg_per_h),
+        "drift_vector_deg_per_h": (r.drift * RAD_PER_S_TO_DEG_PER_H).tolist(),
+        "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
+    }
+    text = (
+        f"{alg.name}: N = {alg.samples}, h = {r.sample_interval:g} s, H = {r.step:g} s, {r.steps} steps\n"
+        f"constant drift rate (frame I): {data['simulated_drift_deg_per_h']:.6g} deg/h"
+    )
+    return Result(data, text)
+
+
+def register(commands) -> None:
+    p = commands.add(
+        "drift",
+        _run,
+        "constant drift rate of an algorithm under regular precession (parallel computation)",
+    )
+    add_algorithm(p)
+    add_motion(p)

@@ -1,0 +1,398 @@
+"""Parallel computation: an algorithm run side by side with the exact solution.
+
+The simulator drives a rotation-vector algorithm (and, through its dual
+extension, the matching apparent-velocity algorithm) with the exact
+increments (2.1) of the regular precession (4.1) or its dual analogue
+(4.2)–(4.3), and compares the computed attitude Λ and apparent velocity
+W_E, W_I with the closed-form solution (1.5), (4.4)–(4.5) of Lebedev & Panov
+(1989).  This is the "method of parallel computation" behind Table 3 of
+Budennyi, Kalinovsky, Panov et al. and the table of Lebedev & Panov (1989).
+
+Everything is vectorised: the increments of all steps come at once from
+:meth:`RegularPrecession.increments`, the algorithm is evaluated on a
+``(..., steps, N, 3)`` array, and the attitude (or biquaternion) after every
+step is an associative prefix product of the step quaternions
+(:func:`prefix_product`), of depth ``log2(steps)``.  Leading axes batch over
+parameter points.
+
+The attitude error is the rotation vector ``δφ_I = rotvec(Λ_alg ∘ Λ̄)`` in
+frame I; the constant drift rate is the norm of its least-squares slope over
+the run.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from derivations.algorithms import Algorithm
+
+from . import quaternion as quat
+from .algorithm import increment
+from .dual import Dual
+from .precession import RegularPrecession, exact_state, initial_biquaternion
+from .validation import as_quaternion, as_vector, positive
+
+__all__ = [
+    "RAD_PER_S_TO_DEG_PER_H",
+    "SimulationResult",
+    "step_count",
+    "sample_increments",
+    "prefix_product",
+    "drift_rate",
+    "simulate",
+]
+
+#: Factor from rad/s to deg/h.
+RAD_PER_S_TO_DEG_PER_H = 180.0 / math.pi * 3600.0
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Outcome of :func:`simulate` (leading axes: the batch of parameter points).
+
+    Attributes
+    ----------
+    algorithm : Algorithm
+        The algorithm run.
+    sample_interval : float
+        Sample interval h [s].
+    step : float
+        Algorithm step H = N h [s].
+    time : ndarray, shape (steps + 1,)
+        Step ends t_k = k H [s], t_0 = 0.
+    attitude_error : ndarray, shape (..., steps + 1, 3)
+        Attitude-error rotation vector ``rotvec(Λ_alg ∘ Λ̄_exact)`` in frame I [rad].
+    drift : ndarray, shape (..., 3)
+        Least-squares slope of ``attitude_error`` against time [rad/s].
+    dw_body, dw_inertial : ndarray, shape (..., steps + 1, 3), or None
+        ``W_E − W_E*`` and ``W_I − W_I*`` [m/s] (velocity runs only).
+    """
+
+    algorithm: Algorithm
+    sample_interval: float
+    step: float
+    time: np.ndarray
+    attitude_error: np.ndarray
+    drift: np.ndarray
+    dw_body: np.ndarray | None = None
+    dw_inertial: np.ndarray | None = None
+
+    @property
+    def steps(self) -> int:
+        """Number of algorithm steps simulated."""
+        return self.time.shape[0] - 1
+
+    @property
+    def drift_deg_per_h(self) -> np.ndarray:
+        """Constant drift rate ``|slope|`` [deg/h], shape ``(...)``."""
+        return np.linalg.norm(self.drift, axis=-1) * RAD_PER_S_TO_DEG_PER_H
+
+    @property
+    def final_dw_body(self) -> np.ndarray:
+        """``|ΔW_E|`` at the end of the run [m/s], shape ``(...)``."""
+        return _final_norm(self.dw_body, "dw_body")
+
+    @property
+    def final_dw_inertial(self) -> np.ndarray:
+        """``|ΔW_I|`` at the end of the run [m/s], shape ``(...)``."""
+        return _final_norm(self.dw_inertial, "dw_inertial")
+
+
+def _final_norm(values, name):
+    if values is None:
+        raise ValueError(f"Expected a velocity run for `{name}`, got an attitude-only run (pass velocity=True)")
+    return np.linalg.norm(values[..., -1, :], axis=-1)
+
+
+def step_count(sample_interval, duration, samples: int) -> int:
+    """Number of whole algorithm steps ``H = N h`` in ``duration``.
+
+    Parameters
+    ----------
+    sample_interval : float
+        Sample interval h [s], > 0.
+    duration : float
+        Length of the run [s], at least one step.
+    samples : int
+        Samples N per step.
+
+    Raises
+    ------
+    ValueError
+        If h or the duration is not positive, or the duration is shorter than one step.
+
+    Examples
+    --------
+    >>> step_count(0.01, 100.0, 4)
+    2500
+    """
+    h = positive(sample_interval, "sample_interval")
+    duration = positive(duration, "duration")
+    step = samples * h
+    # A relative tolerance lets 100 s / 0.04 s count 2500 steps despite round-off.
+    n = math.floor(duration / step * (1.0 + 1e-12))
+    if n < 1:
+        raise ValueError(f"Expected `duration` >= one step H = {samples} × {h:g} s = {step:g} s, got {duration:g}")
+    return n
+
+
+def sample_increments(motion: RegularPrecession, sample_interval: float, steps: int, samples: int, *, first_step: int = 0, dual: bool = False):
+    """Exact increments (2.1) of every sample of ``steps`` consecutive steps.
+
+    Parameters
+    ----------
+    motion : RegularPrecession
+        The motion.
+    sample_interval : float
+        Sample interval h [s].
+    steps : int
+        Number of algorithm steps.
+    samples : int
+        Samples N per step.
+    first_step : int, keyword-only
+        Index of the first step (it starts at ``first_step · N h``).
+    dual : bool, keyword-only
+        Return ``q = p + s b`` (``b`` in m/s) instead of ``p`` alone.
+
+    Returns
+    -------
+    ndarray or Dual, shape (steps, samples, 3)
+        ``p_j`` [rad] (or ``q_j``) of sample j of step k, over
+        ``[((k N + j − 1) h, (k N + j) h]``.
+    """
+    inc = motion.grid_increments(sample_interval, first_step * samples, steps * samples, dual=dual)
+    return np.reshape(inc, (steps, samples, 3))
+
+
+def _qmul(a, b):
+    """Hamilton product of quaternions given as 4-tuples of coordinate arrays."""
+    a0, a1, a2, a3 = a
+    b0, b1, b2, b3 = b
+    return (
+        a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+        a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+        a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+        a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+    )
+
+
+def _scan(q):
+    """Inclusive prefix products along the last axis of 4-tuples of ``(..., n)`` arrays."""
+    n = q[0].shape[-1]
+    if n == 1:
+        return q
+    if n % 2:
+        q = tuple(np.concatenate([c, np.full(c.shape[:-1] + (1,), float(k == 0))], axis=-1) for k, c in enumerate(q))
+    lead = q[0].shape[:-1]
+    odd = _scan(_qmul(tuple(c[..., 0::2] for c in q), tuple(c[..., 1::2] for c in q)))  # c_{2i+1}
+    even = _qmul(tuple(c[..., :-1] for c in odd), tuple(c[..., 2::2] for c in q))  # c_{2i}, i ≥ 1
+    out = []
+    for k in range(4):
+        e = np.concatenate([q[k][..., :1], even[k]], axis=-1)
+        out.append(np.reshape(np.stack([e, odd[k]], axis=-1), lead + (2 * odd[k].shape[-1],))[..., :n])
+    return tuple(out)
+
+
+def prefix_product(q):
+    """Inclusive prefix products ``c_k = q_0 ∘ q_1 ∘ … ∘ q_k`` along axis −2.
+
+    A work-efficient associative scan: adjacent pairs are multiplied, the
+    half-length sequence is scanned recursively, and the even positions are
+    filled in from it.  Depth ``O(log n)``, work ``O(n)`` quaternion products,
+    and no Python loop over the n elements.  Works on quaternions and on
+    biquaternions (:class:`~analysis.dual.Dual`).
+
+    Parameters
+    ----------
+    q : ndarray or Dual, shape (..., n, 4)
+        Quaternions in the order they are applied (each on the right).
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., n, 4)
+
+    Examples
+    --------
+    >>> q = quat.rotvec_to_quat(np.array([[0.1, 0, 0], [0, 0.2, 0], [0, 0, 0.3]]))
+    >>> c = prefix_product(q)
+    >>> bool(np.allclose(c[2], quat.multiply(quat.multiply(q[0], q[1]), q[2])))
+    True
+    """
+    if not isinstance(q, Dual):
+        q = np.asarray(q, dtype=float)
+    if q.ndim < 2 or q.shape[-1] != 4 or q.shape[-2] < 1:
+        raise ValueError(f"Expected `q` with shape (..., n, 4), n >= 1, got shape {q.shape}")
+    return np.stack(_scan(tuple(q[..., k] for k in range(4))), axis=-1)
+
+
+def drift_rate(time, error):
+    """Least-squares slope of ``error`` against ``time`` (the constant drift).
+
+    Parameters
+    ----------
+    time : ndarray, shape (n,)
+        Times [s].
+    error : ndarray, shape (..., n, 3)
+        Error rotation vectors [rad].
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Slope [rad/s].
+    """
+    t = np.asarray(time, dtype=float)
+    tc = t - t.mean()
+    return np.einsum("k,...kj->...j", tc, error) / np.dot(tc, tc)
+
+
+def _as_motions(motion):
+    if isinstance(motion, RegularPrecession):
+        return [motion], False
+    motions = list(motion) if isinstance(motion, (Sequence, np.ndarray)) else None
+    if not motions or not all(isinstance(m, RegularPrecession) for m in motions):
+        raise TypeError(f"Expected `motion` to be a RegularPrecession or a non-empty sequence of them, got {type(motion).__name__}")
+    return motions, True
+
+
+#: Work is cut into chunks of at most ``CHUNK_STEPS`` algorithm steps (batch
+#: points × steps) and ``TIME_CHUNK`` consecutive steps, so that the working set
+#: stays small; the attitude is carried from one time chunk to the next.  The
+#: chunking sets how the work is cut, not the result.
+CHUNK_STEPS = 65536
+TIME_CHUNK = 16384
+
+
+def simulate(
+    algorithm: Algorithm,
+    motion,
+    sample_interval,
+    duration,
+    *,
+    attitude0=(1.0, 0.0, 0.0, 0.0),
+    w_inertial0=(0.0, 0.0, 0.0),
+    velocity: bool = False,
+) -> SimulationResult:
+    """Run ``algorithm`` against the exact solution of ``motion`` ("parallel computation").
+
+    The attitude after step k is ``Λ_k = Λ_0 ∘ Λ(Δφ_1) ∘ … ∘ Λ(Δφ_k)`` with
+    ``Δφ`` from :func:`analysis.algorithm.increment`.  With ``velocity`` the
+    same runs on dual numbers: ``ΔΦ = Δφ + s Δφ°`` from the dual increments
+    ``q = p + s b`` (Lebedev & Panov 1989, eq. (2.5)), the biquaternion step
+    ``ϑ_k`` from ``ΔΦ`` by (1.12), ``θ_k = θ_0 ∘ ϑ_1 ∘ … ∘ ϑ_k``, and
+    ``W_E = 2 vect(Λ̄ ∘ M)``, ``W_I = 2 vect(M ∘ Λ̄)`` (1.3), which is the
+    recursion (2.6) in closed form.  The exact solution is the general
+    solution (1.5) ``θ = C ∘ P(t)`` through the same initial state.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The rotation-vector algorithm (its dual extension for velocity).
+    motion : RegularPrecession or sequence of RegularPrecession
+        The motion (4.1) or its dual analogue (4.2); a sequence is a batch of
+        parameter points and adds a leading axis to every result.
+    sample_interval : float
+        Sample interval h [s], > 0.
+    duration : float
+        Length of the run [s]; the run covers ``floor(duration / H)`` whole steps.
+    attitude0 : array_like, shape (4,), keyword-only
+        Initial attitude Λ(0), unit quaternion (E → I).
+    w_inertial0 : array_like, shape (3,), keyword-only
+        Initial apparent velocity W_I(0) [m/s] (velocity runs).
+    velocity : bool, keyword-only
+        Also integrate the apparent velocity (biquaternion run).
+
+    Returns
+    -------
+    SimulationResult
+
+    Raises
+    ------
+    ValueError
+        Non-positive step or duration, a duration shorter than one step, a
+        non-unit ``attitude0``.
+    TypeError
+        If ``algorithm`` is not an :class:`Algorithm` or ``motion`` is not a
+        :class:`RegularPrecession` (or a sequence of them).
+
+    References
+    ----------
+    Lebedev & Panov (1989), eqs. (1.3), (1.5), (1.12), (2.1)–(2.6), (4.1)–(4.5);
+    Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3 ("parallel computation").
+
+    Examples
+    --------
+    >>> from derivations.algorithms import get
+    >>> m = RegularPrecession(eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
+    >>> r = simulate(get("panov-4s-1"), m, 0.0025, 1.0)
+    >>> r.steps, round(float(r.drift_deg_per_h), 2)
+    (100, 2.47)
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    motions, batched = _as_motions(motion)
+    h = positive(sample_interval, "sample_interval")
+    n_samples = algorithm.samples
+    steps = step_count(h, duration, n_samples)
+    lam0 = as_quaternion(attitude0, "attitude0", unit=True)
+    w0 = as_vector(w_inertial0, "w_inertial0")
+    if lam0.shape != (4,) or w0.shape != (3,):
+        raise ValueError(f"Expected `attitude0` of shape (4,) and `w_inertial0` of shape (3,), got {lam0.shape} and {w0.shape}")
+    step = n_samples * h
+    time = np.arange(steps + 1) * step
+    theta0 = initial_biquaternion(lam0, w0) if velocity else lam0
+
+    count = len(motions)
+    error = np.empty((count, steps + 1, 3))
+    dw = np.empty((2, count, steps + 1, 3)) if velocity else None
+    group = max(1, CHUNK_STEPS // steps)
+    chunk = min(steps, TIME_CHUNK)
+    for g0 in range(0, count, group):
+        ms = motions[g0 : g0 + group]
+        rows = slice(g0, g0 + len(ms))
+        carry = tuple(np.broadcast_to(theta0[..., k], (len(ms), 1)) for k in range(4))
+        _compare(carry, ms, time[:1], lam0, w0, error[rows, :1], None if dw is None else dw[:, rows, :1])
+        for k0 in range(0, steps, chunk):
+            k1 = min(steps, k0 + chunk)
+            inc = np.stack([sample_increments(m, h, k1 - k0, n_samples, first_step=k0, dual=velocity) for m in ms])
+            step_q = quat.rotvec_to_quat(increment(algorithm, inc), validate=False)
+            theta = _qmul(carry, _scan(tuple(step_q[..., k] for k in range(4))))
+            carry = tuple(c[:, -1:] for c in theta)
+            span = slice(k0 + 1, k1 + 1)
+            _compare(theta, ms, time[span], lam0, w0, error[rows, span], None if dw is None else dw[:, rows, span])
+    if not batched:
+        error = error[0]
+        dw = None if dw is None else dw[:, 0]
+    drift = drift_rate(time, error)
+    return SimulationResult(algorithm, h, step, time, error, drift, None if dw is None else dw[0], None if dw is None else dw[1])
+
+
+def _compare(theta, motions, time, lam0, w0, error_out, dw_out) -> None:
+    """Write the attitude error (and ΔW_E, ΔW_I) of computed ``theta`` against the exact state."""
+    velocity = dw_out is not None
+    if velocity:
+        exact = [exact_state(m, time, lam0, w0) for m in motions]
+        lam_true = np.stack([e.attitude for e in exact])
+        lam = tuple(c.re for c in theta)
+    else:
+        lam_true = np.stack([_exact_attitude(m, time, lam0) for m in motions])
+        lam = theta
+    conj_true = (lam_true[..., 0], -lam_true[..., 1], -lam_true[..., 2], -lam_true[..., 3])
+    err_q = np.stack(_qmul(lam, conj_true), axis=-1)
+    error_out[...] = quat.quat_to_rotvec(err_q, canonical=True, validate=False)
+    if velocity:
+        m = tuple(c.du for c in theta)
+        lam_bar = (lam[0], -lam[1], -lam[2], -lam[3])
+        w_body = _qmul(lam_bar, m)[1:]
+        w_inertial = _qmul(m, lam_bar)[1:]
+        dw_out[0] = 2.0 * np.stack(w_body, axis=-1) - np.stack([e.w_body for e in exact])
+        dw_out[1] = 2.0 * np.stack(w_inertial, axis=-1) - np.stack([e.w_inertial for e in exact])
+
+
+def _exact_attitude(motion: RegularPrecession, time, lam0):
+    """Λ(t) = C ∘ Q(t) with C = Λ(0) ∘ Q̄(0): the general solution (1.8)."""
+    c = quat.multiply(lam0, quat.conjugate(motion.attitude(0.0)))
+    return quat.multiply(c, motion.attitude(time))
