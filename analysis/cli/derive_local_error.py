@@ -7,27 +7,18 @@ the convention of Budennyi, Kalinovsky, Panov et al., Table 2:
 
 from __future__ import annotations
 
-from derivations import algorithms
 from derivations.series import error_coefficients, local_error
 
-from . import Result, UsageError
+from . import Result
+from ._options import add_algorithm, algorithm_from
 
 
 def _word_key(word) -> str:
     return "x" + "".join(str(k) for k in word)
 
 
-def resolve_algorithm(args):
-    """The algorithm named by ``--algorithm`` or read from ``--algorithm-file``."""
-    if (args.algorithm is None) == (args.algorithm_file is None):
-        raise UsageError("Expected exactly one of --algorithm NAME or --algorithm-file FILE")
-    if args.algorithm is not None:
-        return algorithms.get(args.algorithm)
-    return algorithms.load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
-
-
 def local_error_command(args) -> Result:
-    alg = resolve_algorithm(args)
+    alg = algorithm_from(args)
     coeffs = error_coefficients(alg)
     err = local_error(alg)
     data = {
@@ -52,6 +43,4 @@ def local_error_command(args) -> Result:
 
 def register(commands) -> None:
     p = commands.add("local-error", local_error_command, "local-error series of an algorithm (exact fractions, LaTeX)", group="derive")
-    p.add_argument("--algorithm", metavar="NAME", help=f"registry algorithm ({', '.join(algorithms.names())})")
-    p.add_argument("--algorithm-file", metavar="FILE", help="TOML file describing a user algorithm")
-    p.add_argument("--allow-inconsistent", action="store_true", help="accept a file algorithm that misses the second-order condition")
+    add_algorithm(p)
