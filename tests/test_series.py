@@ -1,0 +1,219 @@
+"""Local-error series: exact increment, algorithm series, Table 2 and eq. (2.4)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from analysis import quaternion as quat
+from analysis.dual import Dual
+from derivations import series as S
+from derivations.algorithms import Algorithm, Term, get, names
+
+
+def _eval(vec, values):
+    """Evaluate a vector of ring polynomials at ω^(k) = values[k] (shape (7, 3))."""
+    flat = np.asarray(values, dtype=float).reshape(-1)
+    out = []
+    for comp in vec:
+        total = 0.0
+        for monom, coeff in comp.items():
+            term = float(coeff)
+            for i, e in enumerate(monom):
+                if e:
+                    term *= flat[i] ** e
+            total += term
+        out.append(total)
+    return np.array(out)
+
+
+# ------------------------------------------------------------------ exact increment
+def _reference_rotvec(derivs, H):
+    """Rotation vector over [−H/2, H/2] of 2Λ' = Λ∘ω for polynomial ω (DOP853, rtol 1e-13)."""
+    from math import factorial
+
+    def omega(t):
+        return sum(derivs[k] * t**k / factorial(k) for k in range(len(derivs)))
+
+    def rhs(t, q):
+        return 0.5 * quat.multiply(q, np.concatenate([[0.0], omega(t)]))
+
+    sol = solve_ivp(rhs, (-H / 2, H / 2), [1.0, 0, 0, 0], method="DOP853", rtol=1e-13, atol=1e-15)
+    return quat.quat_to_rotvec(sol.y[:, -1])
+
+
+def test_exact_series_low_order_terms():
+    ex = dict(S.exact_words())
+    assert ex[(0,)] == 1 and ex[(2,)] == Fraction(1, 24) and ex[(0, 1)] == Fraction(1, 12)
+
+
+def test_exact_series_matches_integration_to_ninth_order():
+    rng = np.random.default_rng(4)
+    derivs = rng.normal(size=(7, 3))
+    errors = []
+    for H in (0.4, 0.2):
+        series = _eval(S.exact_increment(), derivs * np.array([H ** (k + 1) for k in range(7)])[:, None])
+        errors.append(np.linalg.norm(series - _reference_rotvec(derivs, H)))
+    # truncation at weight 7; the midpoint expansion has no even weights, so the
+    # remainder is O(H^9): halving H divides the error by ~512
+    assert errors[0] / errors[1] == pytest.approx(512, rel=0.1)
+    assert all(not any(S._weight_part(S.exact_increment(), w)) for w in (2, 4, 6))
+
+
+def test_half_step_series_consistent_with_full_step():
+    """exp(φ_[−½,0]) ∘ exp(φ_[0,½]) = exp(φ_[−½,½]) on random derivatives (small step)."""
+    rng = np.random.default_rng(5)
+    d = rng.normal(size=(7, 3)) * 0.05 ** np.arange(1, 8)[:, None]
+    q1 = quat.rotvec_to_quat(_eval(S.exact_increment(Fraction(-1, 2), Fraction(0)), d))
+    q2 = quat.rotvec_to_quat(_eval(S.exact_increment(Fraction(0), Fraction(1, 2)), d))
+    full = _eval(S.exact_increment(), d)
+    np.testing.assert_allclose(quat.quat_to_rotvec(quat.multiply(q1, q2)), full, atol=1e-14)
+
+
+# ------------------------------------------------------------------ algorithm series
+@pytest.mark.parametrize("name", names())
+def test_algorithm_series_matches_numeric_evaluation(name):
+    """The symbolic Δφ equals analysis.algorithm.increment on the increments of a polynomial ω(t)."""
+    from analysis.algorithm import increment
+
+    alg = get(name)
+    rng = np.random.default_rng(6)
+    d = rng.normal(size=(7, 3)) * 0.1 ** np.arange(1, 8)[:, None]  # H = 1, small rates
+    N = alg.samples
+    p = np.array([_eval(pj, d) for pj in S.increments(N)])
+    symbolic = _eval(S.algorithm_series(alg), d)
+    numeric = increment(alg, p)
+    # symbolic is truncated at weight 7: the difference is O(0.1^8)
+    np.testing.assert_allclose(symbolic, numeric, atol=1e-8, rtol=0)
+
+
+@pytest.mark.parametrize(
+    "name, order",
+    [("two-sample", 4), ("optimal-3", 4), ("lebedev-panov-2", 2), ("lebedev-panov-4", 4), ("lebedev-panov-6", 6)]
+    + [(f"panov-4s-{k}", 4) for k in range(1, 6)],
+)
+def test_orders(name, order):
+    assert S.local_error(get(name)).order == order
+
+
+# ------------------------------------------------------------------ Table 2
+# Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2: δ4 and k03, k12, k002, k110, k0001,
+# convention exact − algorithm, coefficient of h^5.  Entries marked "erratum" are
+# contradicted by the derivation (evidence in reports/derivations.md).
+TABLE_2 = [
+    # algorithm, δ4, (k03, k12, k002, k110, k0001), erratum
+    (1, Fraction(4, 45), (-1, 46, 16, 48, -16), None),
+    (2, Fraction(1, 45), (16, 124, 64, 192, -64), None),
+    (3, Fraction(1, 45), (0, 0, 64, 192, -64), None),
+    (4, Fraction(1, 315), (52, 0, 488, 1344, -488), {2: 448, 4: -448}),
+    (5, Fraction(1, 45), (0, 0, 64, 192, -64), None),
+]
+
+
+@pytest.mark.parametrize("number, delta, printed, erratum", TABLE_2)
+def test_table_2(number, delta, printed, erratum):
+    derived = S.error_coefficients(get(f"panov-4s-{number}"))
+    products = [derived.delta * derived.coefficients[w] for w in S.ORDER4_BASIS]
+    expected = [delta * k for k in printed]
+    for i, (got, want) in enumerate(zip(products, expected)):
+        if erratum and i in erratum:
+            assert got != want
+            assert got == delta * erratum[i]
+        else:
+            assert got == want
+
+
+@pytest.mark.parametrize("number", [2, 3, 4, 5])
+def test_table_2_normalisation(number):
+    """δ4 = 1/lcm of the denominators reproduces the printed δ4 (algorithm 1 factors a further 4)."""
+    delta = dict((n, d) for n, d, _, _ in TABLE_2)[number]
+    assert S.error_coefficients(get(f"panov-4s-{number}")).delta == delta
+
+
+def test_table_1_row_2_as_printed_contradicts_table_2():
+    """4/3 (p1×p3 + p2×p4), Table 1 row 2 as printed, gives k12 = 4, not the printed 124."""
+    printed_row = Algorithm("t1-row2", 4, (Term(Fraction(4, 3), (1, 3)), Term(Fraction(4, 3), (2, 4))))
+    c = S.error_coefficients(printed_row)
+    assert c.delta * c.coefficients[(1, 2)] == Fraction(4, 45)
+
+
+# ------------------------------------------------------------------ eq. (2.4)
+# Lebedev & Panov (1989), eq. (2.4): δφ = 8/945 h^7 (Σ c x), exact − algorithm.
+EQ_2_4 = {
+    "23": 92, "05": 1, "14": 6, "004": 6, "013": 42, "103": 24, "112": -66, "202": -116, "301": -30,
+    "0003": -34, "0012": -28, "0102": 128, "0201": -340, "1101": 246, "2001": 28, "00002": -64,
+    "01001": -64, "10001": 256, "000001": 64, "1002": -176,
+}  # fmt: skip
+
+
+def _eq_2_4():
+    return S.lie_vector([(tuple(int(ch) for ch in k), Fraction(8, 945) * v) for k, v in EQ_2_4.items()])
+
+
+def test_eq_2_4_equals_derived_series_exactly():
+    err = S.local_error(get("lebedev-panov-6"))
+    assert all(not any(err.parts[w]) for w in range(7))
+    derived = S._scale(err.part(7, unit="h"), S.QQ(-1))
+    assert all(a == b for a, b in zip(derived, _eq_2_4()))
+
+
+def test_eq_2_4_by_value_on_random_derivatives():
+    rng = np.random.default_rng(24)
+    derived = S._scale(S.local_error(get("lebedev-panov-6")).part(7, unit="h"), S.QQ(-1))
+    printed = _eq_2_4()
+    for _ in range(5):
+        d = rng.normal(size=(7, 3))
+        np.testing.assert_allclose(_eval(derived, d), _eval(printed, d), rtol=1e-12, atol=1e-12)
+
+
+def test_eq_2_4_detects_a_changed_coefficient():
+    """A one-unit change of any printed coefficient is caught (the comparison can fail)."""
+    derived = S._scale(S.local_error(get("lebedev-panov-6")).part(7, unit="h"), S.QQ(-1))
+    wrong = dict(EQ_2_4, **{"1101": 245})
+    vec = S.lie_vector([(tuple(int(ch) for ch in k), Fraction(8, 945) * v) for k, v in wrong.items()])
+    assert any(a != b for a, b in zip(derived, vec))
+
+
+def test_dot_product_term_cancels_fourth_order_x0001():
+    """Without (p2·p3) p2×p3 the printed sixth-order algorithm drops to order 4 (x0001 remains)."""
+    lp6 = get("lebedev-panov-6")
+    trimmed = Algorithm("trim", 4, tuple(t for t in lp6.terms if not t.dots))
+    c = S.error_coefficients(trimmed)
+    assert c.order == 4
+    assert [w for w, v in c.coefficients.items() if v] == [(0, 0, 0, 1)]
+
+
+# ------------------------------------------------------------------ bases and the dual part
+def test_canonical_basis_weight_5_is_order4_basis():
+    assert set(S.canonical_basis(5)) - {(4,)} == {(0, 3), (1, 2), (0, 0, 2), (1, 0, 1), (0, 0, 0, 1)}
+
+
+def test_express_rejects_vector_outside_span():
+    with pytest.raises(ValueError, match="span"):
+        S.express(S.nested((0, 3)), [(1, 2)])
+
+
+def test_dual_words_is_the_transfer_principle():
+    """Dual part of x_w(ω + s a) (Dual arithmetic) = Σ_i x_w with a in place i."""
+    rng = np.random.default_rng(7)
+    w_re, w_du = rng.normal(size=(7, 3)), rng.normal(size=(7, 3))
+    word = (1, 0, 0, 2)
+
+    def nested_num(vals, word):
+        v = vals[word[-1]]
+        for k in reversed(word[:-1]):
+            v = quat.cross(vals[k], v)
+        return v
+
+    dual = nested_num([Dual(w_re[k], w_du[k]) for k in range(7)], word)
+    total = np.zeros(3)
+    for w, i, c in S.dual_words([(word, Fraction(1))]):
+        # only position i is replaced, even when the letter repeats
+        v = w_re[w[-1]] if i != len(w) - 1 else w_du[w[-1]]
+        for pos in range(len(w) - 2, -1, -1):
+            v = quat.cross(w_du[w[pos]] if pos == i else w_re[w[pos]], v)
+        total += float(c) * v
+    np.testing.assert_allclose(dual.du, total, atol=1e-12)
