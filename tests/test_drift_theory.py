@@ -65,9 +65,9 @@ def test_table_3_asymptotic_drift(number, eps, rho, u_star, u_a):
     alg = get(f"panov-4s-{number}")
     assert int(asymptotic_order(alg, eps, NUT)) == rho
     ours = float(asymptotic_drift(alg, eps=eps, nu=NU, nutation=NUT, step=H)) * RAD_PER_S_TO_DEG_PER_H
-    if u_a is None:
-        pytest.skip("u_a not printed")
-    if (number, eps) in TABLE_3_ERRATA:
+    if u_a is None:  # not printed: the simulated u* of the same row decides
+        assert ours == pytest.approx(u_star, rel=0.02)
+    elif (number, eps) in TABLE_3_ERRATA:
         assert abs(ours / u_a - 1) > 0.02
         assert ours == pytest.approx(u_star, rel=0.02)
     else:
