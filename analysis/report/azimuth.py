@@ -169,8 +169,9 @@ def _map_panel(ax, rows, lats, sigmas, key, title):
     ratio = np.array([r["rms"] / r[key] if r[key] > 0 else np.nan for r in rows]).reshape(len(lats), len(sigmas))
     fails = np.array([r["rms_lo"] > r[key] for r in rows]).reshape(ratio.shape)
     holds = np.array([r["rms_hi"] <= r[key] for r in rows]).reshape(ratio.shape)
-    norm = mcolors.TwoSlopeNorm(vmin=-1.0, vcenter=0.0, vmax=1.0)
-    im = ax.pcolormesh(np.arange(len(sigmas) + 1), np.arange(len(lats) + 1), np.clip(np.log10(ratio), -1, 1), cmap="RdBu_r", norm=norm, shading="flat")
+    # ±0.3 in log10 is a factor of two either way: the bounds fail by tens of per cent, not decades.
+    norm = mcolors.TwoSlopeNorm(vmin=-0.3, vcenter=0.0, vmax=0.3)
+    im = ax.pcolormesh(np.arange(len(sigmas) + 1), np.arange(len(lats) + 1), np.clip(np.log10(ratio), -0.3, 0.3), cmap="RdBu_r", norm=norm, shading="flat")
     yy, xx = np.nonzero(fails)
     ax.plot(xx + 0.5, yy + 0.5, "kx", ms=4)
     yy, xx = np.nonzero(holds)
@@ -181,6 +182,16 @@ def _map_panel(ax, rows, lats, sigmas, key, title):
     ax.set_xlabel("rocking σ [deg]")
     ax.set_ylabel("latitude [deg]")
     return im, fails, holds
+
+
+def _label_outer(axes):
+    """Keep axis labels on the left column and the bottom row only."""
+    for i, row in enumerate(axes):
+        for j, ax in enumerate(row):
+            if j:
+                ax.set_ylabel("")
+            if i < len(axes) - 1:
+                ax.set_xlabel("")
 
 
 def _grids(ctx):
@@ -210,22 +221,24 @@ def _validity_figures(ctx, maps):
 
     lats, sigmas = maps["lats"], maps["sigmas"]
     known = [k for k in maps["maps"] if "narrowband" not in k]
-    fig, axes = plt.subplots(2, len(known), figsize=(3.6 * len(known), 6.4), squeeze=False)
+    fig, axes = plt.subplots(2, len(known), figsize=(3.9 * len(known), 7.0), squeeze=False, layout="constrained")
     im = None
     for j, name in enumerate(known):
         rows = maps["maps"][name]
-        im, _, _ = _map_panel(axes[0, j], rows, lats, sigmas, "bound14", f"{name}: MC rms / (14)")
-        _map_panel(axes[1, j], rows, lats, sigmas, "bound15", f"{name}: MC rms / (15)")
+        im, _, _ = _map_panel(axes[0, j], rows, lats, sigmas, "bound14", f"{name}:\nMC rms / (14)")
+        _map_panel(axes[1, j], rows, lats, sigmas, "bound15", f"{name}:\nMC rms / (15)")
+    _label_outer(axes)
     fig.colorbar(im, ax=axes, label="log10(MC rms / bound); x: fails (CI above), ·: holds", shrink=0.8)
     ctx.savefig(fig, "figures/azimuth-validity-known.png")
     corr = [k for k in maps["maps"] if "narrowband" in k]
-    fig, axes = plt.subplots(2, len(corr), figsize=(3.8 * len(corr), 6.4), squeeze=False)
+    fig, axes = plt.subplots(2, len(corr), figsize=(4.2 * len(corr), 7.0), squeeze=False, layout="constrained")
     for j, name in enumerate(corr):
         rows = maps["maps"][name]
         for r in rows:
             r["plugin14_sq"] = r["plugin14"]
         im, _, _ = _map_panel(axes[0, j], rows, lats, sigmas, "plugin14", f"{name}:\nrms Δ / (14) with (16) estimates")
         _map_panel(axes[1, j], rows, lats, sigmas, "bound15", f"{name}:\nrms Δ / (15)")
+    _label_outer(axes)
     fig.colorbar(im, ax=axes, label="log10(rms alignment error / bound)", shrink=0.8)
     ctx.savefig(fig, "figures/azimuth-validity-correlation.png")
 
