@@ -14,7 +14,7 @@ small frozen specification with a vectorised ``sample`` method that takes an
     a ship-motion-like stationary process: the output of the second-order
     shaping filter ``ξ'' + 2ζω0 ξ' + ω0² ξ = w`` driven by white noise, with
     period ``2π/ω0`` and damping ζ.  It is generated exactly at the sample
-    instants (exact discretisation, the AR(2) recursion run by
+    instants (exact discretisation, then its ARMA(2, 1) innovations form run by
     :func:`scipy.signal.lfilter`), starting in the stationary distribution.
 
 ``sigma_xi``, ``sigma_eta`` are always the standard deviations of ξ and η, so
@@ -232,39 +232,73 @@ class NarrowbandRocking:
         g = as_generator(rng)
         if dt is None:
             z = g.standard_normal((2, n_trials, n_steps))
-        else:
-            z = self._unit_series(g, 2 * n_trials, n_steps, dt).reshape(2, n_trials, n_steps)
-        z[0] *= self.sigma_xi
-        z[1] *= self.sigma_eta
+            z[0] *= self.sigma_xi
+            z[1] *= self.sigma_eta
+        else:  # the filter is linear: scale its input rows, not its output
+            scale = np.repeat([self.sigma_xi, self.sigma_eta], n_trials)
+            z = self._unit_series(g, 2 * n_trials, n_steps, dt, scale=scale).reshape(2, n_trials, n_steps)
         return z[0], z[1]
 
-    def _unit_series(self, g, n: int, n_steps: int, dt: float) -> np.ndarray:
-        """``n`` independent unit-variance series of ``n_steps`` samples (rows)."""
+    def innovations(self, dt: float):
+        """ARMA(2, 1) form of the unit-variance series sampled every ``dt`` [s].
+
+        With ``s_k = F s_{k−1} + w_k`` and Cayley–Hamilton (``F² − tF + dI = 0``,
+        ``t = tr F``, ``d = det F``) the samples obey
+        ``x_k − t x_{k−1} + d x_{k−2} = u_k``, where ``u_k`` is a moving average
+        of order one of the state noise.  Its spectral factor
+        ``u_k = e_k + θ e_{k−1}`` (``|θ| < 1``, ``e`` white with variance ``s²``)
+        gives the same Gaussian process with one normal draw per sample instead
+        of two.
+
+        Returns
+        -------
+        t, d, theta, s2 : float
+        """
         F, Q = self.discretisation(dt)
-        P = np.diag([1.0, self.omega0**2])
-        LQ = np.linalg.cholesky(Q + 1e-300 * np.eye(2))
-        L0 = np.linalg.cholesky(P)
-        s0 = g.standard_normal((n, 2)) @ L0.T  # stationary initial state
-        x = np.empty((n, n_steps))
-        x[:, 0] = s0[:, 0]
-        if n_steps == 1:
-            return x
-        z = g.standard_normal((2, n, n_steps - 1))
-        w0 = z[0] * LQ[0, 0]  # w_k = LQ z_k, components written out (no small matmuls)
-        w1 = z[1] * LQ[1, 1]
-        w1 += LQ[1, 0] * z[0]
-        x[:, 1] = (s0 @ F.T)[:, 0] + w0[:, 0]
-        if n_steps == 2:
-            return x
-        # Cayley–Hamilton: x_k − t x_{k−1} + d x_{k−2} = c·w_{k−1} + c·(F − tI) w_{k−2}
-        t, d = np.trace(F), np.linalg.det(F)
+        t, d = float(np.trace(F)), float(np.linalg.det(F))
         g2 = (F - t * np.eye(2))[0]
-        u = w0[:, :-1] * g2[0]
-        u += w0[:, 1:]
-        u += g2[1] * w1[:, :-1]
-        # initial conditions of the transposed direct form from the past outputs x_1, x_0
-        zi = np.stack([t * x[:, 1] - d * x[:, 0], -d * x[:, 1]], axis=-1)
-        x[:, 2:], _ = signal.lfilter([1.0], [1.0, -t, d], u, axis=-1, zi=zi)
+        c0 = float(Q[0, 0] + g2 @ Q @ g2)  # Var u_k
+        c1 = float(g2 @ Q[:, 0])  # Cov(u_k, u_{k−1})
+        if c1 == 0.0:
+            return t, d, 0.0, c0
+        r = c1 / c0
+        theta = (1.0 - math.sqrt(1.0 - 4.0 * r * r)) / (2.0 * r)
+        return t, d, theta, c1 / theta
+
+    def _unit_series(self, g, n: int, n_steps: int, dt: float, *, scale=None) -> np.ndarray:
+        """``n`` independent unit-variance series of ``n_steps`` samples (rows), times ``scale`` per row."""
+        z0 = g.standard_normal((n, 3))
+        z = g.standard_normal((n, max(n_steps - 2, 0)))
+        if scale is not None:
+            z0 *= scale[:, None]
+            z *= scale[:, None]
+        return self._series_from_normals(z0, z, n_steps, dt, overwrite=True)
+
+    def _series_from_normals(self, z0, z, n_steps: int, dt: float, *, overwrite: bool = False) -> np.ndarray:
+        """Series from standard normals: ``z0`` (n, 3) for the start, ``z`` (n, n_steps − 2) after.
+
+        ``(x_0, x_1, e_1)`` are drawn from their stationary joint law
+        (``Cov(x_0, x_1) = F_00``, ``Cov(x_1, e_1) = s²``, ``Cov(x_0, e_1) = 0``),
+        then the ARMA(2, 1) recursion of :meth:`innovations` runs in
+        :func:`scipy.signal.lfilter`, so every sample has exactly the
+        stationary law of the shaping-filter output.
+        """
+        t, d, theta, s2 = self.innovations(dt)
+        F, _ = self.discretisation(dt)
+        cov = np.array([[1.0, F[0, 0], 0.0], [F[0, 0], 1.0, s2], [0.0, s2, s2]])
+        start = z0 @ np.linalg.cholesky(cov).T
+        x = np.empty((z0.shape[0], n_steps))
+        x[:, : min(n_steps, 2)] = start[:, : min(n_steps, 2)]
+        if n_steps <= 2:
+            return x
+        e1 = start[:, 2]
+        # initial conditions of the transposed direct form II from x_1, x_0 and e_1
+        zi = np.stack([theta * e1 + t * start[:, 1] - d * start[:, 0], -d * start[:, 1]], axis=-1)
+        if overwrite:
+            z *= math.sqrt(s2)
+        else:
+            z = math.sqrt(s2) * z
+        x[:, 2:], _ = signal.lfilter([1.0, theta], [1.0, -t, d], z, axis=-1, zi=zi)
         return x
 
 

@@ -39,20 +39,28 @@ def test_sine_is_arcsine_distributed():
     assert np.max(np.abs(cdf - np.arange(1, x.size + 1) / x.size)) < 0.0062
 
 
-def test_narrowband_equals_state_recursion():
+@pytest.mark.parametrize("period, damping, dt", [(7.0, 0.15, 0.2), (8.0, 0.02, 0.1), (3.0, 0.7, 1.3)])
+def test_narrowband_has_the_exact_stationary_covariance(period, damping, dt):
+    """The generator is linear in its normal draws: feeding it unit vectors gives its
+    Jacobian J, and J Jᵀ must equal the Toeplitz autocovariance of the shaping filter."""
+    m = NarrowbandRocking(1.0, 1.0, period, damping)
+    n = 25
+    eye = np.eye(n + 1)
+    x = m._series_from_normals(eye[:, :3], eye[:, 3:], n, dt)  # row i: response to normal i
+    cov = x.T @ x
+    lags = np.abs(np.subtract.outer(np.arange(n), np.arange(n))) * dt
+    np.testing.assert_allclose(cov, m.autocorrelation(lags), rtol=0, atol=1e-12)
+
+
+def test_narrowband_innovations_match_state_noise():
+    """The MA(1) factor reproduces the variance and lag-1 covariance of the state-noise combination."""
     m = NarrowbandRocking(1.0, 1.0, 7.0, 0.15)
-    dt, n = 0.2, 40
-    x = m._unit_series(np.random.default_rng(4), 3, n, dt)
-    g = np.random.default_rng(4)
-    F, Q = m.discretisation(dt)
-    s = g.standard_normal((3, 2)) @ np.linalg.cholesky(np.diag([1.0, m.omega0**2])).T
-    z = g.standard_normal((2, 3, n - 1))
-    w = np.einsum("ij,jtk->tki", np.linalg.cholesky(Q), z)  # w[trial, step, component]
-    ref = [s[:, 0]]
-    for k in range(n - 1):
-        s = s @ F.T + w[:, k]
-        ref.append(s[:, 0])
-    np.testing.assert_allclose(x, np.stack(ref, axis=1), rtol=0, atol=1e-12)
+    t, d, theta, s2 = m.innovations(0.2)
+    F, Q = m.discretisation(0.2)
+    g2 = (F - t * np.eye(2))[0]
+    assert abs(theta) < 1
+    assert s2 * (1 + theta**2) == pytest.approx(Q[0, 0] + g2 @ Q @ g2, rel=1e-12)
+    assert s2 * theta == pytest.approx(g2 @ Q[:, 0], rel=1e-12)
 
 
 def test_narrowband_autocorrelation_and_stationarity():
