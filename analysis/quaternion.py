@@ -23,6 +23,7 @@ from .validation import as_quaternion, as_vector
 
 __all__ = [
     "multiply",
+    "multiply_parts",
     "conjugate",
     "norm",
     "normalize",
@@ -48,6 +49,23 @@ def _arr(x):
     return x if np.issubdtype(x.dtype, np.inexact) else x.astype(float)
 
 
+def multiply_parts(a, b):
+    """Hamilton product of quaternions given as 4-tuples of components.
+
+    The structure-of-arrays form of :func:`multiply` (the one place the product
+    is written out), for hot paths that keep ``(q0, q1, q2, q3)`` as separate
+    arrays.
+    """
+    a0, a1, a2, a3 = a
+    b0, b1, b2, b3 = b
+    return (
+        a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+        a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+        a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+        a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+    )
+
+
 def multiply(a, b):
     """Hamilton product ``a ∘ b`` of ``(..., 4)`` quaternions (broadcasting).
 
@@ -55,17 +73,8 @@ def multiply(a, b):
     array([0., 0., 0., 1.])
     """
     a, b = _arr(a), _arr(b)
-    a0, a1, a2, a3 = a[..., 0], a[..., 1], a[..., 2], a[..., 3]
-    b0, b1, b2, b3 = b[..., 0], b[..., 1], b[..., 2], b[..., 3]
-    return np.stack(
-        [
-            a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
-        ],
-        axis=-1,
-    )
+    parts = multiply_parts(tuple(a[..., i] for i in range(4)), tuple(b[..., i] for i in range(4)))
+    return np.stack(parts, axis=-1)
 
 
 def conjugate(q):

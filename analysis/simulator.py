@@ -168,16 +168,7 @@ def sample_increments(motion: RegularPrecession, sample_interval: float, steps: 
     return np.reshape(inc, (steps, samples, 3))
 
 
-def _qmul(a, b):
-    """Hamilton product of quaternions given as 4-tuples of coordinate arrays."""
-    a0, a1, a2, a3 = a
-    b0, b1, b2, b3 = b
-    return (
-        a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-        a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-        a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-        a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
-    )
+_qmul = quat.multiply_parts
 
 
 def _scan(q):

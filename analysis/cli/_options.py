@@ -65,3 +65,17 @@ def floats(text: str, name: str, count: int) -> np.ndarray:
 def unit_quaternion(text: str, name: str) -> np.ndarray:
     """Parse four comma-separated numbers and normalise them to a unit quaternion."""
     return normalize(floats(text, name, 4), name)
+
+
+def run_summary(alg, result) -> tuple[dict, str]:
+    """JSON keys and the first text line shared by the simulation commands."""
+    data = {
+        "algorithm": alg.name,
+        "samples": alg.samples,
+        "sample_interval": result.sample_interval,
+        "step": result.step,
+        "steps": result.steps,
+        "simulated_duration": float(result.time[-1]),
+    }
+    line = f"{alg.name}: N = {alg.samples}, h = {result.sample_interval:g} s, H = {result.step:g} s, {result.steps} steps, t = {data['simulated_duration']:g} s"
+    return data, line

@@ -6,7 +6,7 @@ from ..drift_theory import asymptotic_drift
 from ..precession import RegularPrecession
 from ..simulator import RAD_PER_S_TO_DEG_PER_H, simulate
 from . import Result
-from ._options import add_algorithm, add_motion, algorithm_from, motion_parameters
+from ._options import add_algorithm, add_motion, algorithm_from, motion_parameters, run_summary
 
 
 def _run(args) -> Result:
@@ -14,13 +14,8 @@ def _run(args) -> Result:
     params = motion_parameters(args)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
     r = simulate(alg, motion, args.sample_interval, args.duration)
-    data = {
-        "algorithm": alg.name,
-        "samples": alg.samples,
-        "sample_interval": r.sample_interval,
-        "step": r.step,
-        "steps": r.steps,
-        "simulated_duration": float(r.time[-1]),
+    data, header = run_summary(alg, r)
+    data |= {
         "eps": params["eps"],
         "nutation_deg": args.nutation_deg,
         "freq_hz": args.freq_hz,
@@ -30,7 +25,7 @@ def _run(args) -> Result:
         "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
     }
     text = (
-        f"{alg.name}: N = {alg.samples}, h = {r.sample_interval:g} s, H = {r.step:g} s, {r.steps} steps\n"
+        f"{header}\n"
         f"constant drift rate (frame I): {data['simulated_drift_deg_per_h']:.6g} deg/h\n"
         f"asymptotic drift rate u_a: {data['asymptotic_drift_deg_per_h']:.6g} deg/h"
     )

@@ -6,7 +6,7 @@ from ..precession import RegularPrecession
 from ..simulator import simulate
 from ..validation import as_float
 from . import Result
-from ._options import add_algorithm, add_motion, algorithm_from, floats, motion_parameters, unit_quaternion
+from ._options import add_algorithm, add_motion, algorithm_from, floats, motion_parameters, run_summary, unit_quaternion
 
 
 def _run(args) -> Result:
@@ -18,20 +18,15 @@ def _run(args) -> Result:
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"], nu_dual, nutation_dual)
     r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
-    data = {
-        "algorithm": alg.name,
-        "samples": alg.samples,
-        "sample_interval": r.sample_interval,
-        "step": r.step,
-        "steps": r.steps,
-        "simulated_duration": float(r.time[-1]),
+    data, header = run_summary(alg, r)
+    data |= {
         "dW_E": float(r.final_dw_body),
         "dW_I": float(r.final_dw_inertial),
         "simulated_drift_deg_per_h": float(r.drift_deg_per_h),
         "attitude0": lam0.tolist(),
     }
     text = (
-        f"{alg.name}: N = {alg.samples}, h = {r.sample_interval:g} s, H = {r.step:g} s, {r.steps} steps, t = {data['simulated_duration']:g} s\n"
+        f"{header}\n"
         f"|ΔW_E| = {data['dW_E']:.6g} m/s, |ΔW_I| = {data['dW_I']:.6g} m/s, drift {data['simulated_drift_deg_per_h']:.6g} deg/h"
     )
     return Result(data, text)
