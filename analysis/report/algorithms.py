@@ -459,12 +459,19 @@ def _lp6_section() -> list:
         "| Algorithm | local-error exponents |",
         "|---|---|",
     ]
-    for r in lp6_local_orders():
+    rows = lp6_local_orders()
+    for r in rows:
         out.append(f"| {r['algorithm']} | {', '.join(f'{e:.2f}' for e in r['exponents'])} |")
+    printed, no_dot = (round(float(np.mean(r["exponents"]))) for r in rows[2:4])
+    verdict = (
+        "The printed form is correct and the registry keeps it."
+        if printed == 7
+        else "The printed form is NOT sixth order: the registry entry needs correcting."
+    )
     out += [
         "",
-        "The term as printed gives local order 7 (a sixth-order algorithm); without its dot-product part the",
-        "order falls to 5. The printed form is correct and the registry keeps it.",
+        f"The term as printed gives local order {printed} (a global order of {printed - 1}); without its",
+        f"dot-product part the local order is {no_dot}. {verdict}",
         "",
     ]
     return out
