@@ -50,6 +50,7 @@ from functools import lru_cache
 from math import factorial
 
 import sympy as sp
+from sympy.algebras.quaternion import Quaternion
 from sympy.polys.domains import QQ
 from sympy.polys.rings import ring
 
@@ -307,23 +308,12 @@ def _coning_exact(samples: int) -> sp.Expr:
     a = _ALPHA
     H = samples * _X
 
-    def qmul(p, q):
-        p0, p1, p2, p3 = p
-        q0, q1, q2, q3 = q
-        return (
-            p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-            p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-            p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-            p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
-        )
-
     def Q(t):
         c, s = sp.cos(a / 2), sp.sin(a / 2)
-        return (c * sp.cos(0 * t), s * sp.cos(t), -s * sp.sin(t), c * sp.sin(0 * t))
+        return Quaternion(c * sp.cos(0 * t), s * sp.cos(t), -s * sp.sin(t), c * sp.sin(0 * t))
 
-    q0 = Q(-H / 2)
-    q0c = (q0[0], -q0[1], -q0[2], -q0[3])
-    rel = qmul(q0c, Q(H / 2))
+    q = Q(-H / 2).conjugate() * Q(H / 2)  # Hamilton product (sympy.algebras.Quaternion)
+    rel = (q.a, q.b, q.c, q.d)
     # rotation vector = 2 asin(|v|)/|v| v; to O(α²) along n = (0, sin α, cos α):
     # v = O(α) in x,y and O(α²) in z, so 2 v is exact to O(α²) in n·φ.
     phi = [2 * rel[1], 2 * rel[2], 2 * rel[3]]
