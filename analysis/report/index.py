@@ -5,7 +5,7 @@ from __future__ import annotations
 from .. import __version__
 from . import Section
 
-SECTION = Section("index", "Index", order=100)
+SECTION = Section("index", "Index", order=100, page="README.md")
 
 
 def build(ctx) -> None:
