@@ -67,6 +67,7 @@ __all__ = [
     "mapped_error",
     "precession_value",
     "drift_coefficients",
+    "step_error_values",
     "StructureFunctions",
     "structure_functions",
     "optimal_coning_algorithm",
@@ -182,6 +183,30 @@ def drift_coefficients(algorithm: Algorithm) -> tuple:
         y = _substitute(part[1])
         z = _substitute(part[2])
         out.append(_reduce_trig(y * _S + z * _C))
+    return tuple(out)
+
+
+@lru_cache(maxsize=None)
+def step_error_values(algorithm: Algorithm) -> tuple:
+    """One-step error on (4.1) by weight: ``((w, (x_w, y_w, z_w)), …)``, w ≤ 7, nonzero parts only.
+
+    The error one step adds (algorithm minus exact, :func:`mapped_error`),
+    resolved in the body axes at the middle of a step centred on t = 0, is
+    ``Σ_w (x_w, y_w, z_w)(ε, ϑ) (νH)^w``; at a step centred on t it is turned
+    about e_z of E by −νt.
+
+    Examples
+    --------
+    >>> from derivations.algorithms import get
+    >>> [w for w, _ in step_error_values(get("lebedev-panov-4"))]
+    [5, 7]
+    """
+    mapped = S._truncate(mapped_error(algorithm), S.MAX_WEIGHT)
+    out = []
+    for w in range(S.MAX_WEIGHT + 1):
+        part = S._weight_part(mapped, w)
+        if any(part):
+            out.append((w, precession_value(part)))
     return tuple(out)
 
 
