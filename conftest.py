@@ -1,9 +1,19 @@
 """Root conftest: source tree importable the same way for tests and doctests; deterministic hypothesis."""
 
+import pytest
 from hypothesis import settings
+
+from derivations._reproducible import reproducible
 
 # Derandomized property tests: the same examples on every run, no timing deadlines,
 # so the suite cannot fail by chance on a loaded machine.
 settings.register_profile("strapdown", derandomize=True, deadline=None, print_blob=True)
 settings.register_profile("explore", deadline=None, max_examples=2000)
 settings.load_profile("strapdown")
+
+
+@pytest.fixture(autouse=True)
+def _sympy_seeded():
+    """Each test runs with SymPy's internal random choices seeded (factorisation time is then fixed)."""
+    with reproducible():
+        yield

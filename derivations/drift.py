@@ -56,6 +56,7 @@ from sympy.polys.rings import ring
 
 from . import series as S
 from .algorithms import Algorithm, Term
+from ._reproducible import reproducible_sympy
 
 __all__ = [
     "EPS",
@@ -166,6 +167,7 @@ def precession_value(vector) -> tuple:
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def drift_coefficients(algorithm: Algorithm) -> tuple:
     """Signed drift coefficients ``d_w(ε, ϑ)``, w = 0 … 7 (algorithm minus exact).
 
@@ -257,6 +259,7 @@ def _content(expr) -> Fraction:
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def structure_functions(algorithm: Algorithm) -> StructureFunctions:
     """``A_ρ, B_ρ, f_ρ, g_ρ, f_ρ°, g_ρ°`` of ``algorithm`` (Lebedev & Panov 1989, section 5).
 
@@ -324,6 +327,7 @@ def _coning_lag_response(samples: int) -> list:
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def _coning_exact(samples: int) -> sp.Expr:
     """``α²``-coefficient of ``n·(Δφ_exact − P)`` for pure coning over ``H = N h`` (x = νh, ν = 1).
 
@@ -349,6 +353,7 @@ def _coning_exact(samples: int) -> sp.Expr:
     return sp.simplify(sp.expand_trig(val))
 
 
+@reproducible_sympy
 def coning_drift_closed_form(lag_sums, samples: int) -> sp.Expr:
     """Exact ``α²``-coefficient of the coning drift ``n·(Δφ_alg − Δφ_exact)/H`` of a pairwise algorithm.
 
@@ -370,6 +375,7 @@ def coning_drift_closed_form(lag_sums, samples: int) -> sp.Expr:
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def optimal_coning_algorithm(samples: int) -> Algorithm:
     """Optimal N-sample coning algorithm: lag sums that cancel the coning drift through ``(νh)^{2N−1}``.
 

@@ -38,6 +38,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 import sympy as sp
+from ._reproducible import reproducible_sympy
 
 __all__ = [
     "phi",
@@ -122,6 +123,7 @@ def _add(*polys: Poly2, scale=None) -> Poly2:
     return out
 
 
+@reproducible_sympy
 def _clean(p: Poly2) -> Poly2:
     out = {}
     for key in sorted(p):
@@ -211,6 +213,7 @@ def coefficient_values(order: int = 3) -> dict:
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def generic_error_series(order: int = 3) -> dict:
     """Series of ``σ − σ* = arg(A + iB) − arg(A* + iB*)`` in (ξ, η) to total degree ``order``.
 
@@ -238,6 +241,7 @@ def generic_error_series(order: int = 3) -> dict:
     return {k: sp.factor(sp.expand(c)) for k, c in sorted(series.items())}
 
 
+@reproducible_sympy
 def error_series(order: int = 3) -> dict:
     """Series of ``σ − σ*`` for the gyrocompass A, B, in φ, β0, γ0 (unsimplified).
 
@@ -280,6 +284,7 @@ def _specialise(expr, generic: bool, order: int):
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def first_order_mse(*, generic: bool = False):
     """``E L²`` of the linear error ``L = (A* ζ2 − B* ζ1)/(A*² + B*²)``.
 
@@ -291,6 +296,7 @@ def first_order_mse(*, generic: bool = False):
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def bias_second_order(*, generic: bool = False):
     """Second-order bias ``E(σ − σ*) = ½ (σ_ββ Dξ + σ_γγ Dη) + O(4)``.
 
@@ -301,6 +307,7 @@ def bias_second_order(*, generic: bool = False):
 
 
 @lru_cache(maxsize=None)
+@reproducible_sympy
 def mse_fourth_order(*, generic: bool = False):
     """Mean-square error ``E(σ − σ*)²`` to fourth order: ``E L² + E Q² + 2 E L C``.
 

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
+from ._reproducible import reproducible_sympy
 
 __all__ = ["LyapunovDerivation", "derive", "symbols", "perturbation_rhs", "strict_bound_matrices"]
 
@@ -134,6 +135,7 @@ class LyapunovDerivation:
     rate_roots: list
 
 
+@reproducible_sympy
 def derive() -> LyapunovDerivation:
     """Derive V, V', the LaSalle step, the strict function W and the rest rates.
 

@@ -43,6 +43,7 @@ from functools import lru_cache
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
+from ._reproducible import reproducible_sympy
 
 __all__ = ["SchulerDerivation", "derive", "krylov_quaternion", "accel_to_tilt_tf", "t", "s"]
 
@@ -103,6 +104,7 @@ class SchulerDerivation:
 
 
 @lru_cache(maxsize=1)
+@reproducible_sympy
 def derive() -> SchulerDerivation:
     """Linearise the stage equation (2.1)/(3.5) and derive the Schuler transfer function.
 
@@ -199,6 +201,7 @@ def derive() -> SchulerDerivation:
     )
 
 
+@reproducible_sympy
 def accel_to_tilt_tf():
     """Numerator and denominator coefficients (in descending powers of s) of ``E(s)/A(s)``.
 

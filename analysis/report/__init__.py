@@ -31,6 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
 
+from derivations._reproducible import reproducible
+
 __all__ = ["Section", "Erratum", "Context", "discover", "generate", "SEED"]
 
 #: Root seed of every report (streams are split with ``SeedSequence.spawn``).
@@ -210,7 +212,8 @@ def generate(out: Path | str = "reports", *, only: Iterable[str] | None = None, 
         bar = tqdm(todo, desc="report", file=sys.stderr, disable=not show_progress)
         for module in bar:
             bar.set_description(f"report: {module.SECTION.name}")
-            module.build(ctx)
+            with reproducible():  # SymPy's random choices fixed: same path and time every run
+                module.build(ctx)
         bar.close()
         _swap(stage, out)
     except BaseException:
