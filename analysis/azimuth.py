@@ -49,15 +49,36 @@ def check_latitude(latitude) -> float:
     return in_open_interval(latitude, "latitude", -math.pi / 2, math.pi / 2, text="(-π/2, π/2) rad, i.e. |latitude| < 90°")
 
 
+def _cos_from_sin(angle, sine):
+    """``cos(angle)`` as ``√(1 − sin²)`` (one transcendental call instead of two on the hot path).
+
+    Used for |angle| ≤ π/4, where the cosine is at least 1/√2 and the square
+    root adds no cancellation (error ≤ 2 ulp); larger tilts, rare under
+    rocking, fall back to ``np.cos``.
+    """
+    if not isinstance(sine, np.ndarray) or sine.ndim == 0:
+        return np.cos(angle)
+    c = sine * sine
+    np.subtract(1.0, c, out=c)
+    np.sqrt(c, out=c)
+    wide = np.abs(angle) > _QUARTER_PI
+    if wide.any():
+        c[wide] = np.cos(angle[wide])
+    return c
+
+
+_QUARTER_PI = 0.25 * math.pi
+
+
 def _components(beta, gamma, sphi, cphi):
     sg = np.sin(gamma)
-    A = np.cos(gamma)
+    A = _cos_from_sin(gamma, sg)
     A *= cphi
-    cb = np.cos(beta)
+    B = np.sin(beta)
+    cb = _cos_from_sin(beta, B)
     cb *= sg
     cb *= sphi
     A += cb
-    B = np.sin(beta)
     B *= sphi
     return A, B
 

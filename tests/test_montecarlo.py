@@ -97,3 +97,18 @@ def test_sweep_on_dask_local_cluster_is_bit_identical(monkeypatch):
         mc_remote = montecarlo.run(_normal_kernel, 64, rng=3, trials_per_block=8, blocks_per_chunk=2, executor=client)
     assert remote == serial
     _same(mc_remote, montecarlo.run(_normal_kernel, 64, rng=3, trials_per_block=8))
+
+
+def test_components_match_direct_trigonometry_over_all_angles():
+    """The hot path takes cos from sin (√(1 − sin²)); beyond ±π/2 it must fall back to cos."""
+    import math
+
+    from analysis.azimuth import _components
+
+    rng = np.random.default_rng(7)
+    beta = rng.uniform(-3.0, 3.0, 10_000)
+    gamma = rng.uniform(-3.0, 3.0, 10_000)
+    sphi, cphi = math.sin(0.7), math.cos(0.7)
+    A, B = _components(beta.copy(), gamma.copy(), sphi, cphi)
+    np.testing.assert_allclose(A, cphi * np.cos(gamma) + sphi * np.cos(beta) * np.sin(gamma), rtol=0, atol=2e-15)
+    np.testing.assert_allclose(B, sphi * np.sin(beta), rtol=0, atol=1e-15)
