@@ -3,7 +3,7 @@
 import pytest
 from hypothesis import settings
 
-from derivations._reproducible import reproducible
+from strapdown.derivations.reproducible import reproducible
 
 # Derandomized property tests: the same examples on every run, no timing deadlines,
 # so the suite cannot fail by chance on a loaded machine.

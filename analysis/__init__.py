@@ -1,5 +1,25 @@
 """Numerical error analysis of strapdown inertial navigation algorithms.
 
+Installed as ``strapdown.analysis``, beside the symbolic side
+``strapdown.derivations``.  Imports run one way: ``derivations`` (SymPy only)
+← ``analysis`` (numerics, may lambdify derivations) ← ``analysis.cli`` and
+``analysis.report``.  The subpackages of both sides mirror each other:
+
+=================  ==========================================  ===================================
+subpackage         analysis (numerics)                         derivations (SymPy)
+=================  ==========================================  ===================================
+``core``           quaternions, dual numbers, validation,      reproducible SymPy runs
+                   units, Monte Carlo, filterpy adapter        (``derivations.reproducible``)
+``coning``         algorithm evaluation, exact motions,        algorithms as data, the registry,
+                   simulator, drift theory, sampling design    error series, drift, optimal coning
+``multistage``     corrected attitude stages, trajectory,      Lyapunov function, Schuler
+                   convergence rates, python-control loops     linearisation
+``gyrocompass``    rocking models, azimuth Monte Carlo,        azimuth-error series, bounds
+                   bound sweeps, admissible rocking            (14)–(15)
+``cli``            the ``strapdown`` command line
+``report``         report sections (formatting only)
+=================  ==========================================  ===================================
+
 Conventions (stated once, used everywhere in :mod:`analysis` and :mod:`derivations`)
 -----------------------------------------------------------------------------------
 Quaternions
@@ -15,12 +35,12 @@ Frames
 Rotation vector
     ``φ`` with ``Λ = (cos(|φ|/2), sin(|φ|/2) φ/|φ|)``.
 Dual numbers
-    ``x + s x°`` with ``s² = 0`` (:class:`analysis.dual.Dual`).  A dual vector is
+    ``x + s x°`` with ``s² = 0`` (:class:`strapdown.analysis.core.dual.Dual`).  A dual vector is
     ``Φ = φ + s φ°``, a biquaternion ``θ = Λ + s M``.  By the transfer principle
     (Kotelnikov–Study) the dual part of ``f(x + s x°)`` is the directional
     derivative ``f'(x) x°``: the dual extension of a real formula is forward-mode
     differentiation, and every real routine here that is written with the
-    operations of :mod:`analysis.dual` serves dual arguments unchanged.
+    operations of :mod:`strapdown.analysis.core.dual` serves dual arguments unchanged.
 Apparent velocity
     ``W_E = 2 vect(Λ̄ ∘ M)``, ``W_I = 2 vect(M ∘ Λ̄)``
     (Lebedev & Panov 1989, eq. (1.3)).

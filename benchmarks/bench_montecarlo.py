@@ -16,9 +16,9 @@ import resource  # noqa: E402
 import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
-from analysis.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory  # noqa: E402
-from analysis import montecarlo  # noqa: E402
-from analysis.rocking import GaussianRocking, NarrowbandRocking, SineRocking  # noqa: E402
+from strapdown.analysis.gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory  # noqa: E402
+from strapdown.analysis.core import montecarlo  # noqa: E402
+from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking  # noqa: E402
 
 
 def main() -> None:

@@ -2,7 +2,7 @@
 
 Target: sampling plus both stages in under 20 s.  Run from the repository root:
 
-    PYTHONPATH=. python benchmarks/bench_multistage.py
+    python benchmarks/bench_multistage.py
 """
 
 import os
@@ -12,8 +12,8 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import time  # noqa: E402
 
-from analysis.multistage import plotnikov_1999_stages, run_multistage  # noqa: E402
-from analysis.trajectory import Scenario, sample  # noqa: E402
+from strapdown.analysis.multistage.stages import plotnikov_1999_stages, run_multistage  # noqa: E402
+from strapdown.analysis.multistage.trajectory import Scenario, sample  # noqa: E402
 
 
 def main(repeats: int = 3) -> None:

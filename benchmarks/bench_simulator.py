@@ -13,9 +13,9 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from analysis.precession import RegularPrecession  # noqa: E402
-from analysis.simulator import simulate  # noqa: E402
-from derivations.algorithms import get  # noqa: E402
+from strapdown.analysis.coning.precession import RegularPrecession  # noqa: E402
+from strapdown.analysis.coning.simulator import simulate  # noqa: E402
+from strapdown.derivations.coning.registry import get  # noqa: E402
 
 
 def _best(run, repeat=3):

@@ -2,7 +2,7 @@
 
 Both sides get the same ideal inertial data of the same closed-form motions
 (regular precession, Lebedev & Panov 1989, section 4) and are compared with
-the exact solution (:func:`analysis.precession.exact_state`):
+the exact solution (:func:`strapdown.analysis.coning.precession.exact_state`):
 
 * ``coning``: Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3 conditions:
   ε = −1, ϑ = 1°, f = 10 Hz (ν = 2π·10 s⁻¹), sampled at 400 Hz (h = 1/400 s,
@@ -12,8 +12,8 @@ the exact solution (:func:`analysis.precession.exact_state`):
   algorithms see sculling; W_I(t) stays bounded, so its growth is error.
 
 Our side evaluates each registry algorithm vectorised over the record:
-increments → :func:`analysis.algorithm.increment` → step (bi)quaternions by
-:func:`analysis.quaternion.rotvec_to_quat` → a cumulative product (a
+increments → :func:`strapdown.analysis.coning.evaluation.increment` → step (bi)quaternions by
+:func:`strapdown.analysis.core.quaternion.rotvec_to_quat` → a cumulative product (a
 log-depth prefix scan, no Python loop per step).  It is also timed one step
 per call, as a real-time loop would run it.
 
@@ -54,11 +54,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from analysis import quaternion as quat  # noqa: E402
-from analysis.algorithm import increment  # noqa: E402
-from analysis.dual import Dual  # noqa: E402
-from analysis.precession import RegularPrecession, exact_state, initial_biquaternion  # noqa: E402
-from derivations.algorithms import get  # noqa: E402
+from strapdown.analysis.core import quaternion as quat  # noqa: E402
+from strapdown.analysis.coning.evaluation import increment  # noqa: E402
+from strapdown.analysis.core.dual import Dual  # noqa: E402
+from strapdown.analysis.coning.precession import RegularPrecession, exact_state, initial_biquaternion  # noqa: E402
+from strapdown.derivations.coning.registry import get  # noqa: E402
 
 RAD_S_TO_DEG_H = 180.0 / math.pi * 3600.0
 RATE = 400.0  # sampling rate [Hz]

@@ -102,7 +102,7 @@ def benchmark_scripts(only=None) -> list:
 
 def run_report(quick: bool) -> Outcome:
     with tempfile.TemporaryDirectory(prefix="bench-report-") as tmp:
-        argv = [sys.executable, "-m", "analysis.cli", "report", "--out", str(Path(tmp) / "reports"), "--no-progress"]
+        argv = [sys.executable, "-m", "strapdown.analysis", "report", "--out", str(Path(tmp) / "reports"), "--no-progress"]
         if quick:
             argv.append("--quick")
         outcome = run("report (--quick)" if quick else "report (full)", argv)

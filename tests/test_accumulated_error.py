@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from analysis.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_velocity_error
-from analysis.precession import RegularPrecession, exact_state
-from analysis.simulator import simulate
-from derivations.algorithms import get
+from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_velocity_error
+from strapdown.analysis.coning.precession import RegularPrecession, exact_state
+from strapdown.analysis.coning.simulator import simulate
+from strapdown.derivations.coning.registry import get
 
 NU, NUTATION, H_SAMPLE, DURATION = 2 * np.pi, np.radians(10.0), 0.01, 100.0
 _HALF = NUTATION / 2

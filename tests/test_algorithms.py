@@ -9,10 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from analysis.algorithm import increment
-from analysis.dual import Dual
-from analysis.local_error import TumblingMotion, error_coefficients, local_error
-from derivations.algorithms import Algorithm, get, load_toml, names, second_order_defect
+from strapdown.analysis.coning.evaluation import increment
+from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.coning.local_error import TumblingMotion, error_coefficients, local_error
+from strapdown.derivations.coning.algorithms import Algorithm, load_toml, second_order_defect
+from strapdown.derivations.coning.registry import get, names
 
 
 # --------------------------------------------------------------------------- TOML
@@ -103,7 +104,7 @@ def test_toml_second_order_condition_refused_unless_allowed(tmp_path):
 
 
 def test_cli_refuses_inconsistent_file_with_status_2(tmp_path, capsys):
-    from analysis.cli import main
+    from strapdown.analysis.cli import main
 
     path = _write(tmp_path, 'samples = 2\n[cross]\n"1,2" = "1/2"\n')
     argv = ["drift", "--algorithm-file", str(path), "--eps", "-1", "--nutation-deg", "5", "--freq-hz", "1", "--sample-interval", "0.01", "--duration", "1"]

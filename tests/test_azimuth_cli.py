@@ -5,8 +5,8 @@ import math
 
 import pytest
 
-from analysis.azimuth_design import admissible_amplitude
-from analysis.cli import main
+from strapdown.analysis.gyrocompass.admissible_rocking import admissible_amplitude
+from strapdown.analysis.cli import main
 
 
 def _run(capsys, argv):

@@ -6,11 +6,11 @@ import sys
 
 import pytest
 
-from analysis.cli import build_parser, main
+from strapdown.analysis.cli import build_parser, main
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "analysis.cli", *args], capture_output=True, text=True, timeout=300)
+    return subprocess.run([sys.executable, "-m", "strapdown.analysis", *args], capture_output=True, text=True, timeout=300)
 
 
 def test_help_lists_subcommands():

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from analysis.cli import main
+from strapdown.analysis.cli import main
 
 
 def _json(capsys, argv):

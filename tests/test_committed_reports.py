@@ -4,8 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from analysis.report import discover
-from analysis.report.html import OUTPUT, render_site
+from strapdown.analysis.report import discover
+from strapdown.analysis.report.html import OUTPUT, render_site
 
 REPORTS = Path(__file__).resolve().parent.parent / "reports"
 

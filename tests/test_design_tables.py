@@ -1,6 +1,6 @@
 """Tables 4–5 of Budennyi, Kalinovsky, Panov et al.: the per-sample cost reading of the load."""
 
-from analysis.report.derivations import design_rows, load_model_fit, simulated_table3
+from strapdown.analysis.report.derivations import design_rows, load_model_fit, simulated_table3
 
 
 def test_per_sample_cost_reading_fits_the_coning_loads():

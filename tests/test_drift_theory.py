@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from analysis import quaternion as quat
-from analysis.algorithm import increment
-from analysis.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
-from analysis.precession import RegularPrecession
-from derivations import drift as D
-from derivations.algorithms import get
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.coning.evaluation import increment
+from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
+from strapdown.analysis.coning.precession import RegularPrecession
+from strapdown.derivations.coning import drift as D
+from strapdown.derivations.coning.registry import get
 
 e, c, s, td = D.EPS, D.COS, D.SIN, D.THETA_DUAL
 

@@ -6,8 +6,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from analysis import quaternion as quat
-from analysis.dual import Dual, dual_extend, dual_part, real_part
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.core.dual import Dual, dual_extend, dual_part, real_part
 
 real = st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False)
 positive = st.floats(0.1, 5.0, allow_nan=False)

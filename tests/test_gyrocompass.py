@@ -8,9 +8,9 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from analysis.azimuth import azimuth_error, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
-from analysis.rocking import GaussianRocking, SineRocking
-from derivations import gyrocompass as g
+from strapdown.analysis.gyrocompass.azimuth import azimuth_error, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
+from strapdown.analysis.gyrocompass.rocking import GaussianRocking, SineRocking
+from strapdown.derivations.gyrocompass import azimuth_error as g
 
 phi, b0, g0, xi, eta = g.phi, g.beta0, g.gamma0, g.xi, g.eta
 

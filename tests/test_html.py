@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from analysis.report import Context, Section, configure_matplotlib, html
+from strapdown.analysis.report import Context, Section, configure_matplotlib
+from strapdown.analysis.report import html
 
 README = """# Reports
 
@@ -138,7 +139,7 @@ def test_build_is_byte_identical_across_processes(staging, tmp_path):
     # a fresh interpreter (new font caches, new hash seeds) writes the same bytes
     out = tmp_path / "again.html"
     code = (
-        "import sys; from pathlib import Path; from analysis.report import html, Context;"
+        "import sys; from pathlib import Path; from strapdown.analysis.report import html, Context;"
         f"html.build(Context(out_dir=Path({str(staging)!r}), show_progress=False));"
         f"Path({str(out)!r}).write_bytes((Path({str(staging)!r}) / 'index.html').read_bytes())"
     )

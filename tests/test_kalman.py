@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from analysis import kalman
-from analysis.rocking import GaussianRocking, NarrowbandRocking, SineRocking
-from analysis.tilt_estimation import compare_estimators, tilt_filter_model
+from strapdown.analysis.core import kalman
+from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking
+from strapdown.analysis.gyrocompass.tilt_estimation import compare_estimators, tilt_filter_model
 
 
 @pytest.mark.parametrize("rocking", [GaussianRocking(0.01, 0.01), SineRocking(0.01, 0.01, 6.0, 6.0), NarrowbandRocking(0.01, 0.01, 8.0, 0.1)])

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from analysis.lyapunov import exact_rate, perturbation_matrix, rest_rate, simulated_rate, strict_rate_bound
-from derivations.lyapunov import derive, symbols
+from strapdown.analysis.multistage.convergence import exact_rate, perturbation_matrix, rest_rate, simulated_rate, strict_rate_bound
+from strapdown.derivations.multistage.lyapunov_function import derive, symbols
 
 
 @pytest.fixture(scope="module")

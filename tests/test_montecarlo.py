@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from analysis import montecarlo
-from analysis.azimuth import AzimuthErrorKernel, azimuth_monte_carlo
-from analysis.azimuth_sweep import SweepCase, sweep
-from analysis.rocking import GaussianRocking, NarrowbandRocking
+from strapdown.analysis.core import montecarlo
+from strapdown.analysis.gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo
+from strapdown.analysis.gyrocompass.bound_sweep import SweepCase, sweep
+from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking
 
 
 def _normal_kernel(n, rng):
@@ -103,7 +103,7 @@ def test_components_match_direct_trigonometry_over_all_angles():
     """The hot path takes cos from sin (√(1 − sin²)); beyond ±π/2 it must fall back to cos."""
     import math
 
-    from analysis.azimuth import _components
+    from strapdown.analysis.gyrocompass.azimuth import _components
 
     rng = np.random.default_rng(7)
     beta = rng.uniform(-3.0, 3.0, 10_000)

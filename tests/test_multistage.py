@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from analysis import quaternion as quat
-from analysis.krylov import angles_to_quat, quat_to_angles
-from analysis.multistage import Stage, accelerometer_quaternion, plotnikov_1999_stages, run_stage, simulate, tilt_quaternion
-from analysis.trajectory import Scenario, SensorErrors, sample
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.multistage.ship_angles import angles_to_quat, quat_to_angles
+from strapdown.analysis.multistage.stages import Stage, accelerometer_quaternion, plotnikov_1999_stages, run_stage, simulate, tilt_quaternion
+from strapdown.analysis.multistage.trajectory import Scenario, SensorErrors, sample
 
 from hypothesis import given, settings, strategies as st
 

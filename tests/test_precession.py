@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
-from analysis import quaternion as quat
-from analysis.dual import Dual
-from analysis.precession import RegularPrecession, exact_state
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.coning.precession import RegularPrecession, exact_state
 
 H = 1e-30  # complex step
 
@@ -152,7 +152,7 @@ def test_printed_4_5_and_4_6(motion):
 
 def test_printed_4_7_needs_nu_dual_in_last_row():
     """(4.7) holds with ν° in its last row; the printed 'Λ°' is a misprint (errata)."""
-    from analysis.report.errata import core_checks
+    from strapdown.analysis.report.errata import core_checks
 
     checks = core_checks()
     assert checks["u_inertial_error"] < 1e-10

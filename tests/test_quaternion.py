@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from analysis import quaternion as quat
+from strapdown.analysis.core import quaternion as quat
 
 finite = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
 quats = arrays(float, (4,), elements=finite)

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from analysis import report
+from strapdown.analysis import report
 
 
 def digest(root: Path) -> dict:
@@ -23,7 +23,7 @@ def test_failed_run_leaves_previous_reports_intact(tmp_path, monkeypatch):
     out = tmp_path / "reports"
     report.generate(out, only=["errata", "index"], show_progress=False)
     before = digest(out)
-    from analysis.report import index
+    from strapdown.analysis.report import index
 
     def boom(ctx):
         raise RuntimeError("simulated failure")

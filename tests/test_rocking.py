@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from analysis.rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor, rocking_model
+from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor, rocking_model
 
 
 def test_shapes_and_reproducibility():

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from analysis.stage_control import StageLoop
-from derivations.schuler import derive, s
+from strapdown.analysis.multistage.stage_control import StageLoop
+from strapdown.derivations.multistage.schuler import derive, s
 
 
 @pytest.fixture(scope="module")

@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from analysis import quaternion as quat
-from analysis.dual import Dual
-from derivations import series as S
-from derivations.algorithms import Algorithm, Term, get, names
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.core.dual import Dual
+from strapdown.derivations.coning import series as S
+from strapdown.derivations.coning.algorithms import Algorithm, Term
+from strapdown.derivations.coning.registry import get, names
 
 
 def _eval(vec, values):
@@ -76,8 +77,8 @@ def test_half_step_series_consistent_with_full_step():
 # ------------------------------------------------------------------ algorithm series
 @pytest.mark.parametrize("name", names())
 def test_algorithm_series_matches_numeric_evaluation(name):
-    """The symbolic Δφ equals analysis.algorithm.increment on the increments of a polynomial ω(t)."""
-    from analysis.algorithm import increment
+    """The symbolic Δφ equals strapdown.analysis.coning.evaluation.increment on the increments of a polynomial ω(t)."""
+    from strapdown.analysis.coning.evaluation import increment
 
     alg = get(name)
     rng = np.random.default_rng(6)

@@ -7,14 +7,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import analysis.simulator as sim
-from analysis import quaternion as quat
-from analysis.algorithm import increment
-from analysis.cli import main
-from analysis.dual import Dual
-from analysis.precession import RegularPrecession, exact_state, initial_biquaternion
-from analysis.simulator import drift_rate, prefix_product, sample_increments, simulate, step_count
-from derivations.algorithms import get
+import strapdown.analysis.coning.simulator as sim
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.coning.evaluation import increment
+from strapdown.analysis.cli import main
+from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.coning.precession import RegularPrecession, exact_state, initial_biquaternion
+from strapdown.analysis.coning.simulator import drift_rate, prefix_product, sample_increments, simulate, step_count
+from strapdown.derivations.coning.registry import get
 
 
 # --------------------------------------------------------------------------- building blocks
@@ -156,7 +156,7 @@ def test_budennyi_table_3_u_star(number, eps, printed):
 
 def test_budennyi_table_1_column_2_as_printed_does_not_reproduce_table_3():
     """Erratum evidence: 4/3 (p1×p3 + p2×p4) (printed column 2) misses both Table 3 cells by far."""
-    from analysis.report.algorithms import BUDENNYI_TABLE_1_PRINTED_2, panov_algorithm, table3_drift
+    from strapdown.analysis.report.algorithms import BUDENNYI_TABLE_1_PRINTED_2, panov_algorithm, table3_drift
 
     drift = table3_drift(panov_algorithm(BUDENNYI_TABLE_1_PRINTED_2), duration=20.0)
     assert drift[-1.0] < 0.2 * 1.42 and drift[0.5] > 3 * 0.131

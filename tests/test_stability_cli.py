@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from analysis.cli import main
+from strapdown.analysis.cli import main
 
 
 def run(capsys, *argv):

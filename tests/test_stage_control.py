@@ -4,7 +4,7 @@ import control
 import numpy as np
 import pytest
 
-from analysis.stage_control import StageLoop, classify_poles, root_locus_k, root_locus_l
+from strapdown.analysis.multistage.stage_control import StageLoop, classify_poles, root_locus_k, root_locus_l
 
 
 def test_poles_damping_natural_frequency():

@@ -6,10 +6,11 @@ import math
 
 import numpy as np
 
-from derivations.algorithms import get, load_toml
+from ...derivations.coning.registry import get
+from ...derivations.coning.algorithms import load_toml
 
-from ..quaternion import normalize
-from ..validation import as_float, in_open_interval, positive
+from ..core.quaternion import normalize
+from ..core.validation import as_float, in_open_interval, positive
 
 RAD_PER_DEG = math.pi / 180.0
 

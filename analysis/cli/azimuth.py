@@ -10,21 +10,21 @@ from . import Result
 
 
 def _rad(value, name):
-    from ..validation import as_float
+    from ..core.validation import as_float
 
     return math.radians(as_float(value, name))
 
 
 def _latitude(value) -> float:
-    from ..validation import in_open_interval
+    from ..core.validation import in_open_interval
 
     return math.radians(in_open_interval(value, "lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
 
 
 def _azimuth(args) -> Result:
-    from ..azimuth import azimuth_monte_carlo
-    from ..rocking import rocking_model
-    from ..validation import as_int, nonnegative
+    from ..gyrocompass.azimuth import azimuth_monte_carlo
+    from ..gyrocompass.rocking import rocking_model
+    from ..core.validation import as_int, nonnegative
 
     lat = _latitude(args.lat_deg)
     sx = math.radians(nonnegative(args.sigma_xi_deg, "sigma-xi-deg"))
@@ -54,8 +54,8 @@ def _azimuth(args) -> Result:
 
 
 def _design(args) -> Result:
-    from ..azimuth_design import admissible_amplitude
-    from ..validation import as_int, positive
+    from ..gyrocompass.admissible_rocking import admissible_amplitude
+    from ..core.validation import as_int, positive
 
     lat = _latitude(args.lat_deg)
     fmin, fmax = positive(args.freq_min_hz, "freq-min-hz"), positive(args.freq_max_hz, "freq-max-hz")

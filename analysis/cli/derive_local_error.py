@@ -1,13 +1,13 @@
 """``strapdown derive local-error``: the local-error series of an algorithm.
 
-The series is derived symbolically (:mod:`derivations.series`) and printed in
+The series is derived symbolically (:mod:`strapdown.derivations.coning.series`) and printed in
 the convention of Budennyi, Kalinovsky, Panov et al., Table 2:
 ``Δφ_exact − Δφ_algorithm = δ h^(ρ+1) Σ k_w x_w``, h the sample interval.
 """
 
 from __future__ import annotations
 
-from derivations.series import error_coefficients, local_error
+from ...derivations.coning.series import error_coefficients, local_error
 
 from . import Result
 from ._options import add_algorithm, algorithm_from

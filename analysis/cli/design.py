@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import asdict
 
-from ..design import design, quaternion_update_count
+from ..coning.sampling_design import design, quaternion_update_count
 from . import Result
 
 
@@ -33,4 +33,4 @@ def register(commands) -> None:
     p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg]")
     p.add_argument("--freq-hz", type=float, required=True, metavar="F", help="frequency f [Hz], ν = 2πf")
     p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions (default 5)")
-    p.add_argument("--quaternion-cost", type=float, default=None, help="cost of the quaternion update per step (default: counted, see analysis.design)")
+    p.add_argument("--quaternion-cost", type=float, default=None, help="cost of the quaternion update per step (default: counted, see strapdown.analysis.coning.sampling_design)")

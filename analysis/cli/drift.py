@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from ..drift_theory import asymptotic_drift
-from ..precession import RegularPrecession
-from ..simulator import RAD_PER_S_TO_DEG_PER_H, simulate
+from ..coning.drift_theory import asymptotic_drift
+from ..coning.precession import RegularPrecession
+from ..coning.simulator import RAD_PER_S_TO_DEG_PER_H, simulate
 from . import Result
 from ._options import add_algorithm, add_motion, algorithm_from, motion_parameters, run_summary
 

@@ -6,7 +6,7 @@ from . import Result
 
 
 def _run(args) -> Result:
-    from derivations.lyapunov import derive
+    from ...derivations.multistage.lyapunov_function import derive
 
     d = derive()
     data = {

@@ -8,8 +8,8 @@ from . import Result
 
 
 def _run(args) -> Result:
-    from ..multistage import plotnikov_1999_stages, simulate
-    from ..trajectory import Scenario
+    from ..multistage.stages import plotnikov_1999_stages, simulate
+    from ..multistage.trajectory import Scenario
 
     scenario = Scenario(duration=args.duration, accel=args.accel, accel_duration=args.accel_duration, latitude=np.radians(args.latitude))
     stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius)

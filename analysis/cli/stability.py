@@ -6,7 +6,7 @@ from . import Result
 
 
 def _run(args) -> Result:
-    from ..stage_control import StageLoop
+    from ..multistage.stage_control import StageLoop
 
     if args.schuler:
         if args.k is not None or args.l is not None:

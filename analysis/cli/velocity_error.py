@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from ..precession import RegularPrecession
-from ..simulator import simulate
-from ..validation import as_float
+from ..coning.precession import RegularPrecession
+from ..coning.simulator import simulate
+from ..core.validation import as_float
 from . import Result
 from ._options import add_algorithm, add_motion, algorithm_from, floats, motion_parameters, run_summary, unit_quaternion
 

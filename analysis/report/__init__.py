@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
 
-from derivations._reproducible import reproducible
+from ...derivations.reproducible import reproducible
 
 __all__ = ["Section", "Erratum", "Context", "discover", "generate", "SEED"]
 

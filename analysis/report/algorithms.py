@@ -1,6 +1,6 @@
 """Report section ``algorithms.md``: drift and apparent-velocity error of every algorithm.
 
-The simulator (:mod:`analysis.simulator`) reproduces Table 3 of Budennyi,
+The simulator (:mod:`strapdown.analysis.coning.simulator`) reproduces Table 3 of Budennyi,
 Kalinovsky, Panov et al. (u*, "parallel computation") and the table of
 Lebedev & Panov (1989), section 6; the printed numbers below are reference
 data quoted from those papers, never inputs to the computation.  Cells that
@@ -15,12 +15,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from derivations.algorithms import PANOV_BASIS, PANOV_TABLE_1, Algorithm, Term, get, names, second_order_defect
+from ...derivations.coning.registry import PANOV_BASIS, PANOV_TABLE_1, get, names
+from ...derivations.coning.algorithms import Algorithm, Term, second_order_defect
 
-from ..drift_theory import asymptotic_velocity_error
-from ..local_error import BUDENNYI_BASIS, TumblingMotion, error_coefficients, local_error
-from ..precession import RegularPrecession, exact_state
-from ..simulator import simulate
+from ..coning.drift_theory import asymptotic_velocity_error
+from ..coning.local_error import BUDENNYI_BASIS, TumblingMotion, error_coefficients, local_error
+from ..coning.precession import RegularPrecession, exact_state
+from ..coning.simulator import simulate
 from . import Erratum, Section
 
 SECTION = Section(
@@ -329,7 +330,7 @@ def build(ctx) -> None:
     lines = [
         "# Algorithms: attitude drift and apparent-velocity error",
         "",
-        "Every number here is computed by the simulator (`analysis.simulator.simulate`): the algorithm is",
+        "Every number here is computed by the simulator (`strapdown.analysis.coning.simulator.simulate`): the algorithm is",
         "driven by the exact increments (2.1) of the regular precession (4.1) or its dual analogue (4.2)–(4.3),",
         "and the attitude Λ (or the biquaternion θ = Λ + sM) it computes is compared with the closed-form",
         "solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989). The attitude error is the rotation vector",
@@ -409,7 +410,7 @@ def _table2_section() -> list:
         "## Table 2 of Budennyi et al.: local-error coefficients",
         "",
         "The local error of each algorithm over one step is computed on a tumbling motion with no symmetry",
-        "(`analysis.local_error.TumblingMotion`), fitted by $c_5 h^5 + c_6 h^6 + c_7 h^7$ at 12 instants and three",
+        "(`strapdown.analysis.coning.local_error.TumblingMotion`), fitted by $c_5 h^5 + c_6 h^6 + c_7 h^7$ at 12 instants and three",
         "steps, and the $h^5$ coefficients are resolved on the basis of eq. (2): "
         + ", ".join(f"`{b}`" for b in BUDENNYI_BASIS)
         + ". Shown: fitted $c/\\delta_4$ next to the printed k (with the printed δ4).",
@@ -473,7 +474,7 @@ def _lp_section() -> list:
         "not reproduced, with this evidence, in the errata.",
         "",
         "An independent estimate decides between the two. The asymptotic error theory of section 5",
-        "(`analysis.drift_theory.asymptotic_velocity_error`) takes the one-step error of the algorithm from the",
+        "(`strapdown.analysis.coning.drift_theory.asymptotic_velocity_error`) takes the one-step error of the algorithm from the",
         "symbolic series through weight 7, drives the error equation (5.1) with it, integrates (5.2) in closed form",
         "and obtains the velocity error as the dual extension in ν and ϑ (transfer principle, (5.4)); by (3.5)",
         "$|\\Delta W_I| = |\\delta\\varphi^\\circ|$ and $\\Delta W_E = \\delta\\varphi^\\circ + W_E \\times \\delta\\varphi$. It uses",

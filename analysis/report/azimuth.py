@@ -16,12 +16,12 @@ import math
 import numpy as np
 import sympy as sp
 
-from .. import montecarlo
-from ..azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory
-from ..azimuth_design import admissible_amplitude
-from ..azimuth_sweep import SweepCase, first_order_alignment_rms, grid_cases, sweep
-from ..rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor
-from ..tilt_estimation import compare_estimators
+from ..core import montecarlo
+from ..gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory
+from ..gyrocompass.admissible_rocking import admissible_amplitude
+from ..gyrocompass.bound_sweep import SweepCase, first_order_alignment_rms, grid_cases, sweep
+from ..gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor
+from ..gyrocompass.tilt_estimation import compare_estimators
 from . import Erratum, Section
 
 SECTION = Section(
@@ -40,7 +40,7 @@ R = math.radians(1.0)
 
 
 def _printed():
-    from derivations import gyrocompass as g
+    from ...derivations.gyrocompass import azimuth_error as g
 
     phi, b0, g0, xi, eta = g.phi, g.beta0, g.gamma0, g.xi, g.eta
     beta, gamma = sp.symbols("beta gamma", real=True)
@@ -57,7 +57,7 @@ def _printed():
 
 def formula_checks() -> list:
     """Each printed formula (5)–(10) against the derivation: symbolic difference and a numeric residual."""
-    from derivations import gyrocompass as g
+    from ...derivations.gyrocompass import azimuth_error as g
 
     p = g.linear_parts()
     A1, B1 = g.taylor_components(1)
@@ -314,7 +314,7 @@ def _latex(expr) -> str:
 
 
 def build(ctx) -> None:
-    from derivations import gyrocompass as g
+    from ...derivations.gyrocompass import azimuth_error as g
 
     p = g.linear_parts()
     mse0 = sp.factor(sp.simplify(g.mse_fourth_order().subs({g.beta0: 0, g.gamma0: 0})))
@@ -512,7 +512,7 @@ def build(ctx) -> None:
 
 
 def errata(ctx) -> list:
-    from derivations import gyrocompass as g
+    from ...derivations.gyrocompass import azimuth_error as g
 
     rows = {r["formula"]: r for r in formula_checks()}
     p = g.linear_parts()

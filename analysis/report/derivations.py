@@ -1,7 +1,7 @@
 """Report section ``derivations.md``: local-error series, drift theory, sampling design.
 
-Everything shown is derived by :mod:`derivations.series` and
-:mod:`derivations.drift` when the report is built; the printed numbers below
+Everything shown is derived by :mod:`strapdown.derivations.coning.series` and
+:mod:`strapdown.derivations.coning.drift` when the report is built; the printed numbers below
 are reference data quoted from the papers, used only for comparison.
 """
 
@@ -13,14 +13,14 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
-from derivations import drift as D
-from derivations import series as S
-from derivations.algorithms import get, names
+from ...derivations.coning import drift as D
+from ...derivations.coning import series as S
+from ...derivations.coning.registry import get, names
 
-from ..design import OperationCount, design, largest_step, operation_count, quaternion_update_count, QUATERNION_UPDATE
-from ..drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
-from ..precession import RegularPrecession
-from ..simulator import simulate
+from ..coning.sampling_design import OperationCount, design, largest_step, operation_count, quaternion_update_count, QUATERNION_UPDATE
+from ..coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
+from ..coning.precession import RegularPrecession
+from ..coning.simulator import simulate
 from . import Erratum, Section
 
 SECTION = Section(
@@ -199,7 +199,7 @@ def build(ctx) -> None:
 
     L = ["# Derivations: local-error series, asymptotic drift, sampling design", ""]
     L += [
-        "All series below are derived by `derivations.series` and `derivations.drift` (SymPy, exact rationals) when",
+        "All series below are derived by `strapdown.derivations.coning.series` and `strapdown.derivations.coning.drift` (SymPy, exact rationals) when",
         "this report is built. $\\omega^{(k)}$ is the k-th derivative of the body rate at the middle of the step",
         "$H = N h$, and $x_{\\alpha\\beta\\dots\\gamma\\delta} = \\omega^{(\\alpha)}\\times(\\omega^{(\\beta)}\\times\\dots\\times(\\omega^{(\\gamma)}\\times\\omega^{(\\delta)}))$",
         "(Lebedev & Panov 1989, eq. (2.4)). A product of weight $w = \\sum(k+1)$ multiplies $H^w$; everything is kept",
@@ -457,7 +457,7 @@ def _crosscheck_section(cc) -> list:
     L = [
         "## 7. u_a against simulated u*",
         "",
-        f"Every registry algorithm, ϑ = 10°, f = 10 Hz, ε = −1 and 0.5, simulated {SIM_DURATION:g} s with `analysis.simulator`",
+        f"Every registry algorithm, ϑ = 10°, f = 10 Hz, ε = −1 and 0.5, simulated {SIM_DURATION:g} s with `strapdown.analysis.coning.simulator`",
         "(drift = norm of the least-squares slope of the attitude error in frame I). The ratio u*/u_a tends to 1 as",
         "H → 0, and $|u^*/u_a - 1|$ falls by about 4 per halving of H (the next drift term is two weights higher).",
         "Two limits of the check: optimal-3 under coning has $d_5 \\propto 1 - \\cos\\vartheta$ (it is built to cancel coning",

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import quaternion as quat
-from ..dual import Dual
-from ..precession import RegularPrecession
+from ..core import quaternion as quat
+from ..core.dual import Dual
+from ..coning.precession import RegularPrecession
 from . import Erratum, Section
 
 SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.")

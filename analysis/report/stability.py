@@ -10,12 +10,12 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from .. import quaternion as quat
-from ..krylov import angles_to_quat
-from ..lyapunov import exact_rate, rest_rate, simulated_rate, strict_rate_bound
-from ..multistage import Stage, plotnikov_1999_stages, simulate, tilt_quaternion
-from ..stage_control import StageLoop, root_locus_k, root_locus_l, schuler_period
-from ..trajectory import Scenario, SensorErrors
+from ..core import quaternion as quat
+from ..multistage.ship_angles import angles_to_quat
+from ..multistage.convergence import exact_rate, rest_rate, simulated_rate, strict_rate_bound
+from ..multistage.stages import Stage, plotnikov_1999_stages, simulate, tilt_quaternion
+from ..multistage.stage_control import StageLoop, root_locus_k, root_locus_l, schuler_period
+from ..multistage.trajectory import Scenario, SensorErrors
 from . import Erratum, Section
 
 SECTION = Section(
@@ -123,8 +123,8 @@ def _latex(e):
 # ---------------------------------------------------------------------------
 def build(ctx) -> None:
     import matplotlib.pyplot as plt
-    from derivations.lyapunov import derive as derive_lyapunov
-    from derivations.schuler import derive as derive_schuler
+    from ...derivations.multistage.lyapunov_function import derive as derive_lyapunov
+    from ...derivations.multistage.schuler import derive as derive_schuler
 
     scen = Scenario()
     g, r = scen.gravity, scen.earth_radius

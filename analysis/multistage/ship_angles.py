@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import quaternion as quat
-from .validation import as_array, as_quaternion
+from ..core import quaternion as quat
+from ..core.validation import as_array, as_quaternion
 
 __all__ = ["angles_to_quat", "quat_to_angles", "wrap_angle"]
 

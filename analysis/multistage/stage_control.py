@@ -13,12 +13,12 @@ is complementary: the estimate is ``H_g θ_gyro + H_a θ_acc`` with the gyro
 high-pass ``H_g = s²/(s² + ks + l)`` and the accelerometer low-pass
 ``H_a = (ks + l)/(s² + ks + l)``, ``H_g + H_a = 1``.  On a moving base the
 truth itself turns with the vertical (``ω = V/R``), and the error transfer
-function from horizontal acceleration (derived in :mod:`derivations.schuler`)
+function from horizontal acceleration (derived in :mod:`strapdown.derivations.multistage.schuler`)
 is ``(ks + l − g/R)/(g(s² + ks + l))``: zero for Schuler tuning ``k = 0``,
 ``l = g/R``.
 
 The gains here are the loop gains of the (1.4) stage with c = 2; a stage with
-c = 1 acts with ``k/2, l/2`` (:attr:`analysis.multistage.Stage.effective_gains`).
+c = 1 acts with ``k/2, l/2`` (:attr:`strapdown.analysis.multistage.stages.Stage.effective_gains`).
 All linear-systems work (poles, damping, root loci, time and frequency
 responses) is done by python-control.
 """
@@ -32,7 +32,7 @@ import control
 import numpy as np
 import sympy as sp
 
-from .validation import as_array, as_float, positive
+from ..core.validation import as_array, as_float, positive
 
 __all__ = ["StageLoop", "schuler_period", "classify_poles", "root_locus_k", "root_locus_l", "STABILITY_LABELS"]
 
@@ -84,7 +84,7 @@ def classify_poles(poles, *, rtol: float = 1e-9) -> str:
 @lru_cache(maxsize=1)
 def _tf_coefficients():
     """Coefficients of E(s)/A(s) lambdified from the symbolic derivation."""
-    from derivations.schuler import accel_to_tilt_tf, derive
+    from ...derivations.multistage.schuler import accel_to_tilt_tf, derive
 
     sym = derive().symbols
     num, den = accel_to_tilt_tf()
@@ -142,7 +142,7 @@ class StageLoop:
         return control.ss(a, b, [[1.0, 0.0]], [[0.0, 0.0]], inputs=["rate", "tilt"], outputs=["e"], states=["e", "y"])
 
     def error_from_accel(self) -> control.TransferFunction:
-        """E(s)/A(s) [rad per m/s²] from :mod:`derivations.schuler` (zero under Schuler tuning)."""
+        """E(s)/A(s) [rad per m/s²] from :mod:`strapdown.derivations.multistage.schuler` (zero under Schuler tuning)."""
         fnum, fden = _tf_coefficients()
         args = (self.k, self.l, self.gravity, self.earth_radius)
         return control.tf(np.array(fnum(*args), dtype=float), np.array(fden(*args), dtype=float))

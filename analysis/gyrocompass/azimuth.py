@@ -9,9 +9,9 @@ tilts (11), so the azimuth error is ``α − α* = σ(β0 + ξ, γ0 + η) − σ
 This module evaluates that error (vectorised, as the angle of
 ``(A + iB)/(A* + iB*)``, which is the difference of the arctangents for
 ``A, A* > 0`` and the wrapped angle difference otherwise), the bounds (14) and
-(15), and the second-order theory of :mod:`derivations.gyrocompass`
+(15), and the second-order theory of :mod:`strapdown.derivations.gyrocompass.azimuth_error`
 (lambdified), and runs the Monte Carlo of the error through
-:mod:`analysis.montecarlo`.
+:mod:`strapdown.analysis.core.montecarlo`.
 
 References
 ----------
@@ -26,9 +26,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import montecarlo
+from ..core import montecarlo
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
-from .validation import as_float, as_int, in_open_interval, nonnegative
+from ..core.validation import as_float, as_int, in_open_interval, nonnegative
 
 __all__ = [
     "tilt_correction",
@@ -152,7 +152,7 @@ def _theory():
     """Lambdified derivations: coefficient values and the generic moments."""
     import sympy as sp
 
-    from derivations import gyrocompass as g
+    from ...derivations.gyrocompass import azimuth_error as g
 
     As, Bs, a, b = g.coefficient_symbols(3)
     coeff_syms = [As, Bs, *a.values(), *b.values()]
@@ -349,7 +349,7 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     ----------
     latitude : float — latitude φ [rad], |φ| < π/2
     beta0, gamma0 : float — stable tilts [rad]
-    rocking : rocking model (:mod:`analysis.rocking`)
+    rocking : rocking model (:mod:`strapdown.analysis.gyrocompass.rocking`)
     n_samples : int — rocking samples (rounded up to whole trials), at least 2
     rng : Generator | SeedSequence | int | None — random streams
     steps_per_trial : int — samples per trial (batch size of the standard error)
@@ -368,7 +368,7 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
 
     Examples
     --------
-    >>> from analysis.rocking import GaussianRocking
+    >>> from strapdown.analysis.gyrocompass.rocking import GaussianRocking
     >>> mc = azimuth_monte_carlo(math.radians(45), 0.0, 0.0, GaussianRocking(1e-3, 1e-3), 4096, rng=1, steps_per_trial=64)
     >>> lo, hi = mc.result.rms_ci
     >>> bool(lo < mc.theory["rms"] < hi)

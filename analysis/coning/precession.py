@@ -9,7 +9,7 @@ The dual analogue (4.2) replaces ν and ϑ by dual numbers ``ν + s ν°`` and
 ``ϑ + s ϑ°``; its dual part is the apparent acceleration ``a`` (4.3).
 
 Every formula below is written once, for real arguments, and evaluated with
-:class:`analysis.dual.Dual` parameters to produce the dual analogue: the
+:class:`strapdown.analysis.core.dual.Dual` parameters to produce the dual analogue: the
 acceleration (4.3), the biquaternion ``P = Q + s R`` (4.4)–(4.5) and the
 increments ``b`` of (2.1) are *dual parts*, not separately typed formulas.
 """
@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import quaternion as quat
-from .dual import Dual
-from .validation import as_array, as_float, as_quaternion, as_vector, in_open_interval
+from ..core import quaternion as quat
+from ..core.dual import Dual
+from ..core.validation import as_array, as_float, as_quaternion, as_vector, in_open_interval
 
 __all__ = ["RegularPrecession", "ExactState", "exact_state", "initial_biquaternion"]
 

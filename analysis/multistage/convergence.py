@@ -6,10 +6,10 @@ The perturbation equations (3.1) of Plotnikov (1999), ``2z' = z∘ω − kz − 
 * the state matrix for a constant body rate ω, and the exact exponential rate
   (slowest real part) from its eigenvalues;
 * the rate at rest in closed form, from the roots of ``2s² + ks + l``
-  (:mod:`derivations.lyapunov`): ``k/4`` when ``k² < 8l``;
+  (:mod:`strapdown.derivations.multistage.lyapunov_function`): ``k/4`` when ``k² < 8l``;
 * a guaranteed rate for any time-varying rate with ``|ω(t)| ≤ ϖ``, from the
-  strict Lyapunov function ``W = V + ε z·y`` (:mod:`derivations.lyapunov`);
-* the rate measured on a simulation of the stage (:func:`analysis.multistage.run_stage`
+  strict Lyapunov function ``W = V + ε z·y`` (:mod:`strapdown.derivations.multistage.lyapunov_function`);
+* the rate measured on a simulation of the stage (:func:`strapdown.analysis.multistage.stages.run_stage`
   with the external reference), to check the three.
 """
 
@@ -21,9 +21,9 @@ import numpy as np
 import sympy as sp
 from scipy.linalg import eigh
 
-from . import quaternion as quat
-from .multistage import Stage, run_stage
-from .validation import as_float, as_vector, positive
+from ..core import quaternion as quat
+from .stages import Stage, run_stage
+from ..core.validation import as_float, as_vector, positive
 
 __all__ = ["perturbation_matrix", "exact_rate", "rest_rate", "strict_rate_bound", "simulated_rate"]
 
@@ -61,7 +61,7 @@ def exact_rate(k, l, omega=(0.0, 0.0, 0.0)) -> float:
 
 @lru_cache(maxsize=1)
 def _rest_roots():
-    from derivations.lyapunov import derive, symbols
+    from ...derivations.multistage.lyapunov_function import derive, symbols
 
     k, l, *_ = symbols()
     return sp.lambdify((k, l), derive().rate_roots, "numpy")
@@ -80,7 +80,7 @@ def rest_rate(k, l) -> float:
 
 @lru_cache(maxsize=1)
 def _strict_matrices():
-    from derivations.lyapunov import strict_bound_matrices, symbols
+    from ...derivations.multistage.lyapunov_function import strict_bound_matrices, symbols
 
     k, l, *_ = symbols()
     eps, wbar = sp.symbols("epsilon varpi", positive=True)

@@ -21,12 +21,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from derivations.algorithms import Algorithm
+from ...derivations.coning.algorithms import Algorithm
 
-from . import quaternion as quat
-from .algorithm import increment
-from .dual import Dual
-from .validation import as_float, positive
+from ..core import quaternion as quat
+from .evaluation import increment
+from ..core.dual import Dual
+from ..core.validation import as_float, positive
 
 __all__ = ["TumblingMotion", "local_error", "error_coefficients", "BUDENNYI_BASIS"]
 

@@ -43,7 +43,7 @@ from functools import lru_cache
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
-from ._reproducible import reproducible_sympy
+from ..reproducible import reproducible_sympy
 
 __all__ = ["SchulerDerivation", "derive", "krylov_quaternion", "accel_to_tilt_tf", "t", "s"]
 

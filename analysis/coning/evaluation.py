@@ -1,7 +1,7 @@
 """Numerical evaluation of a rotation-vector algorithm given as data.
 
 One function, :func:`increment`, evaluates an
-:class:`derivations.algorithms.Algorithm` on real increments ``p`` (coning:
+:class:`strapdown.derivations.coning.algorithms.Algorithm` on real increments ``p`` (coning:
 rotation-vector increment Δφ) or on dual increments ``q = p + s b``
 (sculling: ``ΔΦ = Δφ + s Δφ°``, Lebedev & Panov 1989, eq. (2.5)).
 
@@ -9,7 +9,7 @@ The evaluation works on the three coordinate arrays of each ``p_j``
 separately (each a contiguous or strided ``(...)`` array), and folds the
 pairwise terms by their left factor, ``Σ_ij c_ij p_i × p_j =
 Σ_i p_i × (Σ_j c_ij p_j)``, so that an algorithm with many pairs costs few
-cross products.  The same code serves real and :class:`~analysis.dual.Dual`
+cross products.  The same code serves real and :class:`~strapdown.analysis.core.dual.Dual`
 input.
 """
 
@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivations.algorithms import Algorithm
+from ...derivations.coning.algorithms import Algorithm
 
-from .dual import Dual
+from ..core.dual import Dual
 
 __all__ = ["increment"]
 
@@ -63,7 +63,7 @@ def increment(algorithm: Algorithm, p):
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> p = np.array([[1e-3, 0, 0], [0, 1e-3, 0]])
     >>> increment(get("two-sample"), p)
     array([1.00000000e-03, 1.00000000e-03, 6.66666667e-07])

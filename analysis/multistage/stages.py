@@ -50,10 +50,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import expm
 
-from . import quaternion as quat
-from .krylov import angles_to_quat, quat_to_angles, wrap_angle
+from ..core import quaternion as quat
+from .ship_angles import angles_to_quat, quat_to_angles, wrap_angle
 from .trajectory import Scenario, SensorData, sample
-from .validation import as_array, as_float, nonnegative, positive
+from ..core.validation import as_array, as_float, nonnegative, positive
 
 __all__ = [
     "Stage",
@@ -403,7 +403,7 @@ def run_multistage(data: SensorData, stages) -> MultistageResult:
     Parameters
     ----------
     data : SensorData
-        Gyro increments and specific force of the body (see :func:`analysis.trajectory.sample`).
+        Gyro increments and specific force of the body (see :func:`strapdown.analysis.multistage.trajectory.sample`).
     stages : sequence of Stage
         Stage 1 first.  Only stage 1 may use the reference "external"
         (fed with the true attitude).

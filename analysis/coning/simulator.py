@@ -28,13 +28,13 @@ from typing import Sequence
 
 import numpy as np
 
-from derivations.algorithms import Algorithm
+from ...derivations.coning.algorithms import Algorithm
 
-from . import quaternion as quat
-from .algorithm import increment
-from .dual import Dual
+from ..core import quaternion as quat
+from .evaluation import increment
+from ..core.dual import Dual
 from .precession import RegularPrecession, exact_state, initial_biquaternion
-from .validation import as_quaternion, as_vector, positive
+from ..core.validation import as_quaternion, as_vector, positive
 
 __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
@@ -195,7 +195,7 @@ def prefix_product(q):
     half-length sequence is scanned recursively, and the even positions are
     filled in from it.  Depth ``O(log n)``, work ``O(n)`` quaternion products,
     and no Python loop over the n elements.  Works on quaternions and on
-    biquaternions (:class:`~analysis.dual.Dual`).
+    biquaternions (:class:`~strapdown.analysis.core.dual.Dual`).
 
     Parameters
     ----------
@@ -270,7 +270,7 @@ def simulate(
     """Run ``algorithm`` against the exact solution of ``motion`` ("parallel computation").
 
     The attitude after step k is ``Λ_k = Λ_0 ∘ Λ(Δφ_1) ∘ … ∘ Λ(Δφ_k)`` with
-    ``Δφ`` from :func:`analysis.algorithm.increment`.  With ``velocity`` the
+    ``Δφ`` from :func:`strapdown.analysis.coning.evaluation.increment`.  With ``velocity`` the
     same runs on dual numbers: ``ΔΦ = Δφ + s Δφ°`` from the dual increments
     ``q = p + s b`` (Lebedev & Panov 1989, eq. (2.5)), the biquaternion step
     ``ϑ_k`` from ``ΔΦ`` by (1.12), ``θ_k = θ_0 ∘ ϑ_1 ∘ … ∘ ϑ_k``, and
@@ -316,7 +316,7 @@ def simulate(
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> m = RegularPrecession(eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
     >>> r = simulate(get("panov-4s-1"), m, 0.0025, 1.0)
     >>> r.steps, round(float(r.drift_deg_per_h), 2)

@@ -38,7 +38,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 import sympy as sp
-from ._reproducible import reproducible_sympy
+from ..reproducible import reproducible_sympy
 
 __all__ = [
     "phi",

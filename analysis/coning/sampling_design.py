@@ -1,7 +1,7 @@
 """Sampling and cost design: the largest step that meets a drift budget, and its load.
 
 Given a required constant drift rate [u], the asymptotic drift
-``u_a = K H^ρ`` (:func:`analysis.drift_theory.asymptotic_drift`) gives the
+``u_a = K H^ρ`` (:func:`strapdown.analysis.coning.drift_theory.asymptotic_drift`) gives the
 largest algorithm step ``H_max = ([u]/K)^(1/ρ)``.  The computational load is
 the number of operations per second, an operation being one addition and a
 multiplication counting as ``m`` additions (Budennyi, Kalinovsky, Panov et
@@ -23,10 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from derivations.algorithms import Algorithm, get, names
+from ...derivations.coning.algorithms import Algorithm
+from ...derivations.coning.registry import get, names
 
 from .drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order
-from .validation import as_float, in_open_interval, nonnegative, positive
+from ..core.validation import as_float, in_open_interval, nonnegative, positive
 
 __all__ = [
     "OperationCount",

@@ -11,8 +11,8 @@ frequency f.
 Model.  Both tilts rock with amplitude ``a`` (standard deviation ``a/√2``)
 and frequency f: a sinusoid with random phases, or narrow-band rocking with
 period ``1/f`` and damping ζ (amplitude meaning ``σ√2`` there).  The sample
-mean keeps the variance ``v(f, T) Dξ`` (:func:`analysis.rocking.mean_variance_factor`),
-so the second-order theory of :mod:`derivations.gyrocompass` applies with
+mean keeps the variance ``v(f, T) Dξ`` (:func:`strapdown.analysis.gyrocompass.rocking.mean_variance_factor`),
+so the second-order theory of :mod:`strapdown.derivations.gyrocompass.azimuth_error` applies with
 ``Dξ → v Dξ``:
 
 * first order: ``a₁ = δmax √2 / √(σ_β² vξ + σ_γ² vη)`` (σ_β, σ_γ the
@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 
 from .azimuth import check_latitude, gradient, second_order_theory
 from .rocking import NarrowbandRocking, SineRocking, mean_variance_factor
-from .validation import as_array, as_float, positive
+from ..core.validation import as_array, as_float, positive
 
 __all__ = ["admissible_amplitude"]
 

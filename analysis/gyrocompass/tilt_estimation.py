@@ -3,7 +3,7 @@
 Hrechka & Koroliov estimate β0, γ0 by the sample means of n accelerometer
 tilt samples (their eq. (16)).  Under correlated (narrow-band) rocking the
 sample mean converges slowly; a Kalman filter that knows the rocking model
-(the shaping filter of :class:`analysis.rocking.NarrowbandRocking`, or the
+(the shaping filter of :class:`strapdown.analysis.gyrocompass.rocking.NarrowbandRocking`, or the
 undamped oscillator of a sinusoid) estimates the constant tilt together with
 the rocking state.  This module compares both, through the alignment error
 ``σ(β̂0, γ̂0) − σ(β0, γ0)`` of the azimuth, against the averaging time, and
@@ -21,10 +21,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from . import kalman
+from ..core import kalman
 from .azimuth import _components, _error, check_latitude
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking, as_generator
-from .validation import as_array, as_int, nonnegative, positive
+from ..core.validation import as_array, as_int, nonnegative, positive
 
 __all__ = ["TiltFilterModel", "tilt_filter_model", "EstimatorComparison", "compare_estimators"]
 

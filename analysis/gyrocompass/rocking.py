@@ -30,7 +30,7 @@ import numpy as np
 from scipy import signal
 from scipy.linalg import expm
 
-from .validation import as_float, as_int, nonnegative, positive
+from ..core.validation import as_float, as_int, nonnegative, positive
 
 __all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "MODELS"]
 

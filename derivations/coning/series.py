@@ -389,7 +389,7 @@ def local_error(algorithm: Algorithm) -> LocalError:
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> local_error(get("two-sample")).order
     4
     >>> local_error(get("lebedev-panov-2")).order
@@ -551,7 +551,7 @@ def error_coefficients(algorithm: Algorithm) -> ErrorCoefficients:
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> e = error_coefficients(get("panov-4s-3"))
     >>> e.order, e.delta, [int(e.coefficients[w]) for w in ORDER4_BASIS]
     (4, Fraction(1, 45), [0, 0, 64, 192, -64])

@@ -56,7 +56,7 @@ from sympy.polys.rings import ring
 
 from . import series as S
 from .algorithms import Algorithm, Term
-from ._reproducible import reproducible_sympy
+from ..reproducible import reproducible_sympy
 
 __all__ = [
     "EPS",
@@ -199,7 +199,7 @@ def step_error_values(algorithm: Algorithm) -> tuple:
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> [w for w, _ in step_error_values(get("lebedev-panov-4"))]
     [5, 7]
     """
@@ -265,7 +265,7 @@ def structure_functions(algorithm: Algorithm) -> StructureFunctions:
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> sf = structure_functions(get("lebedev-panov-2"))
     >>> sf.f, sf.g
     (-epsilon, epsilon*cos(vartheta) + 1)

@@ -1,7 +1,7 @@
 """Asymptotic drift rate of an algorithm under regular precession (numeric side).
 
 The symbolic drift coefficients ``d_w(ε, ϑ)`` of
-:func:`derivations.drift.drift_coefficients` are lambdified once per
+:func:`strapdown.derivations.coning.drift.drift_coefficients` are lambdified once per
 algorithm (cached) and evaluated on arrays.  The constant drift rate of the
 attitude along the precession axis is
 
@@ -15,7 +15,7 @@ whose fourth-order drift cancels under coning (ε = −1), ρ = 6 there.
 The accumulated attitude and apparent-velocity errors at a time t
 (:func:`asymptotic_attitude_error`, :func:`asymptotic_velocity_error`) follow
 the route of Lebedev & Panov (1989), eqs. (5.1)–(5.6), closed in the body
-axes: the one-step error of the series (:func:`derivations.drift.mapped_error`)
+axes: the one-step error of the series (:func:`strapdown.derivations.coning.drift.mapped_error`)
 drives (5.1), the integral (5.2) is taken in closed form, and the dual
 (velocity) error is the dual extension of the attitude error in ν and ϑ
 (transfer principle, (5.4)).  It uses neither the simulator nor
@@ -36,12 +36,12 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
-from derivations import drift as sym
-from derivations.algorithms import Algorithm
+from ...derivations.coning import drift as sym
+from ...derivations.coning.algorithms import Algorithm
 
-from . import quaternion as quat
-from .dual import Dual
-from .validation import as_array, as_float, in_open_interval, positive
+from ..core import quaternion as quat
+from ..core.dual import Dual
+from ..core.validation import as_array, as_float, in_open_interval, positive
 
 __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
@@ -128,7 +128,7 @@ def asymptotic_order(algorithm: Algorithm, eps, nutation):
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> int(asymptotic_order(get("panov-4s-3"), -1.0, np.radians(1.0)))
     6
     >>> int(asymptotic_order(get("panov-4s-3"), 0.5, np.radians(1.0)))
@@ -167,7 +167,7 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step):
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> u = asymptotic_drift(get("panov-4s-1"), eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0), step=0.01)
     >>> round(float(u) * RAD_PER_S_TO_DEG_PER_H, 2)
     2.51
@@ -287,7 +287,7 @@ def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, ste
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> e = asymptotic_attitude_error(get("lebedev-panov-4"), 100.0, eps=-1.0, nu=2 * np.pi, nutation=np.radians(10.0), step=0.04)
     >>> round(float(np.linalg.norm(e)) / 100.0 * RAD_PER_S_TO_DEG_PER_H, 3)   # ≈ the drift rate [deg/h]
     0.159
@@ -358,7 +358,7 @@ def asymptotic_velocity_error(algorithm: Algorithm, t, *, eps, nu, nutation, nu_
 
     Examples
     --------
-    >>> from derivations.algorithms import get
+    >>> from strapdown.derivations.coning.registry import get
     >>> err = asymptotic_velocity_error(get("lebedev-panov-4"), 100.0, eps=-1.0, nu=2 * np.pi, nutation=np.radians(10.0),
     ...                                 nu_dual=0.5, nutation_dual=10.0, step=0.04)
     >>> round(float(err.dw_inertial), 5)   # m/s

@@ -15,10 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import montecarlo
+from ..core import montecarlo
 from .azimuth import AzimuthErrorKernel, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
 from .rocking import mean_variance_factor, rocking_model
-from .validation import as_int
+from ..core.validation import as_int
 
 __all__ = ["SweepCase", "evaluate_case", "sweep", "grid_cases", "local_cluster"]
 

@@ -1,7 +1,7 @@
 """Quaternion algebra on ``(..., 4)`` arrays, scalar first, Hamilton product.
 
 Every routine is written with plain numpy operations, so it accepts
-:class:`analysis.dual.Dual` arrays as well: a dual quaternion argument is a
+:class:`strapdown.analysis.core.dual.Dual` arrays as well: a dual quaternion argument is a
 biquaternion ``Λ + s M`` and the result is the biquaternion result (transfer
 principle).  In particular :func:`rotvec_to_quat` applied to a dual vector
 ``Φ = φ + s φ°`` *is* the map (1.12) of Lebedev & Panov (1989).

@@ -1,7 +1,7 @@
 """True motion and sensor signals of the example of Plotnikov (1999), section 5.
 
 The body moves over a spherical, rotating Earth.  Its attitude is given by
-Krylov angles (:mod:`analysis.krylov`) relative to the *azimuth-free horizontal
+Krylov angles (:mod:`strapdown.analysis.multistage.ship_angles`) relative to the *azimuth-free horizontal
 frame* η of the paper: axis 2 up, axes 1 and 3 horizontal, and no absolute
 rotation about the vertical (so the absolute rate of η has components
 ``(ω1, 0, ω3)``, as in (3.7)).  η coincides with the geographic frame
@@ -38,9 +38,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import quaternion as quat
-from .krylov import angles_to_quat
-from .validation import as_array, as_float, nonnegative, positive
+from ..core import quaternion as quat
+from .ship_angles import angles_to_quat
+from ..core.validation import as_array, as_float, nonnegative, positive
 
 __all__ = ["SensorErrors", "Scenario", "SensorData", "sample", "GAUSS3"]
 

@@ -1,0 +1,17 @@
+"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, Kalman adapter.
+
+Modules
+-------
+quaternion
+    Hamilton products, rotation vectors and the angle maps on ``(..., 4)`` arrays.
+dual
+    Dual numbers ``x + s x°`` as a numpy array type (forward-mode derivatives).
+validation
+    The one place where arguments are checked; messages name the argument.
+units
+    Every unit factor (degrees, deg/h, ...) used at the edges of the package.
+montecarlo
+    Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
+kalman
+    Thin adapter over filterpy, the only module that imports it.
+"""

@@ -1,0 +1,56 @@
+"""Every unit factor of the package, in one place.
+
+The library works in SI units with angles in radians (rates in rad/s).  Degrees,
+degrees per hour and arc-seconds appear only at the edges (the command line and
+the reports), which convert with the factors below.
+
+>>> round(RAD_PER_S_TO_DEG_PER_H * 1e-6, 6)
+0.206265
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = [
+    "DEG",
+    "RAD_PER_DEG",
+    "DEG_PER_RAD",
+    "RAD_PER_S_TO_DEG_PER_H",
+    "DEG_PER_H_TO_RAD_PER_S",
+    "SECONDS_PER_HOUR",
+    "deg",
+    "rad",
+    "deg_per_h",
+    "rad_per_s",
+]
+
+SECONDS_PER_HOUR = 3600.0
+#: One degree [rad].
+DEG = math.pi / 180.0
+RAD_PER_DEG = DEG
+DEG_PER_RAD = 180.0 / math.pi
+#: Factor from rad/s to deg/h.
+RAD_PER_S_TO_DEG_PER_H = DEG_PER_RAD * SECONDS_PER_HOUR
+#: Factor from deg/h to rad/s.
+DEG_PER_H_TO_RAD_PER_S = 1.0 / RAD_PER_S_TO_DEG_PER_H
+
+
+def deg(x):
+    """Radians → degrees (scalars or arrays)."""
+    return x * DEG_PER_RAD
+
+
+def rad(x):
+    """Degrees → radians (scalars or arrays)."""
+    return x * RAD_PER_DEG
+
+
+def deg_per_h(x):
+    """rad/s → deg/h (scalars or arrays)."""
+    return x * RAD_PER_S_TO_DEG_PER_H
+
+
+def rad_per_s(x):
+    """deg/h → rad/s (scalars or arrays)."""
+    return x * DEG_PER_H_TO_RAD_PER_S

@@ -1,0 +1,13 @@
+"""Symbolic series of coning (rotation-vector) and sculling algorithms.
+
+Modules
+-------
+algorithms
+    An algorithm as exact data (:class:`Algorithm`, :class:`Term`) and TOML files.
+registry
+    The published algorithms, each with its source.
+series
+    The exact rotation-vector increment and the algorithm error series.
+drift
+    Asymptotic drift under regular precession, structure functions, optimal coning.
+"""
