@@ -53,7 +53,8 @@ Lebedev & Panov (1989); Plotnikov (1999); Budennyi, Kalinovsky, Panov et al.
 (Part 2, early 2000s); Hrechka & Koroliov.
 """
 
-from importlib.metadata import PackageNotFoundError, version as _version
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
     __version__ = _version("strapdown-analysis")

@@ -15,7 +15,10 @@ import time
 
 STAGES = {
     "exact series (words, log, Dynkin)": "from strapdown.derivations.coning import series as S; S.exact_words(); S.exact_increment()",
-    "series + local error, all registry": "from strapdown.derivations.coning import series as S; from strapdown.derivations.coning.registry import get, names\nfor n in names(): S.local_error(get(n)); S.error_coefficients(get(n))",
+    "series + local error, all registry": (
+        "from strapdown.derivations.coning import series as S; from strapdown.derivations.coning.registry import get, names\n"
+        "for n in names(): S.local_error(get(n)); S.error_coefficients(get(n))"
+    ),
     "series + drift functions, all registry": (
         "from strapdown.derivations.coning import series as S, drift as D; from strapdown.derivations.coning.registry import get, names\n"
         "for n in names():\n"

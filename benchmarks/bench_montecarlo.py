@@ -16,8 +16,8 @@ import resource  # noqa: E402
 import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
-from strapdown.analysis.gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory  # noqa: E402
 from strapdown.analysis.core import montecarlo  # noqa: E402
+from strapdown.analysis.gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory  # noqa: E402
 from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking  # noqa: E402
 
 
@@ -47,8 +47,9 @@ def main() -> None:
     mc = azimuth_monte_carlo(lat, 0.0, 0.0, GaussianRocking(s, s), n, rng=2, progress=True)
     el = time.perf_counter() - t
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(f"{'normal, large run (progress bar)':<34} {mc.result.n_samples:>12d} {el:>8.2f} {mc.result.n_samples / el / 1e6:>11.1f} {'max RSS %.0f' % rss:>15}")
-    print(f"rms {math.degrees(mc.result.rms):.6f} deg, 95 % CI [{math.degrees(mc.result.rms_ci[0]):.6f}, {math.degrees(mc.result.rms_ci[1]):.6f}], second-order theory {math.degrees(mc.theory['rms']):.6f} deg")
+    print(f"{'normal, large run (progress bar)':<34} {mc.result.n_samples:>12d} {el:>8.2f} {mc.result.n_samples / el / 1e6:>11.1f} {f'max RSS {rss:.0f}':>15}")
+    lo, hi = (math.degrees(x) for x in mc.result.rms_ci)
+    print(f"rms {math.degrees(mc.result.rms):.6f} deg, 95 % CI [{lo:.6f}, {hi:.6f}], second-order theory {math.degrees(mc.theory['rms']):.6f} deg")
 
 
 if __name__ == "__main__":

@@ -35,14 +35,14 @@ def main():
     for name in ("two-sample", "panov-4s-5", "lebedev-panov-6"):
         alg = get(name)
         steps = 4000
-        t = _best(lambda: simulate(alg, points, h, steps * alg.samples * h))
+        t = _best(lambda alg=alg, steps=steps: simulate(alg, points, h, steps * alg.samples * h))
         rows.append((name, "attitude, batch of 256 points", 256 * steps, 256 * steps / t))
         steps = 1_000_000
-        t = _best(lambda: simulate(alg, points[0], h, steps * alg.samples * h), repeat=1)
+        t = _best(lambda alg=alg, steps=steps: simulate(alg, points[0], h, steps * alg.samples * h), repeat=1)
         rows.append((name, "attitude, single run", steps, steps / t))
         dual = RegularPrecession(0.5, 2 * np.pi, 0.2, 10.0, 100.0)
         steps = 200_000
-        t = _best(lambda: simulate(alg, dual, h, steps * alg.samples * h, velocity=True), repeat=1)
+        t = _best(lambda alg=alg, steps=steps, dual=dual: simulate(alg, dual, h, steps * alg.samples * h, velocity=True), repeat=1)
         rows.append((name, "velocity (biquaternion), single run", steps, steps / t))
     print(f"{'algorithm':<16} {'case':<38} {'steps':>10} {'steps/s':>12}")
     for name, case, steps, rate in rows:

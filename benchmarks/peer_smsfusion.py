@@ -54,10 +54,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from strapdown.analysis.core import quaternion as quat  # noqa: E402
 from strapdown.analysis.coning.evaluation import increment  # noqa: E402
-from strapdown.analysis.core.dual import Dual  # noqa: E402
 from strapdown.analysis.coning.precession import RegularPrecession, exact_state, initial_biquaternion  # noqa: E402
+from strapdown.analysis.core import quaternion as quat  # noqa: E402
+from strapdown.analysis.core.dual import Dual  # noqa: E402
 from strapdown.derivations.coning.registry import get  # noqa: E402
 
 RAD_S_TO_DEG_H = 180.0 / math.pi * 3600.0
@@ -250,7 +250,11 @@ def table(results: dict, duration: float) -> str:
         lines += [
             f"**{LABELS[case]}**, sampled at {RATE:.0f} Hz for {duration:g} s",
             "",
-            "| method | drift [deg/h] | attitude error at end [rad] | " + ("\\|ΔW_I\\| at end [m/s] | " if dual else "") + "samples/s | drift: smsfusion / this | " + ("\\|ΔW_I\\|: smsfusion / this | " if dual else "") + "speed: this / smsfusion |",
+            "| method | drift [deg/h] | attitude error at end [rad] | "
+            + ("\\|ΔW_I\\| at end [m/s] | " if dual else "")
+            + "samples/s | drift: smsfusion / this | "
+            + ("\\|ΔW_I\\|: smsfusion / this | " if dual else "")
+            + "speed: this / smsfusion |",
             "|---|---:|---:|" + ("---:|" if dual else "") + "---:|---:|" + ("---:|" if dual else "") + "---:|",
         ]
         for r in runs:

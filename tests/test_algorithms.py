@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from strapdown.analysis.coning.evaluation import increment
-from strapdown.analysis.core.dual import Dual
 from strapdown.analysis.coning.local_error import TumblingMotion, error_coefficients, local_error
+from strapdown.analysis.core.dual import Dual
 from strapdown.derivations.coning.algorithms import Algorithm, load_toml, second_order_defect
 from strapdown.derivations.coning.registry import get, names
 
@@ -67,7 +67,8 @@ MALFORMED = [
     ('samples = 2\n[cross]\n"1,2" = 0.6666\n', ["[cross] key '1,2'", "exact fraction"]),
     ('samples = 2\n[cross]\n"1,2" = "two thirds"\n', ["[cross] key '1,2'", "exact fraction"]),
     ('samples = 2\n[cross]\n"1,2" = "2/0"\n', ["[cross] key '1,2'", "exact fraction"]),
-    ('samples = 4\n[cross]\n"1,5" = "1/3"\n', ["[cross] key '1,5'", "sample indices in 1..4", "got 5"]),
+    ('samples = 4\n[cross]\n"1,5" = "1/3"\n', ["[cross] key '1,5'", "sample indices in -63..4", "got 5"]),
+    ('samples = 1\n[cross]\n"-64,1" = "1/3"\n', ["[cross] key '-64,1'", "sample indices in -63..1", "got -64"]),
     ('samples = 2\n[cross]\n"1-2" = "2/3"\n', ["[cross] key '1-2'", "2 comma-separated sample indices"]),
     ('samples = 3\n[triple]\n"1,2" = "1/3"\n', ["[triple] key '1,2'", "3 comma-separated sample indices"]),
     ('samples = 4\n[dot_cross]\n"1,2,3,4" = "1/3"\n', ["[dot_cross] key '1,2,3,4'", "i,j;k,l"]),
@@ -195,3 +196,16 @@ def test_budennyi_table_2_local_error_coefficients(number, ks, delta):
     coef, residual = error_coefficients(get(f"panov-4s-{number}"))
     assert residual < 1e-4
     np.testing.assert_allclose(coef / float(delta), ks, atol=0.02)
+
+
+def test_cross_step_indices_from_toml(tmp_path):
+    """Indices 0 and below reach into earlier steps: Savage's 1 + previous sample, (1/12) p_0 × p_1."""
+    f = tmp_path / "savage.toml"
+    f.write_text('name = "one-plus-one"\nsamples = 1\n[cross]\n"0,1" = "1/12"\n')
+    alg = load_toml(f)
+    assert (alg.history, alg.first_index, alg.window) == (1, 0, 2)
+    assert second_order_defect(alg) == 0
+    p = np.array([[1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0]])  # p_0, p_1
+    np.testing.assert_allclose(increment(alg, p), [0.0, 1e-3, 1e-6 / 12], rtol=1e-15)
+    with pytest.raises(ValueError, match="shape \\(\\.\\.\\., 2, 3\\)"):
+        increment(alg, p[1:])

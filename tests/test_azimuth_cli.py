@@ -5,8 +5,8 @@ import math
 
 import pytest
 
-from strapdown.analysis.gyrocompass.admissible_rocking import admissible_amplitude
 from strapdown.analysis.cli import main
+from strapdown.analysis.gyrocompass.admissible_rocking import admissible_amplitude
 
 
 def _run(capsys, argv):

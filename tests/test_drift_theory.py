@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from strapdown.analysis.core import quaternion as quat
-from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
+from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.precession import RegularPrecession
+from strapdown.analysis.core import quaternion as quat
 from strapdown.derivations.coning import drift as D
 from strapdown.derivations.coning.registry import get
 

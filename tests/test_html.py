@@ -11,8 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from strapdown.analysis.report import Context, Section, configure_matplotlib
-from strapdown.analysis.report import html
+from strapdown.analysis.report import Context, Section, configure_matplotlib, html
 
 README = """# Reports
 

@@ -32,7 +32,7 @@ def test_nees_is_filterpy_nees():
 
 
 def test_white_rocking_filter_is_the_weighted_mean():
-    s, p, r = 0.01, 0.05, 0.0
+    s, p = 0.01, 0.05
     m = tilt_filter_model(GaussianRocking(s, s), 0.1, prior_sigma=p, noise_sigma=1e-6)
     zs = np.random.default_rng(2).normal(0.02, s, size=(1, 50, 1))
     gains, _ = kalman.gain_sequence(m.F, m.Q, m.H, m.R, m.P0, 50)

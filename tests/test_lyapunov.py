@@ -43,7 +43,10 @@ def test_vdot_numerically_along_trajectory():
     sol = solve_ivp(lambda t, x: a @ x, (0, 5), np.arange(1.0, 9.0) / 10, rtol=1e-12, atol=1e-14, dense_output=True)
     t = np.linspace(0.5, 4.5, 9)
     x = sol.sol(t)
-    v = lambda tt: (lambda xx: l * (xx[:4] ** 2).sum(0) + 0.5 * (xx[4:] ** 2).sum(0))(sol.sol(tt))
+    def v(tt):
+        xx = sol.sol(tt)
+        return l * (xx[:4] ** 2).sum(0) + 0.5 * (xx[4:] ** 2).sum(0)
+
     vdot = (v(t + 1e-5) - v(t - 1e-5)) / 2e-5
     np.testing.assert_allclose(vdot, -l * k * (x[:4] ** 2).sum(0), rtol=1e-6)
 

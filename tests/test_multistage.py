@@ -2,13 +2,13 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.multistage.ship_angles import angles_to_quat, quat_to_angles
 from strapdown.analysis.multistage.stages import Stage, accelerometer_quaternion, plotnikov_1999_stages, run_stage, simulate, tilt_quaternion
 from strapdown.analysis.multistage.trajectory import Scenario, SensorErrors, sample
-
-from hypothesis import given, settings, strategies as st
 
 
 @given(st.floats(-3, 3), st.floats(-1.5, 1.5), st.floats(-3, 3))
@@ -58,8 +58,21 @@ def test_external_reference_converges():
 
 
 def test_static_tilt_levels():
-    sc = Scenario(duration=3000.0, rocking_start=1e-9, rocking_frequency=0.0, rocking_phase=(0, np.pi / 2, 0), rocking_amplitude=(0, 0.1, 0), rocking_decay=0, rocking_onset=0, accel=0, earth_rate=0, sensors=SensorErrors())
-    est = lambda stage: simulate(sc, (stage,), step=0.5)
+    sc = Scenario(
+        duration=3000.0,
+        rocking_start=1e-9,
+        rocking_frequency=0.0,
+        rocking_phase=(0, np.pi / 2, 0),
+        rocking_amplitude=(0, 0.1, 0),
+        rocking_decay=0,
+        rocking_onset=0,
+        accel=0,
+        earth_rate=0,
+        sensors=SensorErrors(),
+    )
+    def est(stage):
+        return simulate(sc, (stage,), step=0.5)
+
     good = est(Stage.constant(0.01, 5e-5, "tilt"))
     assert abs(good.errors[0, -1, 1]) < 1e-6
     half = est(Stage.constant(0.01, 5e-5, "tilt", c=2.0))

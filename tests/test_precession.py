@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
+from strapdown.analysis.coning.precession import RegularPrecession, exact_state
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.core.dual import Dual
-from strapdown.analysis.coning.precession import RegularPrecession, exact_state
 
 H = 1e-30  # complex step
 
@@ -103,8 +103,8 @@ def test_increments_are_integrals(motion):
     t0, t1 = 12.34, 12.34 + 0.01
     inc = motion.increments(t0, t1)
     for k in range(3):
-        p_ref = quad(lambda s: motion.omega(s)[k], t0, t1, epsabs=1e-14, epsrel=1e-12)[0]
-        b_ref = quad(lambda s: motion.accel(s)[k], t0, t1, epsabs=1e-14, epsrel=1e-12)[0]
+        p_ref = quad(lambda s, k=k: motion.omega(s)[k], t0, t1, epsabs=1e-14, epsrel=1e-12)[0]
+        b_ref = quad(lambda s, k=k: motion.accel(s)[k], t0, t1, epsabs=1e-14, epsrel=1e-12)[0]
         assert inc.re[k] == pytest.approx(p_ref, rel=1e-10, abs=1e-16)
         assert inc.du[k] == pytest.approx(b_ref, rel=1e-10, abs=1e-14)
     np.testing.assert_array_equal(motion.angle_increments(t0, t1), inc.re)

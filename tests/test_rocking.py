@@ -4,7 +4,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy import signal
 
 from strapdown.analysis.gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor, rocking_model
 

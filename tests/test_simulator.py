@@ -8,12 +8,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import strapdown.analysis.coning.simulator as sim
-from strapdown.analysis.core import quaternion as quat
-from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.cli import main
-from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.precession import RegularPrecession, exact_state, initial_biquaternion
 from strapdown.analysis.coning.simulator import drift_rate, prefix_product, sample_increments, simulate, step_count
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.core.dual import Dual
 from strapdown.derivations.coning.registry import get
 
 
@@ -285,7 +285,11 @@ def test_cli_drift_json(capsys):
     assert data["simulated_drift_deg_per_h"] > 0
 
 
-_VEL = ["velocity-error", "--algorithm", "lebedev-panov-4", "--eps", "-1", "--freq-hz", "1", "--nutation-deg", "10", "--nu-dual", "0.5", "--nutation-dual", "10", "--w0", "10,0,0", "--attitude0", "2,0.1,0,0", "--sample-interval", "0.01", "--duration", "2"]
+_VEL = [
+    *("velocity-error", "--algorithm", "lebedev-panov-4", "--eps", "-1", "--freq-hz", "1", "--nutation-deg", "10"),
+    *("--nu-dual", "0.5", "--nutation-dual", "10", "--w0", "10,0,0", "--attitude0", "2,0.1,0,0"),
+    *("--sample-interval", "0.01", "--duration", "2"),
+]
 
 
 def test_cli_velocity_error_json_normalises_attitude(capsys):

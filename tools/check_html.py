@@ -295,7 +295,7 @@ def check(html: Path, out: Path, *, width: int = 1280, height: int = 900, figure
         for f in failures:
             print(f"  - {f}", file=sys.stderr)
         return 1
-    print(f"OK: every figure loaded, every equation rendered, no browser errors")
+    print("OK: every figure loaded, every equation rendered, no browser errors")
     return 0
 
 

@@ -16,8 +16,9 @@ import json
 import math
 import pkgutil
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 from .. import __version__
 

@@ -6,9 +6,8 @@ import math
 
 import numpy as np
 
-from ...derivations.coning.registry import get
 from ...derivations.coning.algorithms import load_toml
-
+from ...derivations.coning.registry import get
 from ..core.quaternion import normalize
 from ..core.validation import as_float, in_open_interval, positive
 

@@ -22,9 +22,9 @@ def _latitude(value) -> float:
 
 
 def _azimuth(args) -> Result:
+    from ..core.validation import as_int, nonnegative
     from ..gyrocompass.azimuth import azimuth_monte_carlo
     from ..gyrocompass.rocking import rocking_model
-    from ..core.validation import as_int, nonnegative
 
     lat = _latitude(args.lat_deg)
     sx = math.radians(nonnegative(args.sigma_xi_deg, "sigma-xi-deg"))
@@ -54,8 +54,8 @@ def _azimuth(args) -> Result:
 
 
 def _design(args) -> Result:
-    from ..gyrocompass.admissible_rocking import admissible_amplitude
     from ..core.validation import as_int, positive
+    from ..gyrocompass.admissible_rocking import admissible_amplitude
 
     lat = _latitude(args.lat_deg)
     fmin, fmax = positive(args.freq_min_hz, "freq-min-hz"), positive(args.freq_max_hz, "freq-max-hz")
@@ -64,7 +64,18 @@ def _design(args) -> Result:
     points = as_int(args.points, "points", minimum=2)
     budget = math.radians(positive(args.budget_deg, "budget-deg"))
     freqs = np.geomspace(fmin, fmax, points)
-    d = admissible_amplitude(budget, lat, args.averaging_time_s, freqs, rocking=args.rocking, damping=args.damping, sample_rate=args.sample_rate_hz, beta0=_rad(args.beta0_deg, "beta0-deg"), gamma0=_rad(args.gamma0_deg, "gamma0-deg"), max_amplitude=math.radians(positive(args.max_amplitude_deg, "max-amplitude-deg")))
+    d = admissible_amplitude(
+        budget,
+        lat,
+        args.averaging_time_s,
+        freqs,
+        rocking=args.rocking,
+        damping=args.damping,
+        sample_rate=args.sample_rate_hz,
+        beta0=_rad(args.beta0_deg, "beta0-deg"),
+        gamma0=_rad(args.gamma0_deg, "gamma0-deg"),
+        max_amplitude=math.radians(positive(args.max_amplitude_deg, "max-amplitude-deg")),
+    )
     data = {
         "rocking": args.rocking,
         "budget_deg": args.budget_deg,

@@ -8,7 +8,6 @@ the convention of Budennyi, Kalinovsky, Panov et al., Table 2:
 from __future__ import annotations
 
 from ...derivations.coning.series import error_coefficients, local_error
-
 from . import Result
 from ._options import add_algorithm, algorithm_from
 

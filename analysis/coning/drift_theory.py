@@ -31,14 +31,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import sympy as sp
 
 from ...derivations.coning import drift as sym
 from ...derivations.coning.algorithms import Algorithm
-
 from ..core import quaternion as quat
 from ..core.dual import Dual
 from ..core.validation import as_array, as_float, in_open_interval, positive
@@ -63,7 +62,7 @@ RAD_PER_S_TO_DEG_PER_H = 180.0 / math.pi * 3600.0
 ZERO_TOLERANCE = 1e-11
 
 
-@lru_cache(maxsize=None)
+@cache
 def _lambdified(algorithm: Algorithm):
     coeffs = sym.drift_coefficients(algorithm)
     e, s, c = sp.symbols("e s c")
@@ -196,7 +195,7 @@ def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step):
 # ---------------------------------------------------------------------------
 # Accumulated attitude and apparent-velocity error at time t, (5.1)–(5.6)
 # ---------------------------------------------------------------------------
-@lru_cache(maxsize=None)
+@cache
 def _step_error_functions(algorithm: Algorithm) -> tuple:
     """((w, (f_x, f_y, f_z)), …): weight-w parts of the one-step error on (4.1), functions of (ε, ϑ)."""
     return tuple((w, tuple(sp.lambdify((sym.EPS, sym.THETA), c, "numpy") for c in comps)) for w, comps in sym.step_error_values(algorithm))

@@ -18,10 +18,20 @@ from __future__ import annotations
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
-
 from ..core.dual import Dual
 
 __all__ = ["increment"]
+
+
+class _IndexedRows:
+    """``rows`` addressed by ``index − 1`` for sample indices ``1 − history … N``."""
+
+    def __init__(self, rows, history):
+        self._rows = rows
+        self._offset = history
+
+    def __getitem__(self, position):
+        return self._rows[position + self._offset]
 
 
 def _cross(a, b):
@@ -48,8 +58,10 @@ def increment(algorithm: Algorithm, p):
     ----------
     algorithm : Algorithm
         The algorithm as data.
-    p : array_like or Dual, shape (..., N, 3)
-        Increments ``p_j`` [rad] (real) or ``q_j = p_j + s b_j`` (dual, ``b_j`` in m/s).
+    p : array_like or Dual, shape (..., W, 3)
+        Increments ``p_j`` [rad] (real) or ``q_j = p_j + s b_j`` (dual, ``b_j`` in m/s),
+        ``j = 1 − history … N`` oldest first: ``W = algorithm.window`` rows, the
+        last ``N`` of them the current step.
 
     Returns
     -------
@@ -59,7 +71,7 @@ def increment(algorithm: Algorithm, p):
     Raises
     ------
     ValueError
-        If the second-to-last axis of ``p`` is not ``algorithm.samples``.
+        If the second-to-last axis of ``p`` is not ``algorithm.window``.
 
     Examples
     --------
@@ -70,9 +82,11 @@ def increment(algorithm: Algorithm, p):
     """
     if not isinstance(p, Dual):
         p = np.asarray(p, dtype=float)
-    if p.ndim < 2 or p.shape[-1] != 3 or p.shape[-2] != algorithm.samples:
-        raise ValueError(f"Expected `p` with shape (..., {algorithm.samples}, 3) for algorithm {algorithm.name!r}, got shape {p.shape}")
-    comps = [tuple(p[..., j, c] for c in range(3)) for j in range(algorithm.samples)]
+    if p.ndim < 2 or p.shape[-1] != 3 or p.shape[-2] != algorithm.window:
+        raise ValueError(f"Expected `p` with shape (..., {algorithm.window}, 3) for algorithm {algorithm.name!r}, got shape {p.shape}")
+    # comps[j - 1] is p_j for j = 1 - history ... N (negative list positions reach back).
+    rows = [tuple(p[..., r, c] for c in range(3)) for r in range(algorithm.window)]
+    comps = _IndexedRows(rows, algorithm.history)
     total = [sum((comps[j][c] for j in range(1, algorithm.samples)), comps[0][c]) for c in range(3)]
     # Pairwise terms folded by their left factor: p_i × (Σ_j c_ij p_j).
     by_left: dict = {}

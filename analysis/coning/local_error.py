@@ -22,11 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
-
 from ..core import quaternion as quat
-from .evaluation import increment
 from ..core.dual import Dual
 from ..core.validation import as_float, positive
+from .evaluation import increment
 
 __all__ = ["TumblingMotion", "local_error", "error_coefficients", "BUDENNYI_BASIS"]
 

@@ -25,9 +25,8 @@ import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.registry import get, names
-
-from .drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order
 from ..core.validation import as_float, in_open_interval, nonnegative, positive
+from .drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order
 
 __all__ = [
     "OperationCount",
@@ -79,7 +78,7 @@ def operation_count(algorithm: Algorithm) -> OperationCount:
     adds = 3 * (algorithm.samples - 1)
     mults = 0
     groups: dict = {}
-    for (i, j), c in algorithm.pairwise.items():
+    for c in algorithm.pairwise.values():
         groups.setdefault(abs(c), []).append((0, 6, 3))
     for t in algorithm.terms:
         if not t.dots and isinstance(t.cross[0], int) and isinstance(t.cross[1], int):

@@ -23,18 +23,17 @@ the run.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
-
 from ..core import quaternion as quat
-from .evaluation import increment
 from ..core.dual import Dual
-from .precession import RegularPrecession, exact_state, initial_biquaternion
 from ..core.validation import as_quaternion, as_vector, positive
+from .evaluation import increment
+from .precession import RegularPrecession, exact_state, initial_biquaternion
 
 __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",

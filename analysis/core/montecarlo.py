@@ -21,8 +21,8 @@ from the per-trial means ("batch means"), which is valid in both cases.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
 
 import numpy as np
 
@@ -152,9 +152,9 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
     ``executor`` is a :class:`concurrent.futures.Executor` or a
     ``dask.distributed.Client`` (anything with ``submit`` and ``gather``).
     """
-    from tqdm import tqdm
-
     import sys
+
+    from tqdm import tqdm
 
     bar = tqdm(total=len(tasks), desc=desc, file=sys.stderr, disable=not progress, leave=False)
     try:

@@ -37,20 +37,64 @@ DEG_PER_H_TO_RAD_PER_S = 1.0 / RAD_PER_S_TO_DEG_PER_H
 
 
 def deg(x):
-    """Radians → degrees (scalars or arrays)."""
+    """Radians → degrees.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [rad].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [deg].
+    """
     return x * DEG_PER_RAD
 
 
 def rad(x):
-    """Degrees → radians (scalars or arrays)."""
+    """Degrees → radians.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [deg].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [rad].
+    """
     return x * RAD_PER_DEG
 
 
 def deg_per_h(x):
-    """rad/s → deg/h (scalars or arrays)."""
+    """rad/s → deg/h.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [rad/s].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [deg/h].
+    """
     return x * RAD_PER_S_TO_DEG_PER_H
 
 
 def rad_per_s(x):
-    """deg/h → rad/s (scalars or arrays)."""
+    """deg/h → rad/s.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [deg/h].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [rad/s].
+    """
     return x * DEG_PER_H_TO_RAD_PER_S

@@ -28,14 +28,26 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
+from ..core.validation import as_array, as_float, positive
 from .azimuth import check_latitude, gradient, second_order_theory
 from .rocking import NarrowbandRocking, SineRocking, mean_variance_factor
-from ..core.validation import as_array, as_float, positive
 
 __all__ = ["admissible_amplitude"]
 
 
-def admissible_amplitude(budget, latitude, averaging_time, frequencies, *, rocking: str = "sine", damping: float = 0.1, sample_rate: float = 10.0, beta0: float = 0.0, gamma0: float = 0.0, max_amplitude: float = math.radians(20.0)) -> dict:
+def admissible_amplitude(
+    budget,
+    latitude,
+    averaging_time,
+    frequencies,
+    *,
+    rocking: str = "sine",
+    damping: float = 0.1,
+    sample_rate: float = 10.0,
+    beta0: float = 0.0,
+    gamma0: float = 0.0,
+    max_amplitude: float = math.radians(20.0),
+) -> dict:
     """Largest admissible rocking amplitude against rocking frequency.
 
     Parameters
@@ -97,7 +109,7 @@ def admissible_amplitude(budget, latitude, averaging_time, frequencies, *, rocki
         a1[i] = cap if s2 <= 0 else min(cap, budget * math.sqrt(2.0 / s2))
         sd = math.sqrt(v[i] / 2.0)
 
-        def excess(a):
+        def excess(a, sd=sd):
             return second_order_theory(latitude, beta0, gamma0, a * sd, a * sd, kappa_xi=kappa, kappa_eta=kappa)["rms"] - budget
 
         if excess(cap) <= 0:

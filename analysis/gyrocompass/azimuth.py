@@ -22,13 +22,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 
 from ..core import montecarlo
-from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
 from ..core.validation import as_float, as_int, in_open_interval, nonnegative
+from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
 
 __all__ = [
     "tilt_correction",
@@ -147,7 +147,7 @@ def _error(beta, gamma, sphi, cphi, As, Bs):
 
 
 # --------------------------------------------------------------------- theory
-@lru_cache(maxsize=None)
+@cache
 def _theory():
     """Lambdified derivations: coefficient values and the generic moments."""
     import sympy as sp

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import montecarlo
+from ..core.validation import as_int
 from .azimuth import AzimuthErrorKernel, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
 from .rocking import mean_variance_factor, rocking_model
-from ..core.validation import as_int
 
 __all__ = ["SweepCase", "evaluate_case", "sweep", "grid_cases", "local_cluster"]
 

@@ -22,9 +22,9 @@ import numpy as np
 from scipy import stats
 
 from ..core import kalman
+from ..core.validation import as_array, as_int, nonnegative, positive
 from .azimuth import _components, _error, check_latitude
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking, as_generator
-from ..core.validation import as_array, as_int, nonnegative, positive
 
 __all__ = ["TiltFilterModel", "tilt_filter_model", "EstimatorComparison", "compare_estimators"]
 
@@ -104,7 +104,17 @@ class EstimatorComparison:
     n_trials: int
 
 
-def compare_estimators(latitude, rocking, *, dt: float, averaging_times, n_trials: int, rng=None, prior_sigma: float = math.radians(2.0), noise_sigma: float = math.radians(0.001)) -> EstimatorComparison:
+def compare_estimators(
+    latitude,
+    rocking,
+    *,
+    dt: float,
+    averaging_times,
+    n_trials: int,
+    rng=None,
+    prior_sigma: float = math.radians(2.0),
+    noise_sigma: float = math.radians(0.001),
+) -> EstimatorComparison:
     """Compare the sample mean (16) and the Kalman filter as estimates of β0, γ0.
 
     Parameters

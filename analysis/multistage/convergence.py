@@ -22,8 +22,8 @@ import sympy as sp
 from scipy.linalg import eigh
 
 from ..core import quaternion as quat
-from .stages import Stage, run_stage
 from ..core.validation import as_float, as_vector, positive
+from .stages import Stage, run_stage
 
 __all__ = ["perturbation_matrix", "exact_rate", "rest_rate", "strict_rate_bound", "simulated_rate"]
 

@@ -128,7 +128,7 @@ class StageLoop:
         object.__setattr__(self, "earth_radius", positive(self.earth_radius, "earth_radius"))
 
     @classmethod
-    def schuler(cls, gravity: float = 9.81, earth_radius: float = 6.371e6) -> "StageLoop":
+    def schuler(cls, gravity: float = 9.81, earth_radius: float = 6.371e6) -> StageLoop:
         """Schuler tuning ``k = 0``, ``l = g/R`` (Plotnikov 1999, (3.11))."""
         g, r = positive(gravity, "gravity"), positive(earth_radius, "earth_radius")
         return cls(0.0, g / r, g, r)

@@ -45,15 +45,15 @@ plain loop over floats; everything else is vectorised.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import expm
 
 from ..core import quaternion as quat
+from ..core.validation import as_array, as_float, nonnegative, positive
 from .ship_angles import angles_to_quat, quat_to_angles, wrap_angle
 from .trajectory import Scenario, SensorData, sample
-from ..core.validation import as_array, as_float, nonnegative, positive
 
 __all__ = [
     "Stage",
@@ -125,7 +125,7 @@ class Stage:
         object.__setattr__(self, "rho", nonnegative(self.rho, "rho"))
 
     @classmethod
-    def constant(cls, k, l, reference: str = "pure", **kw) -> "Stage":
+    def constant(cls, k, l, reference: str = "pure", **kw) -> Stage:
         """A stage with fixed gains k [1/s], l [1/s²]."""
         return cls(((0.0, k, l),), reference, **kw)
 

@@ -39,8 +39,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import quaternion as quat
-from .ship_angles import angles_to_quat
 from ..core.validation import as_array, as_float, nonnegative, positive
+from .ship_angles import angles_to_quat
 
 __all__ = ["SensorErrors", "Scenario", "SensorData", "sample", "GAUSS3"]
 
@@ -99,7 +99,7 @@ class SensorErrors:
         object.__setattr__(self, "accel_noise", nonnegative(self.accel_noise, "accel_noise"))
 
     @classmethod
-    def plotnikov_1999(cls) -> "SensorErrors":
+    def plotnikov_1999(cls) -> SensorErrors:
         """The errors of Plotnikov (1999), section 5.
 
         Scale factors 10⁻³ % for both triads; gyro drift 0.5·10⁻⁷ s⁻¹ and

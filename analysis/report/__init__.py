@@ -27,9 +27,9 @@ import pkgutil
 import shutil
 import sys
 import tempfile
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable
 
 from ...derivations.reproducible import reproducible
 

@@ -11,13 +11,12 @@ from __future__ import annotations
 
 import itertools
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 
-from ...derivations.coning.registry import PANOV_BASIS, PANOV_TABLE_1, get, names
 from ...derivations.coning.algorithms import Algorithm, Term, second_order_defect
-
+from ...derivations.coning.registry import PANOV_BASIS, PANOV_TABLE_1, get, names
 from ..coning.drift_theory import asymptotic_velocity_error
 from ..coning.local_error import BUDENNYI_BASIS, TumblingMotion, error_coefficients, local_error
 from ..coning.precession import RegularPrecession, exact_state
@@ -140,7 +139,7 @@ def table3_drift(algorithm: Algorithm, *, duration: float | None = None) -> dict
     return {-1.0: float(r.drift_deg_per_h[0]), 0.5: float(r.drift_deg_per_h[1])}
 
 
-@lru_cache(maxsize=None)
+@cache
 def budennyi_table3_rows() -> tuple:
     """Rows (algorithm, ε, ours u*, printed u*, printed u_a, relative difference)."""
     rows = []
@@ -159,14 +158,14 @@ def _lp_run(order: int, eps: float, variant: int, sample_interval: float | None 
     return simulate(get(f"lebedev-panov-{order}"), motion, h, s["duration"], attitude0=v["attitude0"], w_inertial0=v["w_inertial0"], velocity=True)
 
 
-@lru_cache(maxsize=None)
+@cache
 def lp_values(order: int, eps: float, variant: int, sample_interval: float | None = None) -> dict:
     """Drift [deg/h], |ΔW_E|, |ΔW_I| [m/s] at t = 100 s of the order-ρ algorithm (2.2)/(2.5)."""
     r = _lp_run(order, eps, variant, sample_interval)
     return {"drift": float(r.drift_deg_per_h), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
 
 
-@lru_cache(maxsize=None)
+@cache
 def lebedev_panov_rows() -> tuple:
     """Rows (quantity, order, ε, variants, ours per variant, printed, worst relative difference)."""
     rows = []
@@ -178,7 +177,7 @@ def lebedev_panov_rows() -> tuple:
     return tuple(rows)
 
 
-@lru_cache(maxsize=None)
+@cache
 def lp_theory(order: int, eps: float, variant: int) -> dict:
     """|ΔW_E|, |ΔW_I| [m/s] at t = 100 s from the asymptotic error theory (5.1)–(5.6), no simulation."""
     v = lp_variant(variant)
@@ -201,7 +200,7 @@ def lp_theory_agreement(order: int) -> float:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def lp_convergence(quantity: str, order: int, eps: float, variant: int) -> dict:
     """Convergence study of one cell: values at h = 0.02, 0.01, 0.005 s and observed orders."""
     hs = (0.02, 0.01, 0.005)
@@ -210,7 +209,7 @@ def lp_convergence(quantity: str, order: int, eps: float, variant: int) -> dict:
     return {"h": hs, "values": values, "orders": orders}
 
 
-@lru_cache(maxsize=None)
+@cache
 def mapping_evidence() -> tuple:
     """Every assignment of a1..a4 to the four basis combinations, with printed and corrected Table 1.
 
@@ -247,7 +246,7 @@ def _combo_text(pairs) -> str:
     return "+".join(f"p{i}×p{j}" for i, j in pairs)
 
 
-@lru_cache(maxsize=None)
+@cache
 def table2_evidence() -> tuple:
     """Fitted δ4·k of each algorithm (and of the printed column 2) against Table 2."""
     rows = []
@@ -261,7 +260,7 @@ def table2_evidence() -> tuple:
     return tuple(rows)
 
 
-@lru_cache(maxsize=None)
+@cache
 def lp6_local_orders() -> tuple:
     """Local-error exponents of (2.2) on the tumbling motion; the sixth-order term with its dot term and without."""
     printed = get("lebedev-panov-6")
@@ -281,7 +280,7 @@ def lp6_local_orders() -> tuple:
 ORDER_STUDY_STEPS = (0.16, 0.08, 0.04, 0.02)
 
 
-@lru_cache(maxsize=None)
+@cache
 def order_study(quick: bool = False) -> dict:
     """Drift [deg/h] against the step H for every registry algorithm, ν = 2π s⁻¹, ϑ = 10°.
 

@@ -17,10 +17,10 @@ import numpy as np
 import sympy as sp
 
 from ..core import montecarlo
-from ..gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo, second_order_theory
 from ..gyrocompass.admissible_rocking import admissible_amplitude
+from ..gyrocompass.azimuth import AzimuthErrorKernel, azimuth_monte_carlo
 from ..gyrocompass.bound_sweep import SweepCase, first_order_alignment_rms, grid_cases, sweep
-from ..gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking, mean_variance_factor
+from ..gyrocompass.rocking import GaussianRocking, NarrowbandRocking, SineRocking
 from ..gyrocompass.tilt_estimation import compare_estimators
 from . import Erratum, Section
 

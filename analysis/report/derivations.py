@@ -8,7 +8,7 @@ are reference data quoted from the papers, used only for comparison.
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import sympy as sp
@@ -16,10 +16,9 @@ import sympy as sp
 from ...derivations.coning import drift as D
 from ...derivations.coning import series as S
 from ...derivations.coning.registry import get, names
-
-from ..coning.sampling_design import OperationCount, design, largest_step, operation_count, quaternion_update_count, QUATERNION_UPDATE
 from ..coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
 from ..coning.precession import RegularPrecession
+from ..coning.sampling_design import QUATERNION_UPDATE, OperationCount, design, largest_step, quaternion_update_count
 from ..coning.simulator import simulate
 from . import Erratum, Section
 
@@ -107,7 +106,7 @@ def table3_rows() -> list:
     return rows
 
 
-@lru_cache(maxsize=None)
+@cache
 def simulated_table3() -> dict:
     """u* from the simulator at the Table 3 point (20 s run)."""
     out = {}
@@ -178,7 +177,9 @@ def load_model_fit(rows, sim: dict, *, samples: int = 4) -> dict:
         for r in (r for r in rows if r["eps"] == eps):
             bs4, ba4, bs5 = r["printed"]
             u_star = sim[(r["k"], eps)] / RAD_PER_S_TO_DEG_PER_H
-            h_star = lambda required: H01 * (required / u_star) ** (1.0 / r["rho"])  # noqa: E731
+            def h_star(required, u_star=u_star, rho=r["rho"]):
+                return H01 * (required / u_star) ** (1.0 / rho)
+
             cost = samples * r["sigma"]
             if ba4 is not None:
                 data.append((r["k"], "β_a (T4)", ba4, cost, r["H4"]))
@@ -309,10 +310,8 @@ def _table2_section() -> list:
         "",
     ]
     # evidence for algorithm 4 from Table 3
-    alg4 = get("panov-4s-4")
-    c4 = S.error_coefficients(alg4)
     L += [
-        f"Algorithm 4: the printed k002 = 488, k0001 = −488 are not what the algorithm gives (448, −448: the",
+        "Algorithm 4: the printed k002 = 488, k0001 = −488 are not what the algorithm gives (448, −448: the",
         "terms $x_{002}, x_{110}, x_{0001}$ come only from the exact increment, so $\\delta_4 k_{002} = 64/45 = 448/315$",
         "is the same for every pairwise algorithm, as the other four columns show). The printed u_a of algorithm 4",
         "in Table 3 agrees with the derived coefficients (section 6), so 488 is a misprint of 448.",
@@ -337,7 +336,7 @@ def _eq24_section() -> list:
     return [
         "## 4. Sixth order: eq. (2.4) of Lebedev & Panov (1989)",
         "",
-        f"The nested algorithm (2.2), registered exactly as printed including $-\\tfrac{{64}}{{45}}(1 - p_2\\cdot p_3)\\,p_2\\times p_3$,",
+        "The nested algorithm (2.2), registered exactly as printed including $-\\tfrac{64}{45}(1 - p_2\\cdot p_3)\\,p_2\\times p_3$,",
         f"has no local error below weight 7 (nonzero weights below 7: {lower or 'none'}): it is of sixth order. The dot-product",
         "term is essential: $(p_2\\cdot p_3)\\,p_2\\times p_3 = -h^5 x_{0001} + \\dots$ cancels the $x_{0001}$ term of the exact",
         "increment, and without it the algorithm drops to order 4 (tested).",
@@ -377,7 +376,8 @@ def _structure_section() -> list:
             L.append(f"| {rho} | ${label}$ | ${_tex(printed)}$ | ${_tex(ours)}$ | {'yes' if eq else '**no**'} |")
     L += [
         "",
-        f"with $\\delta_2 = {D.structure_functions(get('lebedev-panov-2')).delta}$ $(= r^3/12)$ and $\\delta_4 = {D.structure_functions(get('lebedev-panov-4')).delta}$. All six printed functions are reproduced.",
+        f"with $\\delta_2 = {D.structure_functions(get('lebedev-panov-2')).delta}$ $(= r^3/12)$ and "
+        f"$\\delta_4 = {D.structure_functions(get('lebedev-panov-4')).delta}$. All six printed functions are reproduced.",
         "For the five four-sample algorithms:",
         "",
         "| algorithm | δ4 | $f_4$ | $g_4$ | $g_4 + f_4\\cos\\vartheta$ |",
@@ -470,7 +470,7 @@ def _crosscheck_section(cc) -> list:
         "| algorithm | ε | ρ | " + " | ".join(f"H = {h * 1e3:g} ms" for h in next(iter(cc.values()))[0]) + " |",
         "|---|---|---|" + "---|" * len(next(iter(cc.values()))[0]),
     ]
-    for (name, eps), (steps, ratios, rho) in cc.items():
+    for (name, eps), (_steps, ratios, rho) in cc.items():
         L.append(f"| {name} | {eps:g} | {rho} | " + " | ".join(f"{r:.4f}" for r in ratios) + " |")
     L += ["", "![u*/u_a](figures/derivations-ua-vs-ustar.png)", ""]
     return L

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..coning.precession import RegularPrecession
 from ..core import quaternion as quat
 from ..core.dual import Dual
-from ..coning.precession import RegularPrecession
 from . import Erratum, Section
 
 SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.")
@@ -36,7 +36,12 @@ def printed_1_12(phi, phi_dual):
 def printed_4_7(t, eps, nu, nut, nu_d, nut_d):
     """U_I(t) of (4.7), reading the garbled 'Λ°' of the last row as ν°."""
     return np.stack(
-        [0 * t, nu_d * t * np.sin(nut) * np.sin(eps * nu * t) + nut_d * np.cos(eps * nu * t), -nu_d * t * np.sin(nut) * np.cos(eps * nu * t) + nut_d * np.sin(eps * nu * t), nu_d * t * (eps + np.cos(nut))],
+        [
+            0 * t,
+            nu_d * t * np.sin(nut) * np.sin(eps * nu * t) + nut_d * np.cos(eps * nu * t),
+            -nu_d * t * np.sin(nut) * np.cos(eps * nu * t) + nut_d * np.sin(eps * nu * t),
+            nu_d * t * (eps + np.cos(nut)),
+        ],
         axis=-1,
     )
 

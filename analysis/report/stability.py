@@ -11,10 +11,10 @@ import numpy as np
 import sympy as sp
 
 from ..core import quaternion as quat
-from ..multistage.ship_angles import angles_to_quat
 from ..multistage.convergence import exact_rate, rest_rate, simulated_rate, strict_rate_bound
-from ..multistage.stages import Stage, plotnikov_1999_stages, simulate, tilt_quaternion
+from ..multistage.ship_angles import angles_to_quat
 from ..multistage.stage_control import StageLoop, root_locus_k, root_locus_l, schuler_period
+from ..multistage.stages import Stage, plotnikov_1999_stages, simulate, tilt_quaternion
 from ..multistage.trajectory import Scenario, SensorErrors
 from . import Erratum, Section
 
@@ -123,6 +123,7 @@ def _latex(e):
 # ---------------------------------------------------------------------------
 def build(ctx) -> None:
     import matplotlib.pyplot as plt
+
     from ...derivations.multistage.lyapunov_function import derive as derive_lyapunov
     from ...derivations.multistage.schuler import derive as derive_schuler
 
@@ -176,7 +177,7 @@ def build(ctx) -> None:
         "  $\\dot W \\le -\\gamma W$ with γ the smallest generalised eigenvalue of $(M, P_+)$, $\\xi^T P_+ \\xi = l|z|^2 + \\varepsilon|z||y| + \\frac{1}{2}|y|^2$:",
         "  uniform exponential stability, $|x(t)| \\le C e^{-\\gamma t/2}|x(0)|$.",
         "",
-        f"**Rate at rest.** For ω = 0 the characteristic polynomial of the 8-dimensional system is",
+        "**Rate at rest.** For ω = 0 the characteristic polynomial of the 8-dimensional system is",
         f"${_latex(ly.charpoly_rest)}$, so the rate is $-\\max\\operatorname{{Re}} s$ over $s = {', '.join(_latex(x) for x in ly.rate_roots)}$:",
         "$k/4$ when $k^2 < 8l$, $(k - \\sqrt{k^2-8l})/4$ otherwise. A body rate slows the decay (for $|\\omega| \\gg k$ the slow",
         "rate tends to $lk/(k^2+|\\omega|^2)$): the integral correction is stored in non-rotating components.",
@@ -203,7 +204,6 @@ def build(ctx) -> None:
 
     # ------------------------------------------------------------------ linearisation
     sch = derive_schuler()
-    sy = sch.symbols
     lines += [
         "## 2. Linearisation and Schuler tuning",
         "",
@@ -221,7 +221,6 @@ def build(ctx) -> None:
     names = {"psi1": "\\dot\\psi_1^+", "theta1": "\\dot\\theta_1^+", "gamma1": "\\dot\\gamma_1^+", "y1": "\\dot y_1", "y3": "\\dot y_3"}
     for key in ("psi1", "theta1", "gamma1", "y1", "y3"):
         lines += [f"$${names[key]} = {_latex(sch.rates[key])}$$", ""]
-    k_, l_, g_, r_ = sy["k"], sy["l"], sy["g"], sy["R"]
     lines += [
         "These are (3.8) with $y = l\\int(\\dots)d\\tau$. The derivation gives $W^{(1)}_3 = W_3 - g\\alpha + W_1\\beta$; the paper prints",
         "$-W_1\\beta$ (its own $M_{11} = \\alpha - n_3 - n_1\\beta$ agrees with the derivation, see the errata).",
@@ -263,7 +262,8 @@ def build(ctx) -> None:
         wn, zeta, p = loop.damp()
         poles = ", ".join(f"{z.real:.3g}{z.imag:+.3g}j" for z in p)
         lines.append(
-            f"| {name} | {loop.k:g} | {loop.l:.4g} | {poles} | {', '.join(_fmt(z + 0.0) for z in zeta)} | {', '.join(_fmt(x) for x in wn)} | {loop.stability} | {loop.peak_tilt_error(20.0, 20.0):.4g} |"
+            f"| {name} | {loop.k:g} | {loop.l:.4g} | {poles} | {', '.join(_fmt(z + 0.0) for z in zeta)} | {', '.join(_fmt(x) for x in wn)} | "
+            f"{loop.stability} | {loop.peak_tilt_error(20.0, 20.0):.4g} |"
         )
     lines += [
         "",
@@ -294,7 +294,7 @@ def build(ctx) -> None:
     for k, col in [(0.01, "C3"), (0.015, "C4")]:
         loci = root_locus_l(k, ls)
         axes[1].plot(loci.real.ravel(), loci.imag.ravel(), ".", ms=2, color=col, label=f"k = {k:g} s⁻¹, l from 0 to 1e-3")
-    for name, loop in loops.items():
+    for loop in loops.values():
         p = loop.poles()
         for ax in axes:
             ax.plot(p.real, p.imag, "x", ms=7, mew=1.5, color="k")
@@ -393,7 +393,8 @@ def build(ctx) -> None:
         f"| after stage 1 | {peak[0, 0]:.3e} | {peak[0, 1]:.3e} | {peak[0, 2]:.3e} | {tilt[0]:.3e} | {tilt_acc[0]:.3e} |",
         f"| after two stages | {peak[1, 0]:.3e} | {peak[1, 1]:.3e} | {peak[1, 2]:.3e} | {tilt[1]:.3e} | {tilt_acc[1]:.3e} |",
         f"| ratio | {peak[0, 0] / peak[1, 0]:.2f} | {peak[0, 1] / peak[1, 1]:.2f} | {peak[0, 2] / peak[1, 2]:.2f} | {tilt[0] / tilt[1]:.2f} | {tilt_acc[0] / tilt_acc[1]:.2f} |",
-        f"| paper (fig. 6) | {abs(PAPER['yaw_stage1']):.1e} → {abs(PAPER['yaw_two_stage']):.1e} | {PAPER['stage1_pitch_peak']:.1e} → ≤ {PAPER['two_stage_pitch_bound']:.1e} | reduced {PAPER['roll_reduction']:g}× | | |",
+        f"| paper (fig. 6) | {abs(PAPER['yaw_stage1']):.1e} → {abs(PAPER['yaw_two_stage']):.1e} | "
+        f"{PAPER['stage1_pitch_peak']:.1e} → ≤ {PAPER['two_stage_pitch_bound']:.1e} | reduced {PAPER['roll_reduction']:g}× | | |",
         "",
         "![Angle errors after one and two stages](figures/stability-scenario.png)",
         "",
@@ -450,17 +451,22 @@ def build(ctx) -> None:
         "",
         "### How the simulation compares with the paper, and why",
         "",
-        f"* **The cascade works.** With Schuler tuning the second stage removes the acceleration-induced error: the pitch",
+        "* **The cascade works.** With Schuler tuning the second stage removes the acceleration-induced error: the pitch",
         f"  error drops from {peak[0, 1]:.3g} rad to {peak[1, 1]:.3g} rad ({peak[0, 1] / peak[1, 1]:.0f}×) and the peak tilt "
         f"{tilt[0] / tilt[1]:.1f}×, more than the 5× asked for and the paper's 8×.",
-        f"  With Earth rotation and sensor errors switched off the two-stage error is "
+        "  With Earth rotation and sensor errors switched off the two-stage error is "
         + (f"{vres['Ω = 0 and no sensor errors'][0][1, 1]:.1e} rad" if "Ω = 0 and no sensor errors" in vres else "(full build only)")
         + ": the linear theory (3.11)–(3.20) holds to second order.",
         f"* **Stage 1 is larger than printed.** The linear loop predicts a stage-1 peak of {lin1:.3g} rad for 20 m/s² over 20 s",
         f"  (tilt-quaternion stage, $K = k/2$) and {lin1p:.3g} rad for the (1.4) stage; the nonlinear simulation gives",
         f"  {peak[0, 1]:.3g} rad (the tilt quaternion saturates at atan(a/g) = {np.arctan(scen.accel / g):.2f} rad). The paper's 3.4·10⁻² rad",
         f"  is what a 2 m/s² manoeuvre gives with the (1.4) stage ({lin1p2:.3g} rad linear"
-        + (f", {vres['stage 1 with (1.4), c = 2, 2 m/s²'][0][0, 1]:.3g} rad simulated, and {vres['stage 1 with (1.4), c = 2, 2 m/s²'][0][1, 1]:.3g} rad after two stages" if "stage 1 with (1.4), c = 2, 2 m/s²" in vres else "")
+        + (
+            f", {vres['stage 1 with (1.4), c = 2, 2 m/s²'][0][0, 1]:.3g} rad simulated, "
+            f"and {vres['stage 1 with (1.4), c = 2, 2 m/s²'][0][1, 1]:.3g} rad after two stages"
+            if "stage 1 with (1.4), c = 2, 2 m/s²" in vres
+            else ""
+        )
         + ", against the printed ≤ 4.5·10⁻³).",
         "  Either the acceleration or its duration lost a digit in print, or the stage-1 gains differ; the printed",
         "  20 m/s² is kept as the default and the 2 m/s² run is shown as the likely reading.",
@@ -470,7 +476,7 @@ def build(ctx) -> None:
         "  run, and the stage follows with an error of about $\\dot d/l$ plus Schuler oscillations. The paper's",
         "  invariance derivation uses $\\omega_3 = -V_1/R$, $\\omega_1 = V_3/R$, i.e. a non-rotating Earth; with Ω = 0",
         "  the residual falls to the sensor-error level (table above).",
-        f"* **Yaw.** Neither stage corrects yaw (components 0 and 2 of ν carry no correction), so the second stage",
+        "* **Yaw.** Neither stage corrects yaw (components 0 and 2 of ν carry no correction), so the second stage",
         f"  cannot reduce it: the simulated yaw error stays at {peak[0, 0]:.1e} → {peak[1, 0]:.1e} rad (coupling of tilt errors and",
         "  drift in the azimuth-free frame), far below the paper's 3·10⁻² rad after stage 1, whose reduction to",
         "  3.5·10⁻³ rad the model does not reproduce.",
@@ -488,7 +494,7 @@ def build(ctx) -> None:
     lines += [
         "### Convergence of the integrator",
         "",
-        f"Strang splitting (exact correction flow, exact norm flow, exact kinematic step). Difference from the run with",
+        "Strang splitting (exact correction flow, exact norm flow, exact kinematic step). Difference from the run with",
         f"h = {steps[-1]:g} s over the first {conv_sc.duration:g} s (rocking and acceleration included):",
         "",
         "| step h [s] | max \\|Δν⁺\\| after two stages | max \\|angle-error difference\\| [rad] | ratio to the next step |",

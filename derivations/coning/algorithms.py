@@ -14,17 +14,27 @@ definition.
 
 Term syntax
 -----------
-``cross`` is a nested pair of 1-based sample indices: ``(1, 2)`` is
+``cross`` is a nested pair of sample indices: ``(1, 2)`` is
 ``p_1 × p_2`` and ``(1, (2, 4))`` is ``p_1 × (p_2 × p_4)``.  ``dots`` is a
 tuple of index pairs whose dot products multiply the term: ``((2, 3),)`` with
 cross ``(2, 3)`` is ``(p_2 · p_3) p_2 × p_3``.
+
+Sample indices
+--------------
+With N samples per step, indices ``1 … N`` are the samples of the current step,
+``0`` is the last sample of the previous step, ``−1`` the one before it, and so
+on ("cross-step", or "N + previous" algorithms: Savage's ``(1/12) p_0 × p_1``
+with N = 1).  :attr:`Algorithm.history` is the number of earlier samples an
+algorithm reads, and :attr:`Algorithm.first_index` its lowest index
+``1 − history``.  Increments are handed to an algorithm as one window
+``p_{1−history} … p_N`` (:attr:`Algorithm.window` rows, oldest first).
 
 TOML files (see :func:`load_toml`)::
 
     name = "my-3-sample"
     samples = 3
     description = "coning-optimal three-sample algorithm"
-    [cross]            # coefficient of p_i × p_j
+    [cross]            # coefficient of p_i × p_j (indices ≤ 0: earlier steps)
     "1,3" = "9/20"
     "1,2" = "27/40"
     "2,3" = "27/40"
@@ -33,7 +43,8 @@ TOML files (see :func:`load_toml`)::
 
 The second-order condition (the sum rule that reproduces the
 ``H³/12 ω × ω'`` term of the exact increment) is
-``Σ c_ij (j − i) = N³/12`` over the pairwise terms.
+``Σ c_ij (j − i) = N³/12`` over the pairwise terms; it holds for cross-step
+terms unchanged, since every increment is expanded about the same instant.
 """
 
 from __future__ import annotations
@@ -42,11 +53,13 @@ import tomllib
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Union
 
-__all__ = ["Term", "Algorithm", "load_toml", "second_order_defect"]
+__all__ = ["Term", "Algorithm", "MAX_HISTORY", "load_toml", "second_order_defect"]
 
-Expr = Union[int, tuple]
+Expr = int | tuple
+
+#: How far back a cross-step term may reach, in samples before the current step.
+MAX_HISTORY = 64
 
 
 def _leaves(expr) -> list:
@@ -65,7 +78,8 @@ class Term:
     coefficient : Fraction
         Exact coefficient.
     cross : tuple
-        Nested cross product of 1-based sample indices, e.g. ``(1, (2, 4))``.
+        Nested cross product of sample indices, e.g. ``(1, (2, 4))``; indices
+        ``≤ 0`` are samples of earlier steps (module docstring).
     dots : tuple of (int, int)
         Dot-product factors ``(p_i · p_j)``.
     """
@@ -80,6 +94,7 @@ class Term:
         return len(_leaves(self.cross)) + 2 * len(self.dots)
 
     def indices(self) -> list:
+        """Every sample index of the term, cross product first, then dot factors."""
         out = _leaves(self.cross)
         for i, j in self.dots:
             out += [i, j]
@@ -110,7 +125,8 @@ class Algorithm:
     samples : int
         Number N of gyro increments per step H = N h.
     terms : tuple of Term
-        Nonlinear terms added to P = Σ p_j.
+        Nonlinear terms added to P = p_1 + … + p_N; their indices lie in
+        ``1 − MAX_HISTORY … N`` (``≤ 0``: samples of earlier steps).
     description : str
         One line for listings.
     reference : str
@@ -131,9 +147,9 @@ class Algorithm:
                 raise TypeError(f"Expected an exact Fraction coefficient in algorithm {self.name!r}, got {term.coefficient!r}")
             if isinstance(term.cross, int):
                 raise ValueError(f"Expected a cross product in every term of {self.name!r}, got the bare index {term.cross}")
-            bad = [i for i in term.indices() if not (1 <= i <= self.samples)]
+            bad = [i for i in term.indices() if not (1 - MAX_HISTORY <= i <= self.samples)]
             if bad:
-                raise ValueError(f"Expected sample indices in 1..{self.samples} in algorithm {self.name!r}, got {bad[0]}")
+                raise ValueError(f"Expected sample indices in {1 - MAX_HISTORY}..{self.samples} in algorithm {self.name!r}, got {bad[0]}")
 
     @property
     def pairwise(self) -> dict:
@@ -150,7 +166,24 @@ class Algorithm:
         return {k: v for k, v in sorted(out.items()) if v != 0}
 
     @property
+    def history(self) -> int:
+        """Number of samples before the current step that the algorithm reads (0: within the step)."""
+        lowest = min((i for t in self.terms for i in t.indices()), default=1)
+        return max(0, 1 - lowest)
+
+    @property
+    def first_index(self) -> int:
+        """Lowest sample index read, ``1 − history``."""
+        return 1 - self.history
+
+    @property
+    def window(self) -> int:
+        """Rows of the increment window ``p_{1−history} … p_N`` handed to the algorithm."""
+        return self.samples + self.history
+
+    @property
     def max_degree(self) -> int:
+        """Highest degree of a term in the increments (1 for a linear algorithm)."""
         return max((t.degree for t in self.terms), default=1)
 
 
@@ -181,6 +214,7 @@ def _fraction(value, where: str) -> Fraction:
 
 
 def _indices(key: str, count: int, where: str, samples: int) -> tuple:
+    """Parse ``"i,j"``; indices may be 0 or negative (earlier steps) down to ``1 − MAX_HISTORY``."""
     parts = [s.strip() for s in key.split(",")]
     try:
         idx = tuple(int(s) for s in parts)
@@ -188,9 +222,9 @@ def _indices(key: str, count: int, where: str, samples: int) -> tuple:
         raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}") from None
     if len(idx) != count:
         raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}")
-    bad = [i for i in idx if not 1 <= i <= samples]
+    bad = [i for i in idx if not 1 - MAX_HISTORY <= i <= samples]
     if bad:
-        raise ValueError(f"{where}: expected sample indices in 1..{samples}, got {bad[0]}")
+        raise ValueError(f"{where}: expected sample indices in {1 - MAX_HISTORY}..{samples} (≤ 0: earlier steps), got {bad[0]}")
     return idx
 
 
@@ -225,7 +259,7 @@ def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
     if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
         raise ValueError(f"{path}: key 'samples' must be a positive integer, got {samples!r}")
     terms = []
-    for table, count in (("cross", 2), ("triple", 3), ("dot_cross", None)):
+    for table in ("cross", "triple", "dot_cross"):
         entries = data.get(table, {})
         if not isinstance(entries, dict):
             raise ValueError(f"{path}: [{table}] must be a table, got {type(entries).__name__}")

@@ -46,7 +46,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 from math import factorial
 
 import sympy as sp
@@ -54,9 +54,9 @@ from sympy.algebras.quaternion import Quaternion
 from sympy.polys.domains import QQ
 from sympy.polys.rings import ring
 
+from ..reproducible import reproducible_sympy
 from . import series as S
 from .algorithms import Algorithm, Term
-from ..reproducible import reproducible_sympy
 
 __all__ = [
     "EPS",
@@ -98,7 +98,7 @@ def _ad_series(a, v, coeff, max_terms: int):
     return total
 
 
-@lru_cache(maxsize=None)
+@cache
 def mapped_error(algorithm: Algorithm) -> tuple:
     """``δφ_I = exp(−ad Δφ_1) J(Δφ) δφ`` through weight 7 (``H = 1``), algorithm minus exact.
 
@@ -118,7 +118,7 @@ def mapped_error(algorithm: Algorithm) -> tuple:
 # ---------------------------------------------------------------------------
 # Substituting the regular precession
 # ---------------------------------------------------------------------------
-@lru_cache(maxsize=None)
+@cache
 def _omega_values() -> tuple:
     """ω^(k)(0)/ν^(k+1) of (4.1) in QQ[ε, sinϑ, cosϑ]."""
     vals = []
@@ -166,7 +166,7 @@ def precession_value(vector) -> tuple:
     return tuple(_reduce_trig(_substitute(c)) for c in vector)
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def drift_coefficients(algorithm: Algorithm) -> tuple:
     """Signed drift coefficients ``d_w(ε, ϑ)``, w = 0 … 7 (algorithm minus exact).
@@ -188,7 +188,7 @@ def drift_coefficients(algorithm: Algorithm) -> tuple:
     return tuple(out)
 
 
-@lru_cache(maxsize=None)
+@cache
 def step_error_values(algorithm: Algorithm) -> tuple:
     """One-step error on (4.1) by weight: ``((w, (x_w, y_w, z_w)), …)``, w ≤ 7, nonzero parts only.
 
@@ -258,7 +258,7 @@ def _content(expr) -> Fraction:
     return Fraction(int(num), int(den))
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def structure_functions(algorithm: Algorithm) -> StructureFunctions:
     """``A_ρ, B_ρ, f_ρ, g_ρ, f_ρ°, g_ρ°`` of ``algorithm`` (Lebedev & Panov 1989, section 5).
@@ -303,7 +303,6 @@ def _coning_lag_response(samples: int) -> list:
     ``n(t_m)·(p_i × p_j)`` as a function of ``x = νh`` (ν = 1), derived from
     the exact increments of (4.1) at ε = −1.
     """
-    t = sp.Symbol("t", real=True)
     e = -1
     a = _ALPHA
 
@@ -326,7 +325,7 @@ def _coning_lag_response(samples: int) -> list:
     return out
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def _coning_exact(samples: int) -> sp.Expr:
     """``α²``-coefficient of ``n·(Δφ_exact − P)`` for pure coning over ``H = N h`` (x = νh, ν = 1).
@@ -374,7 +373,7 @@ def coning_drift_closed_form(lag_sums, samples: int) -> sp.Expr:
     return sp.simplify((total - _coning_exact(samples)) / (samples * _X))
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def optimal_coning_algorithm(samples: int) -> Algorithm:
     """Optimal N-sample coning algorithm: lag sums that cancel the coning drift through ``(νh)^{2N−1}``.
@@ -417,7 +416,7 @@ def lag_sums(algorithm: Algorithm) -> tuple:
     return tuple(out)
 
 
-@lru_cache(maxsize=None)
+@cache
 def coning_constant(samples: int) -> tuple:
     """``(m, C_N)``: the optimal N-sample coning drift is ``α² ν (νH)^m / C_N`` to leading order.
 

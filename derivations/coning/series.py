@@ -48,7 +48,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 from math import factorial
 
 import sympy as sp
@@ -160,7 +160,7 @@ def _word_mul(a: dict, b: dict, max_weight: int) -> dict:
     return {k: v for k, v in out.items() if v}
 
 
-@lru_cache(maxsize=None)
+@cache
 def exact_words(lower: Fraction = Fraction(-1, 2), upper: Fraction = Fraction(1, 2), max_weight: int = MAX_WEIGHT) -> tuple:
     """Exact rotation-vector increment over ``[t_m + lower·H, t_m + upper·H]`` as nested products.
 
@@ -288,13 +288,13 @@ def lie_vector(series) -> tuple:
     return total
 
 
-@lru_cache(maxsize=None)
+@cache
 def exact_increment(lower: Fraction = Fraction(-1, 2), upper: Fraction = Fraction(1, 2)) -> tuple:
     """Exact increment :func:`exact_words` as component polynomials (``H = 1``)."""
     return lie_vector(exact_words(Fraction(lower), Fraction(upper)))
 
 
-@lru_cache(maxsize=None)
+@cache
 def increments(samples: int) -> tuple:
     """Series of the increments ``p_j = ∫ ω dt`` over the N sub-intervals of the step (``H = 1``).
 
@@ -383,7 +383,7 @@ class LocalError:
         raise ValueError(f"Expected `unit` to be 'H' or 'h', got {unit!r}")
 
 
-@lru_cache(maxsize=None)
+@cache
 def local_error(algorithm: Algorithm) -> LocalError:
     """Local-error series of ``algorithm`` through weight 7 (algorithm minus exact).
 
@@ -463,7 +463,7 @@ def fourth_order_coefficients(algorithm: Algorithm) -> dict:
     return express(local_error(algorithm).part(5, unit="h"), ORDER4_BASIS)
 
 
-@lru_cache(maxsize=None)
+@cache
 def canonical_basis(w: int) -> tuple:
     """Nested products of weight ``w`` independent as vector polynomials in R³.
 
@@ -484,7 +484,6 @@ def canonical_basis(w: int) -> tuple:
                 if n == 1 or p[-2] < p[-1]:
                     cands.add(p)
     basis, cols = [], []
-    keys: list = []
     for cand in sorted(cands, key=lambda p: (len(p), p)):
         col = _flatten(nested(cand))
         if not col:
@@ -542,7 +541,7 @@ class ErrorCoefficients:
         return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
 
 
-@lru_cache(maxsize=None)
+@cache
 def error_coefficients(algorithm: Algorithm) -> ErrorCoefficients:
     """Leading local-error coefficients (Table 2 convention, see :class:`ErrorCoefficients`).
 

@@ -35,9 +35,10 @@ under random rocking", eqs. (2), (4)–(15).
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
+
 from ..reproducible import reproducible_sympy
 
 __all__ = [
@@ -146,7 +147,7 @@ def _trig_series(angle0, var, order: int):
     return cos_p, sin_p
 
 
-@lru_cache(maxsize=None)
+@cache
 def taylor_components(order: int = 3) -> tuple:
     """Taylor polynomials of A and B in (ξ, η) about (β0, γ0), to total degree ``order``.
 
@@ -166,7 +167,7 @@ def taylor_components(order: int = 3) -> tuple:
     return _clean(A), _clean(B)
 
 
-@lru_cache(maxsize=None)
+@cache
 def linear_parts() -> dict:
     """A*, B* and the first-order parts ζ1, ζ2 of (5)–(10), derived.
 
@@ -200,7 +201,7 @@ def coefficient_symbols(order: int = 3) -> tuple:
     return sp.Symbol("A_s", real=True), sp.Symbol("B_s", real=True), a, b
 
 
-@lru_cache(maxsize=None)
+@cache
 def coefficient_values(order: int = 3) -> dict:
     """Values of the symbols of :func:`coefficient_symbols` for the gyrocompass A, B."""
     As, Bs, a, b = coefficient_symbols(order)
@@ -212,7 +213,7 @@ def coefficient_values(order: int = 3) -> dict:
     return values
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def generic_error_series(order: int = 3) -> dict:
     """Series of ``σ − σ* = arg(A + iB) − arg(A* + iB*)`` in (ξ, η) to total degree ``order``.
@@ -283,7 +284,7 @@ def _specialise(expr, generic: bool, order: int):
     return expr if generic else expr.subs(coefficient_values(order))
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def first_order_mse(*, generic: bool = False):
     """``E L²`` of the linear error ``L = (A* ζ2 − B* ζ1)/(A*² + B*²)``.
@@ -295,7 +296,7 @@ def first_order_mse(*, generic: bool = False):
     return _specialise(sp.factor(expectation(_mul(L, L, 2))), generic, 1)
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def bias_second_order(*, generic: bool = False):
     """Second-order bias ``E(σ − σ*) = ½ (σ_ββ Dξ + σ_γγ Dη) + O(4)``.
@@ -306,7 +307,7 @@ def bias_second_order(*, generic: bool = False):
     return _specialise(sp.factor(expectation(Q)), generic, 2)
 
 
-@lru_cache(maxsize=None)
+@cache
 @reproducible_sympy
 def mse_fourth_order(*, generic: bool = False):
     """Mean-square error ``E(σ − σ*)²`` to fourth order: ``E L² + E Q² + 2 E L C``.
@@ -340,7 +341,7 @@ def bound14(Dz1=D_zeta1, Dz2=D_zeta2):
     return (Bs / As**2) ** 2 * Dz1 + 2 * sp.Abs(Bs / As**3) * sp.sqrt(Dz1 * Dz2) + Dz2 / As**2
 
 
-@lru_cache(maxsize=None)
+@cache
 def bound14_rocking():
     """Bound (14) on δ² with ``Dζ1, Dζ2`` expressed through Dξ, Dη (ξ, η independent)."""
     p = linear_parts()

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
+
 from ..reproducible import reproducible_sympy
 
 __all__ = ["LyapunovDerivation", "derive", "symbols", "perturbation_rhs", "strict_bound_matrices"]

@@ -43,6 +43,7 @@ from functools import lru_cache
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
+
 from ..reproducible import reproducible_sympy
 
 __all__ = ["SchulerDerivation", "derive", "krylov_quaternion", "accel_to_tilt_tf", "t", "s"]
@@ -120,7 +121,11 @@ def derive() -> SchulerDerivation:
     sc = {n: eps * f[n] if n in small else f[n] for n in names}
 
     # Rotation η(1) → η by the small stage-1 error angles (first order in ε is all we keep).
-    delta = Quaternion(sp.cos(sc["alpha"] / 2), sp.sin(sc["alpha"] / 2), 0, 0) * Quaternion(sp.cos(sc["beta"] / 2), 0, sp.sin(sc["beta"] / 2), 0) * Quaternion(sp.cos(sc["chi"] / 2), 0, 0, sp.sin(sc["chi"] / 2))
+    delta = (
+        Quaternion(sp.cos(sc["alpha"] / 2), sp.sin(sc["alpha"] / 2), 0, 0)
+        * Quaternion(sp.cos(sc["beta"] / 2), 0, sp.sin(sc["beta"] / 2), 0)
+        * Quaternion(sp.cos(sc["chi"] / 2), 0, 0, sp.sin(sc["chi"] / 2))
+    )
     dbar = delta.conjugate()
     omega_eta = Quaternion(0, sc["omega1"], 0, sc["omega3"])
     rate_q = dbar * omega_eta * delta + 2 * dbar * Quaternion(*[sp.diff(c, t) for c in _comps(delta)])
