@@ -229,7 +229,7 @@ def _ignagni_1996(number: int) -> Algorithm:
     terms = _compressed_terms(n, ks) + (_interval_terms(n, c_prev) if Fraction(c_prev) else [])
     pieces = [f"({' + '.join(f'{k} p{n - len(ks) + m}' for m, k in enumerate(ks) if Fraction(k))}) × p{n}"]
     if Fraction(c_prev):
-        pieces.append(f"{c_prev} P_prev × P")
+        pieces.append(f"({c_prev}) P_prev × P")
     history = max(0, 1 - min(n - len(ks), 1 - n if Fraction(c_prev) else 1))
     kind = f"{n} samples + {history} previous" if history else f"{n} samples"
     return Algorithm(
