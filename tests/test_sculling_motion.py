@@ -58,8 +58,8 @@ def test_increments_are_integrals_and_grid_matches(motion):
     t0, t1 = 0.3, 0.37
     p = motion.increments(t0, t1)
     for k in range(3):
-        assert p.re[k] == pytest.approx(quad(lambda s: motion.omega(s)[k], t0, t1, epsabs=1e-14)[0], abs=1e-13)
-        assert p.du[k] == pytest.approx(quad(lambda s: motion.accel(s)[k], t0, t1, epsabs=1e-14)[0], abs=1e-13)
+        assert p.re[k] == pytest.approx(quad(lambda s, k=k: motion.omega(s)[k], t0, t1, epsabs=1e-14)[0], abs=1e-13)
+        assert p.du[k] == pytest.approx(quad(lambda s, k=k: motion.accel(s)[k], t0, t1, epsabs=1e-14)[0], abs=1e-13)
     g = motion.grid_increments(0.01, -3, 7, dual=True)
     ref = motion.increments(np.arange(-3, 4) * 0.01, np.arange(-2, 5) * 0.01)
     np.testing.assert_allclose(g.re, ref.re, atol=1e-15)
