@@ -43,6 +43,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import mpmath
 import numpy as np
 from scipy.special import jv
 
@@ -362,22 +363,28 @@ class RectificationError:
     relative: float
 
 
-def _phasors(motion: ScullingMotion, h: float, index):
+def _phasors(motion: ScullingMotion, h, index):
     """Complex amplitudes of p_j (along e_r) and b_j (along e_a) of sample j of a step starting at t_k.
 
     A quantity ``x_k = Im(x̂ e^{iνt_k})``; sample j covers ``[t_k + (j−1)h, t_k + jh]``.
+    Evaluated in :mod:`mpmath` (the differences of nearby exponentials cancel).
     """
-    nu = motion.nu
-    j = np.asarray(index, dtype=float)
-    lo, hi = np.exp(1j * nu * (j - 1) * h), np.exp(1j * nu * j * h)
-    p = motion.angle_amplitude * np.exp(1j * motion.angle_phase) * (hi - lo)
-    b = motion.accel_amplitude / nu * 1j * np.exp(1j * motion.accel_phase) * (lo - hi)
+    nu = mpmath.mpf(motion.nu)
+    j = mpmath.mpf(int(index))
+    lo, hi = mpmath.expj(nu * (j - 1) * h), mpmath.expj(nu * j * h)
+    p = motion.angle_amplitude * mpmath.expj(motion.angle_phase) * (hi - lo)
+    b = motion.accel_amplitude / nu * 1j * mpmath.expj(motion.accel_phase) * (lo - hi)
     return p, b
 
 
-def _mean(x, y) -> float:
+def _mean(x, y):
     """Mean over the steps of ``Im(x e^{iνt_k}) Im(y e^{iνt_k})`` (ν H not a multiple of π)."""
-    return 0.5 * float(np.real(x * np.conj(y)))
+    return mpmath.re(x * mpmath.conj(y)) / 2
+
+
+#: Working precision [decimal digits] of :func:`rectification_error`: the error of a
+#: high-order algorithm is a difference of O(1) terms that cancel to (ν h)^10 and below.
+RECTIFICATION_DIGITS = 60
 
 
 def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_interval: float) -> RectificationError:
@@ -440,17 +447,18 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
     big_h = n * h
     if abs(math.sin(motion.nu * big_h)) < 1e-9:
         raise ValueError(f"Expected ν H not a multiple of π, got ν H = {motion.nu * big_h:g}")
-    cur = np.arange(1, n + 1)
-    p, b = _phasors(motion, h, cur)
-    p_sum, b_sum = p.sum(), b.sum()
-    theta_k = motion.angle_amplitude * np.exp(1j * motion.angle_phase)
-    total = _mean(theta_k, b_sum) + 0.5 * _mean(p_sum, b_sum)
-    for (i, j), c in algorithm.pairwise.items():
-        pi, bi = _phasors(motion, h, i)
-        pj, bj = _phasors(motion, h, j)
-        total += float(c) * (_mean(pi, bj) - _mean(bi, pj))
-    exact_rate = 0.5 * motion.angle_amplitude * motion.accel_amplitude * math.cos(motion.accel_phase - motion.angle_phase)
-    rate = total / big_h - exact_rate
-    relative = rate / exact_rate if exact_rate != 0 else float("nan")
-    return RectificationError(algorithm, h, motion.nu * h, rate, relative)
+    with mpmath.workdps(RECTIFICATION_DIGITS):
+        hm = mpmath.mpf(h)
+        cur = [_phasors(motion, hm, j) for j in range(1, n + 1)]
+        p_sum, b_sum = sum(p for p, _ in cur), sum(b for _, b in cur)
+        theta_k = motion.angle_amplitude * mpmath.expj(motion.angle_phase)
+        total = _mean(theta_k, b_sum) + _mean(p_sum, b_sum) / 2
+        for (i, j), c in algorithm.pairwise.items():
+            pi, bi = _phasors(motion, hm, i)
+            pj, bj = _phasors(motion, hm, j)
+            total += mpmath.mpf(c.numerator) / c.denominator * (_mean(pi, bj) - _mean(bi, pj))
+        exact_rate = mpmath.mpf(motion.angle_amplitude) * motion.accel_amplitude * mpmath.cos(mpmath.mpf(motion.accel_phase) - motion.angle_phase) / 2
+        rate = total / (n * hm) - exact_rate
+        relative = float(rate / exact_rate) if exact_rate != 0 else float("nan")
+        return RectificationError(algorithm, h, motion.nu * h, float(rate), relative)
 
