@@ -19,6 +19,7 @@ Each check returns our exact (or simulated) value beside the published one
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -195,8 +196,9 @@ def coefficient_checks() -> tuple:
         if k != ours:
             weights = sum((c * (6 - j) for j, c in enumerate(printed, start=1)), Fraction(0))
             defect = weights - Fraction(6**3, 12)
-            note = (f"misprint: the printed row misses the second-order condition (Σ k_i (N − i) − N³/12 = {defect}); "
-                    f"the glv.cs table and the derivation give {ours}")
+            den = math.lcm(*(x.denominator for x in printed))
+            note = (f"printed {k * den}/{den}; misprint: the printed row misses the second-order condition (Σ k_i (N − i) − N³/12 = {defect}); "
+                    f"the glv.cs table and the derivation give {ours * den}/{den} = {ours}")
             out.append(FigureCheck(f"k{i}-N6-tab-10-1", "compressed-6", f"k_{i}", k, ours, None, False, source, note))
     d = get("polynomial-3").pairwise
     fit = polynomial_fit_coefficients(3)

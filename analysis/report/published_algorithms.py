@@ -124,7 +124,7 @@ def _order_section() -> list:
         "|---|---|---|---|---|---|---|",
     ]
     for d in _orders():
-        k = len({c for c in get(d.algorithm).pairwise.values()}) if d.algorithm != "savage-1+1" else 1
+        k = len(set(get(d.algorithm).pairwise.values()))  # free coefficients of the design
         out.append(f"| `{d.algorithm}` | {d.samples} | {d.history} | {2 * k + 2} | {d.drift[0]:.3e} | {d.drift[1]:.3e} | {d.order:.2f} |")
     out += [
         "",
