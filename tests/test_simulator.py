@@ -146,11 +146,13 @@ def test_budennyi_table_3_u_star(number, eps, printed):
 
 def test_budennyi_table_1_column_2_as_printed_does_not_reproduce_table_3():
     """Erratum evidence: 4/3 (p1×p3 + p2×p4) (printed column 2) misses both Table 3 cells by far."""
-    from strapdown.analysis.report.algorithms import panov_algorithm, table3_drift
+    from strapdown.analysis.coning.budennyi_table3 import simulated_drift
+    from strapdown.analysis.coning.formula_one import printed_column_2
+    from strapdown.analysis.core.units import deg_per_h
 
-    drift = table3_drift(panov_algorithm(P.BUDENNYI_TABLE_1_COLUMN_2), duration=20.0)
+    drift = simulated_drift(printed_column_2(), duration=20.0)
     printed = {r.eps: r.u_star for r in P.BUDENNYI_TABLE_3 if r.algorithm == 2}
-    assert drift[-1.0] < 0.2 * printed[-1.0] and drift[0.5] > 3 * printed[0.5]
+    assert deg_per_h(drift.coning) < 0.2 * printed[-1.0] and deg_per_h(drift.precession) > 3 * printed[0.5]
 
 
 _NUT = np.radians(P.LEBEDEV_PANOV_CONDITIONS.nutation_deg)
