@@ -2,21 +2,48 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict
 
-from ..coning.sampling_design import design, quaternion_update_count
+from ..coning.computational_load import design, quaternion_update_count
+from ..coning.precession import RegularPrecession
+from ..core.units import rad, rad_per_s
+from ..core.validation import as_float, in_open_interval, nonnegative, positive
 from . import Result
 
 
 def design_command(args) -> Result:
-    rows = design(args.required_drift_deg_per_h, eps=args.eps, nutation_deg=args.nutation_deg, freq_hz=args.freq_hz, m=args.m, quaternion_cost=args.quaternion_cost)
-    sigma_q = quaternion_update_count().cost(args.m) if args.quaternion_cost is None else args.quaternion_cost
+    """Run ``strapdown design``: validate the options, convert them to SI and rank the registry.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of :func:`register`.
+
+    Returns
+    -------
+    Result
+        The ranking as JSON data and as a text table.
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad option value; the message names the option as typed.
+    """
+    required = positive(args.required_drift_deg_per_h, "--required-drift-deg-per-h")
+    eps = as_float(args.eps, "--eps")
+    nutation_deg = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees")
+    freq = positive(args.freq_hz, "--freq-hz")
+    m = nonnegative(args.m, "--m")
+    sigma_q = quaternion_update_count().cost(m) if args.quaternion_cost is None else nonnegative(args.quaternion_cost, "--quaternion-cost")
+    motion = RegularPrecession(eps, 2.0 * math.pi * freq, rad(nutation_deg))
+    rows = design(rad_per_s(required), motion, m=m, quaternion_cost=sigma_q)
     data = {
-        "required_drift_deg_per_h": args.required_drift_deg_per_h,
-        "eps": args.eps,
-        "nutation_deg": args.nutation_deg,
-        "freq_hz": args.freq_hz,
-        "m": args.m,
+        "required_drift_deg_per_h": required,
+        "eps": eps,
+        "nutation_deg": nutation_deg,
+        "freq_hz": freq,
+        "m": m,
         "quaternion_update_cost": sigma_q,
         "ranking": [asdict(r) for r in rows],
     }
@@ -27,10 +54,18 @@ def design_command(args) -> Result:
 
 
 def register(commands) -> None:
+    """Add ``strapdown design`` to the command line.
+
+    Parameters
+    ----------
+    commands : strapdown.analysis.cli.Commands
+        The command registry.
+    """
     p = commands.add("design", design_command, "largest step and computational load of each algorithm for a drift budget")
-    p.add_argument("--required-drift-deg-per-h", type=float, required=True, metavar="U", help="required drift [u] [deg/h]")
-    p.add_argument("--eps", type=float, required=True, metavar="E", help="ε = μ/ν (−1: coning)")
-    p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg]")
+    p.add_argument("--required-drift-deg-per-h", type=float, required=True, metavar="U", help="required drift [u] [deg/h], > 0")
+    p.add_argument("--eps", type=float, required=True, metavar="E", help="ε = μ/ν [-] (−1: coning)")
+    p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg], in (0, 180)")
     p.add_argument("--freq-hz", type=float, required=True, metavar="F", help="frequency f [Hz], ν = 2πf")
-    p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions (default 5)")
-    p.add_argument("--quaternion-cost", type=float, default=None, help="cost of the quaternion update per step (default: counted, see strapdown.analysis.coning.sampling_design)")
+    p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions [-] (default 5)")
+    p.add_argument("--quaternion-cost", type=float, default=None,
+                   help="cost of the quaternion update per step [addition-equivalents] (default: counted, see strapdown.analysis.coning.computational_load)")  # fmt: skip

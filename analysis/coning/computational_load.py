@@ -20,19 +20,20 @@ Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (6), Tables 2, 4, 5.
 from __future__ import annotations
 
 from dataclasses import dataclass
-
-import numpy as np
+from typing import NamedTuple
 
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.registry import get, names
-from ..core.validation import as_float, in_open_interval, nonnegative, positive
-from .drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order
+from ..core.validation import nonnegative, positive
+from .drift_theory import asymptotic_drift, asymptotic_order
+from .precession import RegularPrecession
 
 __all__ = [
     "OperationCount",
     "operation_count",
     "QUATERNION_UPDATE",
     "quaternion_update_count",
+    "StepLimit",
     "largest_step",
     "DesignRow",
     "design",
@@ -41,13 +42,32 @@ __all__ = [
 
 @dataclass(frozen=True)
 class OperationCount:
-    """Additions ``s`` and multiplications ``u`` per step."""
+    """Additions ``s`` and multiplications ``u`` of one piece of computation.
+
+    Attributes
+    ----------
+    additions : int
+        s: additions and subtractions.
+    multiplications : int
+        u: multiplications (and divisions).
+    """
 
     additions: int
     multiplications: int
 
     def cost(self, m: float = 5.0) -> float:
-        """``σ = s + m u`` in addition-equivalents (eq. (6))."""
+        """``σ = s + m u`` in addition-equivalents (Budennyi, Kalinovsky, Panov et al., eq. (6)).
+
+        Parameters
+        ----------
+        m : float
+            Cost of a multiplication in additions [-].
+
+        Returns
+        -------
+        float
+            σ [addition-equivalents].
+        """
         return self.additions + m * self.multiplications
 
 
@@ -69,6 +89,16 @@ def operation_count(algorithm: Algorithm) -> OperationCount:
     product 3 and 2, a scalar factor on a vector 3 multiplications.  No
     factoring by bilinearity is attempted, so hand-optimised counts (such as
     Table 2 of Budennyi, Kalinovsky, Panov et al.) can be lower.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        Rotation-vector algorithm.
+
+    Returns
+    -------
+    OperationCount
+        Per step.
 
     Examples
     --------
@@ -111,49 +141,86 @@ QUATERNION_UPDATE = (
 def quaternion_update_count() -> OperationCount:
     """Operation count of :data:`QUATERNION_UPDATE`.
 
+    Returns
+    -------
+    OperationCount
+        Per step.
+
+    Examples
+    --------
     >>> quaternion_update_count()
     OperationCount(additions=18, multiplications=27)
     """
     return OperationCount(sum(a for _, a, _ in QUATERNION_UPDATE), sum(m for _, _, m in QUATERNION_UPDATE))
 
 
-def largest_step(algorithm: Algorithm, required_drift, *, eps, nu, nutation):
+class StepLimit(NamedTuple):
+    """The largest step that meets a drift budget.
+
+    Attributes
+    ----------
+    step : float
+        H_max [s] (inf if the drift vanishes through weight 7).
+    order : int
+        ρ of the drift at the motion (−1 if it vanishes through weight 7).
+    """
+
+    step: float
+    order: int
+
+
+def largest_step(algorithm: Algorithm, required_drift, motion: RegularPrecession) -> StepLimit:
     """Largest step H [s] whose asymptotic drift equals ``required_drift``.
+
+    With ``u_a = K H^ρ`` (:func:`strapdown.analysis.coning.drift_theory.asymptotic_drift`),
+    ``H_max = ([u] / K)^(1/ρ)``.
 
     Parameters
     ----------
     algorithm : Algorithm
+        Rotation-vector algorithm.
     required_drift : float
-        Required drift [u] [rad/s], > 0.
-    eps : float
-        ε = μ/ν [-].
-    nu : float
-        Spin rate ν [rad/s], > 0.
-    nutation : float
-        Nutation ϑ [rad], in (0, π).
+        Required constant drift rate [u] [rad/s], > 0.
+    motion : RegularPrecession
+        The motion (4.1): ε, ν [rad/s] and ϑ [rad].
 
     Returns
     -------
-    step : float
-        H_max [s] (inf if the drift vanishes through h⁷).
-    order : int
-        ρ of the drift at (ε, ϑ).
+    StepLimit
+
+    Raises
+    ------
+    ValueError
+        If ``required_drift`` is not positive.
+    TypeError
+        If ``motion`` is not a :class:`RegularPrecession`.
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3), Tables 4–5.
 
     Examples
     --------
-    >>> H, rho = largest_step(get("panov-4s-3"), 1e-3 / RAD_PER_S_TO_DEG_PER_H, eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
-    >>> rho, round(H * 1e3, 2)
+    >>> from strapdown.analysis.core.units import rad, rad_per_s
+    >>> m = RegularPrecession(-1.0, 2 * 3.141592653589793 * 10, rad(1.0))
+    >>> limit = largest_step(get("panov-4s-3"), rad_per_s(1e-3), m)
+    >>> limit.order, round(limit.step * 1e3, 2)
     (6, 11.66)
     """
     u = positive(required_drift, "required_drift")
-    eps = as_float(eps, "eps")
-    nu = positive(nu, "nu")
-    nutation = in_open_interval(nutation, "nutation", 0.0, np.pi, text="(0, π)")
-    rho = int(asymptotic_order(algorithm, eps, nutation))
+    motion = _as_motion(motion)
+    rho = int(asymptotic_order(algorithm, motion.eps, motion.nutation))
     if rho < 0:
-        return float("inf"), rho
-    k = float(asymptotic_drift(algorithm, eps=eps, nu=nu, nutation=nutation, step=1.0))
-    return (u / k) ** (1.0 / rho), rho
+        return StepLimit(float("inf"), rho)
+    k = float(asymptotic_drift(algorithm, eps=motion.eps, nu=motion.nu, nutation=motion.nutation, step=1.0))
+    return StepLimit((u / k) ** (1.0 / rho), rho)
+
+
+def _as_motion(motion) -> RegularPrecession:
+    if not isinstance(motion, RegularPrecession):
+        raise TypeError(f"Expected `motion` to be a RegularPrecession, got {type(motion).__name__}")
+    positive(motion.nu, "motion.nu")
+    return motion
 
 
 @dataclass(frozen=True)
@@ -163,6 +230,7 @@ class DesignRow:
     Attributes
     ----------
     algorithm : str
+        Algorithm name.
     order : int
         ρ of the drift at the design point.
     step : float
@@ -183,44 +251,49 @@ class DesignRow:
     load: float
 
 
-def design(required_drift_deg_per_h, *, eps, nutation_deg, freq_hz, algorithms=None, m=5.0, quaternion_cost=None, counts=None) -> list:
+def design(required_drift, motion: RegularPrecession, *, algorithms=None, m=5.0, quaternion_cost=None, counts=None) -> list:
     """Rank algorithms by computational load for a drift budget (Tables 4–5).
 
     Parameters
     ----------
-    required_drift_deg_per_h : float
-        [u] [deg/h], > 0.
-    eps : float
-        ε = μ/ν [-].
-    nutation_deg : float
-        Nutation ϑ [deg], in (0, 180).
-    freq_hz : float
-        f [Hz], ν = 2π f.
-    algorithms : sequence of str or Algorithm, optional
+    required_drift : float
+        Required constant drift rate [u] [rad/s], > 0.
+    motion : RegularPrecession
+        The motion (4.1): ε, ν [rad/s] and ϑ [rad].
+    algorithms : sequence of str or Algorithm, keyword-only, optional
         Default: the whole registry.
-    m : float
+    m : float, keyword-only
         Cost of a multiplication in additions (eq. (6)), ≥ 0.
-    quaternion_cost : float, optional
-        σ_q per step; default :func:`quaternion_update_count` ``.cost(m)``.
-    counts : dict, optional
+    quaternion_cost : float, keyword-only, optional
+        σ_q per step [addition-equivalents]; default :func:`quaternion_update_count` ``.cost(m)``.
+    counts : mapping, keyword-only, optional
         ``{name: OperationCount}`` overriding :func:`operation_count`.
 
     Returns
     -------
     list of DesignRow
         Sorted by load (lowest first).
+
+    Raises
+    ------
+    ValueError
+        For a non-positive drift budget, a negative ``m`` or ``quaternion_cost``, or an unknown algorithm name.
+    TypeError
+        If ``motion`` is not a :class:`RegularPrecession`.
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (6), Tables 4–5.
     """
-    u = positive(required_drift_deg_per_h, "required_drift_deg_per_h") / RAD_PER_S_TO_DEG_PER_H
-    nut = np.radians(in_open_interval(nutation_deg, "nutation_deg", 0.0, 180.0, text="(0, 180)"))
-    nu = 2 * np.pi * positive(freq_hz, "freq_hz")
+    u = positive(required_drift, "required_drift")
+    motion = _as_motion(motion)
     m = nonnegative(m, "m")
     sigma_q = quaternion_update_count().cost(m) if quaternion_cost is None else nonnegative(quaternion_cost, "quaternion_cost")
     algs = [get(a) if isinstance(a, str) else a for a in (algorithms if algorithms is not None else names())]
     rows = []
     for alg in algs:
-        H, rho = largest_step(alg, u, eps=eps, nu=nu, nutation=nut)
+        H, rho = largest_step(alg, u, motion)
         count = (counts or {}).get(alg.name) or operation_count(alg)
         cost = count.cost(m) + sigma_q
         rows.append(DesignRow(alg.name, rho, H, alg.samples / H, cost, cost / H))
     return sorted(rows, key=lambda r: (r.load, r.algorithm))
-
