@@ -180,3 +180,12 @@ def test_reproduce_tables_json(capsys):
     assert len(data["budennyi_table3_u_star"]) == 10
     assert len(data["lebedev_panov_1989"]) == sum(len(c.variants) for c in P.LEBEDEV_PANOV_TABLE)
     assert all(abs(r["rel_diff"]) < 0.02 for r in data["budennyi_table3_u_star"])
+
+
+# --------------------------------------------------------------------------- errata classes
+def test_erratum_kind_is_validated():
+    from strapdown.analysis.report import Erratum
+
+    assert Erratum("s", "p", "c", "e", kind="ambiguous", alternatives="a").kind == "ambiguous"
+    with pytest.raises(ValueError, match="`kind`"):
+        Erratum("s", "p", "c", "e", kind="correct")

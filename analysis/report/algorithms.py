@@ -395,6 +395,7 @@ def _column_2_erratum(col2, fits) -> Erratum:
         f"Its fitted local-error coefficient k12 is {fixed_k12:.2f} (Table 2: {_table2(2).k[1]}) against {printed_k12:.2f} for the printed column. "
         "The same basis reproduces algorithms 1, 3, 4, 5 in both tables.",
         "algorithms",
+        kind="misprint",
     )
 
 
@@ -408,6 +409,7 @@ def _table2_erratum(fits) -> Erratum:
         f"The local error fitted on a tumbling motion gives k002 = {k4[2]:.2f}, k0001 = {k4[4]:.2f} (k03 = {k4[0]:.2f}, k110 = {k4[3]:.2f} match the print); "
         f"these two coefficients are common to every algorithm that meets the second-order condition ({_table2(3).delta * _table2(3).k[2]} = {k4[2]:.0f}/{t4.delta.denominator}).",
         "algorithms",
+        kind="misprint",
     )
 
 
@@ -430,5 +432,6 @@ def _lp_errata() -> list:
             "(one-step error series, (5.1)–(5.2) in closed form, dual extension (5.4), (3.5); no simulation) agrees with the simulation "
             f"within {LP.theory_agreement(4):.1e} for ρ = 4 and {LP.theory_agreement(6):.1e} for ρ = 6: " + "; ".join(cells) + ".",
             "algorithms",
+            kind="misprint",
         )
     ]

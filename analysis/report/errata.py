@@ -39,6 +39,7 @@ def errata(ctx) -> list:
             f"On 200 random dual vectors the biquaternion obtained as the dual extension of the rotation-vector map gives "
             f"max |λ·μ| = {c.unit_condition_plus:.1e}, while the printed combination reaches {c.unit_condition_printed:.2f}.",
             "errata",
+            kind="misprint",
         ),
         Erratum(
             "Lebedev & Panov (1989), eq. (1.12), μ_i",
@@ -48,6 +49,7 @@ def errata(ctx) -> list:
             f"{c.mu_vec_error_printed:.2f}; with the sign of its second term flipped the difference is {c.mu_vec_error_fixed:.1e} "
             f"(μ0 as printed agrees to {c.mu0_error:.1e}).",
             "errata",
+            kind="misprint",
         ),
         Erratum(
             "Lebedev & Panov (1989), eq. (4.7), third component",
@@ -56,6 +58,7 @@ def errata(ctx) -> list:
             f"U_I = 2 R ∘ Q̄ computed from the biquaternion (4.4)–(4.5) matches (4.7) read with ν° to {c.u_inertial_error:.1e} m/s "
             "over t ∈ [0, 100] s (ν° = 10 m/s², ϑ° = 100 m/s).",
             "errata",
+            kind="misprint",
         ),
         Erratum(
             "Lebedev & Panov (1989), text before (4.6) and after (4.7)",
@@ -63,24 +66,44 @@ def errata(ctx) -> list:
             "(1.10), (1.11): there is no eq. (1.14)",
             "Only (1.10) and (1.11) express W_E and W_I through U_E, U_I; the exact-state tests use them.",
             "errata",
+            kind="misprint",
         ),
     ]
 
 
+#: How each class is labelled in ``errata.md``.
+KIND_LABELS = {
+    "misprint": "misprint — a check decides it",
+    "ambiguous": "ambiguous — the text admits readings; ours is stated with the alternatives",
+    None: "not classified yet",
+}
+
+
 def _entry(i: int, e: Erratum) -> list:
     where = f" Details: [{e.section}]({e.section}.md)." if e.section and e.section != "errata" else ""
-    return [
+    lines = [
         f"## {i}. {e.source}",
         "",
+        f"- **Class:** {KIND_LABELS[e.kind]}",
         f"- **Printed:** {e.printed}",
-        f"- **Correct:** {e.correct}",
-        f"- **Evidence:** {e.evidence}{where}",
-        "",
+        f"- **{'Likely reading' if e.kind == 'ambiguous' else 'Correct'}:** {e.correct}",
     ]
+    if e.alternatives:
+        lines.append(f"- **Alternatives:** {e.alternatives}")
+    return lines + [f"- **Evidence:** {e.evidence}{where}", ""]
+
+
+def _summary(entries) -> list:
+    counts = {kind: sum(e.kind == kind for e in entries) for kind in KIND_LABELS}
+    plural = lambda n, word: f"{n} {word}" + ("" if n == 1 else "s")  # noqa: E731
+    parts = [f"{plural(counts['misprint'], 'misprint')} (a check decides them)", f"{plural(counts['ambiguous'], 'ambiguous place')} (the text admits readings)"]
+    if counts[None]:
+        parts.append(f"{counts[None]} not classified yet")
+    return [f"{len(entries)} entries: " + ", ".join(parts) + ".", ""]
 
 
 def build(ctx) -> None:
-    """Write ``errata.md`` and its figures.
+    """Write ``errata.md``: the errata of every section, numbered, each with its class.
 
     Parameters
     ----------
@@ -96,11 +119,14 @@ def build(ctx) -> None:
     lines = [
         "# Errata in the source papers",
         "",
-        "Each entry was found by an independent check (a differential-equation residual, a symbolic",
-        "derivation, a convergence study or a high-accuracy reference integration) that the package",
-        "runs when this report is built. The code follows the check, never the print.",
+        "Each entry comes from a check that the package runs when this report is built (a differential-equation",
+        "residual, a symbolic derivation, a convergence study or a high-accuracy reference integration); the code",
+        "follows the check, never the print. An entry is a **misprint** when the check decides it, and **ambiguous**",
+        "when the text admits more than one reading: then ours is given as the likely reading, with the alternatives",
+        "and their numbers, and it is not called correct.",
         "",
     ]
+    lines += _summary(entries)
     for i, e in enumerate(entries, 1):
         lines += _entry(i, e)
     ctx.write_text("errata.md", "\n".join(lines))
