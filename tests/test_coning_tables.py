@@ -189,3 +189,14 @@ def test_erratum_kind_is_validated():
     assert Erratum("s", "p", "c", "e", kind="ambiguous", alternatives="a").kind == "ambiguous"
     with pytest.raises(ValueError, match="`kind`"):
         Erratum("s", "p", "c", "e", kind="correct")
+
+
+def test_coning_and_core_errata_are_classified(tmp_path):
+    from strapdown.analysis.report import Context, algorithms, derivations, errata
+
+    ctx = Context(out_dir=tmp_path, quick=True, show_progress=False)
+    entries = [e for module in (algorithms, derivations, errata) for e in module.errata(ctx)]
+    assert all(e.kind in ("misprint", "ambiguous") for e in entries)
+    ambiguous = [e for e in entries if e.kind == "ambiguous"]
+    assert [e.source for e in ambiguous] == ["Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (ρ = 6)"]
+    assert all(e.alternatives and "Correct" not in e.correct for e in ambiguous)

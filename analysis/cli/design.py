@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict
 
-from ..coning.computational_load import design, quaternion_update_count
+from ..coning.computational_load import TIME_BASES, LoadModel, design
 from ..coning.precession import RegularPrecession
 from ..core.units import rad, rad_per_s
 from ..core.validation import as_float, in_open_interval, nonnegative, positive
@@ -35,21 +35,30 @@ def design_command(args) -> Result:
     nutation_deg = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees")
     freq = positive(args.freq_hz, "--freq-hz")
     m = nonnegative(args.m, "--m")
-    sigma_q = quaternion_update_count().cost(m) if args.quaternion_cost is None else nonnegative(args.quaternion_cost, "--quaternion-cost")
+    fraction = positive(args.truncation_fraction, "--truncation-fraction")
+    sigma_q = None if args.quaternion_cost is None else nonnegative(args.quaternion_cost, "--quaternion-cost")
+    model = LoadModel(m=m, time_base=args.time_base, truncation_fraction=fraction)
     motion = RegularPrecession(eps, 2.0 * math.pi * freq, rad(nutation_deg))
-    rows = design(rad_per_s(required), motion, m=m, quaternion_cost=sigma_q)
+    rows = design(rad_per_s(required), motion, model=model, quaternion_cost=sigma_q)
     data = {
         "required_drift_deg_per_h": required,
         "eps": eps,
         "nutation_deg": nutation_deg,
         "freq_hz": freq,
         "m": m,
-        "quaternion_update_cost": sigma_q,
+        "time_base": model.time_base,
+        "truncation_fraction": model.truncation_fraction,
+        "quaternion_cost": sigma_q,
         "ranking": [asdict(r) for r in rows],
     }
-    lines = [f"{'algorithm':<18} {'rho':>3} {'H_max [ms]':>11} {'rate [Hz]':>10} {'load [kop/s]':>13}"]
+    lines = [
+        f"time base {'h (sample)' if model.time_base == 'sample' else 'H (step)'}, series rule f = {model.truncation_fraction:g}, m = {m:g}",
+        f"{'algorithm':<18} {'rho':>3} {'H_max [ms]':>11} {'rate [Hz]':>10} {'phi [rad]':>10} {'K':>2} {'cost':>6} {'load [kop/s]':>13}",
+    ]
     for r in rows:
-        lines.append(f"{r.algorithm:<18} {r.order:>3} {r.step * 1e3:>11.4g} {r.sample_rate:>10.4g} {r.load / 1e3:>13.4g}")
+        lines.append(
+            f"{r.algorithm:<18} {r.order:>3} {r.step * 1e3:>11.4g} {r.sample_rate:>10.4g} {r.angle:>10.3g} {r.series_terms:>2} {r.cost:>6g} {r.load / 1e3:>13.4g}"
+        )
     return Result(data, "\n".join(lines))
 
 
@@ -67,5 +76,9 @@ def register(commands) -> None:
     p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg], in (0, 180)")
     p.add_argument("--freq-hz", type=float, required=True, metavar="F", help="frequency f [Hz], ν = 2πf")
     p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions [-] (default 5)")
+    p.add_argument("--time-base", choices=TIME_BASES, default="sample",
+                   help="load = cost of a step per sample interval h ('sample', the peak load) or per step H ('step'); default sample")  # fmt: skip
+    p.add_argument("--truncation-fraction", type=float, default=0.1, metavar="F",
+                   help="series rule: the truncation error of the quaternion update may add this fraction of [u] [-] (default 0.1)")  # fmt: skip
     p.add_argument("--quaternion-cost", type=float, default=None,
-                   help="cost of the quaternion update per step [addition-equivalents] (default: counted, see strapdown.analysis.coning.computational_load)")  # fmt: skip
+                   help="fixed cost of the quaternion update per step [addition-equivalents] (default: counted with the series rule)")  # fmt: skip

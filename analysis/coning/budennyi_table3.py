@@ -48,6 +48,8 @@ __all__ = [
     "reproduce_u_star",
     "DriftEstimate",
     "drift_estimates",
+    "LeadingEstimates",
+    "leading_estimates",
     "ErrorHistory",
     "coning_error_histories",
 ]
@@ -367,4 +369,78 @@ def coning_error_histories(*, conditions: Table3Conditions | None = None, durati
     for k in range(1, 6):
         r = simulate(get(f"panov-4s-{k}"), motion, c.sample_interval, positive(duration, "duration"))
         out.append(ErrorHistory(r.algorithm.name, r.time, np.linalg.norm(r.attitude_error, axis=-1)))
+    return tuple(out)
+
+
+class LeadingEstimates(NamedTuple):
+    """The two estimates of u_a for a cell whose fourth-order drift cancels (ρ = 6), signed.
+
+    Rates are along the precession axis, algorithm minus exact, so that
+    ``full = mid_step + transport``; u_a is their magnitude.
+
+    Attributes
+    ----------
+    printed : strapdown.derivations.coning.published.BudennyiTable3Row
+        The printed row (deg/h).
+    mid_step : float
+        The paper's estimate (3): the h⁷ error projected at the middle of the step [rad/s].
+    full : float
+        The full leading term of the drift series [rad/s].
+    transport : float
+        ``full − mid_step``: the transport of the weight-5 error [rad/s].
+    simulated : float
+        |u*| by parallel computation [rad/s].
+    """
+
+    printed: P.BudennyiTable3Row
+    mid_step: float
+    full: float
+    transport: float
+    simulated: float
+
+    @property
+    def printed_vs_mid_step(self) -> float:
+        """``printed u_a / |mid_step| − 1`` (in the printed unit)."""
+        return self.printed.u_a / deg_per_h(abs(self.mid_step)) - 1
+
+    @property
+    def printed_vs_full(self) -> float:
+        """``printed u_a / |full| − 1`` (in the printed unit)."""
+        return self.printed.u_a / deg_per_h(abs(self.full)) - 1
+
+    @property
+    def full_vs_simulated(self) -> float:
+        """``|full| / simulated − 1``."""
+        return abs(self.full) / self.simulated - 1
+
+
+def leading_estimates(*, conditions: Table3Conditions | None = None, simulation_duration: float = 20.0) -> tuple:
+    """Both estimates of u_a, signed, for the rows of Table 3 whose drift is of order 6.
+
+    Parameters
+    ----------
+    conditions : Table3Conditions, keyword-only, optional
+        Default :func:`table3_conditions`.
+    simulation_duration : float, keyword-only
+        Length of each parallel-computation run [s].
+
+    Returns
+    -------
+    tuple of LeadingEstimates
+        Algorithms 3 and 5 under coning, in the order of the table.
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3), Table 3.
+    """
+    c = _conditions(conditions)
+    out = []
+    for r in drift_estimates(conditions=c, simulation_duration=simulation_duration):
+        if r.order != 6:
+            continue
+        m = c.motion(r.printed.eps)
+        est = leading_drift(get(f"panov-4s-{r.printed.algorithm}"), 7)
+        scale = m.nu**7 * c.step**6
+        mid, full = (float(e.subs({D.EPS: m.eps, D.THETA: m.nutation})) * scale for e in (est.mid_step, est.full))
+        out.append(LeadingEstimates(r.printed, mid, full, full - mid, r.simulated))
     return tuple(out)

@@ -37,7 +37,7 @@ from . import drift as D
 from . import series as S
 from .algorithms import Algorithm
 
-__all__ = ["LeadingDrift", "leading_drift", "OptimalConing", "optimal_coning", "small_cone_limit"]
+__all__ = ["LeadingDrift", "leading_drift", "same_transport", "OptimalConing", "optimal_coning", "small_cone_limit"]
 
 
 @dataclass(frozen=True)
@@ -109,6 +109,30 @@ def leading_drift(algorithm: Algorithm, weight: int) -> LeadingDrift:
     _, y, z = D.precession_value(S.local_error(algorithm).parts[weight])
     mid_step = y * D.SIN + z * D.COS
     return LeadingDrift(algorithm.name, weight, mid_step, D.drift_coefficients(algorithm)[weight])
+
+
+def same_transport(first: Algorithm, second: Algorithm, weight: int) -> bool:
+    """True if the transport terms of the weight-``weight`` drift of two algorithms are the same expression.
+
+    Parameters
+    ----------
+    first, second : Algorithm
+        Rotation-vector algorithms.
+    weight : int
+        Weight of the drift term.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> same_transport(get("panov-4s-3"), get("panov-4s-5"), 7), same_transport(get("panov-4s-3"), get("panov-4s-1"), 7)
+    (True, False)
+    """
+    difference = leading_drift(first, weight).transport - leading_drift(second, weight).transport
+    return sp.expand(difference) == 0
 
 
 class OptimalConing(NamedTuple):
