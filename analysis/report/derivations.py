@@ -188,7 +188,7 @@ def _table2_commentary(checks) -> list:
     return [
         f"Algorithm 4: the printed k002 = {c4.printed[2]}, k0001 = {_signed(c4.printed[4])} are not what the algorithm gives "
         f"({c4.derived[2]}, {_signed(c4.derived[4])}: the",
-        f"terms $x_{{002}}, x_{{110}}, x_{{0001}}$ come only from the exact increment, so $\\delta_4 k_{{002}} = {c3.delta * c3.derived[2]} "
+        f"terms $x_{{002}}, x_{{110}}, x_{{0001}}$ come only from the exact increment, so $\\delta_4 k_{{002}} = {c3.products[2]} "
         f"= {c4.derived[2]}/{c4.delta.denominator}$",
         "is the same for every pairwise algorithm, as the other four columns show). The printed u_a of algorithm 4",
         f"in Table 3 agrees with the derived coefficients (section 6), so {c4.printed[2]} is a misprint of {c4.derived[2]}.",

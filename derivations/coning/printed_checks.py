@@ -66,6 +66,11 @@ class Table2Check(NamedTuple):
         """For each coefficient, True where the derivation contradicts the print."""
         return tuple(d != p for d, p in zip(self.derived, self.printed))
 
+    @property
+    def products(self) -> tuple:
+        """δ4 · k of the derived coefficients: the invariant of the local error (the coefficients of h⁵)."""
+        return tuple(self.delta * d for d in self.derived)
+
 
 def table2_checks() -> tuple:
     """Table 2 of Budennyi, Kalinovsky, Panov et al., derived cell by cell.
