@@ -12,7 +12,10 @@ simulator
 local_error
     One-step local error on a motion with no symmetry (tumbling motion).
 drift_theory
-    Asymptotic drift and accumulated error from the symbolic one-step series.
+    Asymptotic drift and accumulated error from the symbolic one-step series;
+    coning drift in closed form as compiled functions.
+frequency_response
+    Coning drift against ωh for several algorithms, with simulator checks.
 sampling_design
     Sampling rate for a drift budget and the computational load
     (Budennyi, Kalinovsky, Panov et al., Tables 4–5).

@@ -31,22 +31,28 @@ from fractions import Fraction
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
-from ...derivations.coning.drift import coning_drift
+from ...derivations.coning.drift import coning_drift, coning_drift_series
 from ..core.validation import as_array, in_open_interval, positive
-from .drift_theory import coning_drift_function, coning_drift_rate
+from .drift_theory import coning_drift_function, coning_drift_rate, drift_terms
 from .precession import RegularPrecession
 from .simulator import simulate
 
 __all__ = [
     "CHECK_CONE_ANGLE",
     "ROUND_OFF_MARGIN",
+    "QUARTIC_WEIGHT",
     "SimulatorCheck",
     "ConingResponse",
     "FrequencyResponse",
+    "FiniteAngleCheck",
     "simulator_check",
     "coning_response",
     "coning_frequency_response",
+    "finite_angle_check",
 ]
+
+#: Weight of the series searched for the α⁴ term of the coning drift (powers of ωh up to 8).
+QUARTIC_WEIGHT = 9
 
 #: Half-cone angle of the simulator checks [rad]: small enough that the O(α⁴)
 #: remainder, which for the high-order algorithms starts at a lower power of ωh
@@ -182,6 +188,11 @@ class ConingResponse:
         ``D(x) = u / (α² ω)`` [-], signed (exact minus algorithm).
     checks : tuple of SimulatorCheck
         Parallel computation at a few points.
+    quartic_order : int or None
+        Power of ωh of the leading α⁴ term of the drift (None if it vanishes
+        through :data:`QUARTIC_WEIGHT`).
+    quartic_coefficient : Fraction or None
+        Its coefficient: ``u ≈ α² ω D(ωh) + quartic_coefficient · α⁴ ω (ωh)^quartic_order``.
     """
 
     algorithm: Algorithm
@@ -190,6 +201,29 @@ class ConingResponse:
     omega_h: np.ndarray
     drift: np.ndarray
     checks: tuple
+    quartic_order: int | None = None
+    quartic_coefficient: Fraction | None = None
+
+    def crossover_angle(self, omega_h: float) -> float | None:
+        """Half-cone angle [rad] at which the leading α⁴ term equals the α² drift at ``omega_h``.
+
+        Above it the α² closed form no longer describes the drift.
+
+        Parameters
+        ----------
+        omega_h : float
+            x = ωh [rad], > 0.
+
+        Returns
+        -------
+        float or None
+            ``sqrt(|D(x)| / |c₄ x^m₄|)``; None without an α⁴ term.
+        """
+        x = positive(omega_h, "omega_h")
+        if self.quartic_order is None:
+            return None
+        d = float(np.asarray(coning_drift_function(self.algorithm)(x)))
+        return math.sqrt(abs(d) / abs(float(self.quartic_coefficient) * x**self.quartic_order))
 
     @property
     def leading(self) -> np.ndarray:
@@ -247,7 +281,10 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
     d = coning_drift(algorithm)
     values = np.asarray(coning_drift_function(algorithm)(x), dtype=float)
     checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods) for c in check_omega_h)
-    return ConingResponse(algorithm, d.order, d.coefficient, x, values, checks)
+    N = algorithm.samples
+    quartic = [(w - 1, c * Fraction(N) ** (w - 1)) for w, c in enumerate(coning_drift_series(algorithm, QUARTIC_WEIGHT, alpha_power=4)) if c]
+    q_order, q_coeff = quartic[0] if quartic else (None, None)
+    return ConingResponse(algorithm, d.order, d.coefficient, x, values, checks, q_order, q_coeff)
 
 
 def coning_frequency_response(
@@ -291,3 +328,85 @@ def coning_frequency_response(
     x = np.geomspace(1e-2, math.pi / 2, 200) if omega_h is None else as_array(omega_h, "omega_h")
     responses = tuple(coning_response(a, x, check_omega_h=check_omega_h, cone_angle=cone_angle, nu=nu, periods=periods) for a in algorithms)
     return FrequencyResponse(x, responses)
+
+
+@dataclass(frozen=True)
+class FiniteAngleCheck:
+    """The coning drift at a finite cone angle: α² closed form, the series exact in α, the simulator.
+
+    Attributes
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    omega_h : float
+        x = ωh [rad].
+    cone_angle : float
+        α [rad].
+    nu : float
+        ω [rad/s].
+    max_weight : int
+        Weight of the series (powers of ωh below it are exact, at every order in α).
+    closed_form : float
+        ``α² ω D(ωh)`` [rad/s].
+    series : float
+        The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in α [rad/s].
+    simulated : float or None
+        Parallel computation along the cone axis [rad/s] (None if not run, see ``note``).
+    note : str
+        Why not simulated ("" if it was).
+    """
+
+    algorithm: Algorithm
+    omega_h: float
+    cone_angle: float
+    nu: float
+    max_weight: int
+    closed_form: float
+    series: float
+    simulated: float | None
+    note: str = ""
+
+
+def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float, nu: float = 2 * math.pi * 10.0, max_weight: int = 11, periods: int = 200) -> FiniteAngleCheck:
+    """Coning drift at a finite half-cone angle: where the α² closed form stops describing it.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    omega_h : float
+        x = ωh [rad], > 0.
+    cone_angle : float, keyword-only
+        α [rad], in (0, π/2).
+    nu : float, keyword-only
+        ω [rad/s], > 0.
+    max_weight : int, keyword-only
+        Weight of the drift series (:func:`strapdown.analysis.coning.drift_theory.drift_terms`).
+    periods : int, keyword-only
+        Length of the simulated run in coning periods.
+
+    Returns
+    -------
+    FiniteAngleCheck
+
+    Raises
+    ------
+    ValueError
+        For bad parameters.
+    """
+    x = positive(omega_h, "omega_h")
+    alpha = in_open_interval(cone_angle, "cone_angle", 0.0, math.pi / 2, text="(0, π/2)")
+    nu = positive(nu, "nu")
+    h = x / nu
+    H = algorithm.samples * h
+    vals, _ = drift_terms(algorithm, -1.0, alpha, max_weight=max_weight)
+    w = np.arange(vals.shape[-1])
+    # drift_terms is along the precession axis n; the cone axis is a = −n
+    series = -float(np.sum(vals * nu**w * H ** np.maximum(w - 1, 0)))
+    closed = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
+    try:
+        run = simulate(algorithm, RegularPrecession(-1.0, nu, alpha), h, periods * 2 * math.pi / nu)
+    except ValueError as exc:
+        return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, None, f"not run by the simulator: {exc}")
+    axis = np.array([0.0, math.sin(alpha), math.cos(alpha)])
+    return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ axis))

@@ -6,8 +6,13 @@ algorithms
     An algorithm as exact data (:class:`Algorithm`, :class:`Term`) and TOML files.
 registry
     The published algorithms, each with its source.
+graded
+    Series graded by weight, with parts computed on demand (any ring).
+magnus
+    The exact rotation-vector increment as a Lie series, weight by weight.
 series
-    The exact rotation-vector increment and the algorithm error series.
+    Component polynomials: the algorithm series and the local error to any weight.
 drift
-    Asymptotic drift under regular precession, structure functions, optimal coning.
+    Drift under regular precession to any weight, structure functions, coning
+    drift in closed form, optimal coning.
 """

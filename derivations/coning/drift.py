@@ -245,8 +245,6 @@ def precession_value(vector) -> tuple:
     return tuple(_reduce_trig(_substitute(c)) for c in vector)
 
 
-@cache
-@reproducible_sympy
 def drift_coefficients(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIGHT) -> tuple:
     """Signed drift coefficients ``d_w(ε, ϑ)``, w = 0 … max_weight (exact minus algorithm).
 
@@ -270,7 +268,19 @@ def drift_coefficients(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEI
     ----------
     Lebedev & Panov (1989), eq. (5.3); Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3).
     """
-    return tuple(_reduce_trig(p) for p in _axial_parts(algorithm, S.check_max_weight(max_weight)))
+    return _drift_coefficients(_checked(algorithm), S.check_max_weight(max_weight))
+
+
+def _checked(algorithm):
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    return algorithm
+
+
+@cache
+@reproducible_sympy
+def _drift_coefficients(algorithm: Algorithm, max_weight: int) -> tuple:
+    return tuple(_reduce_trig(p) for p in _axial_parts(algorithm, max_weight))
 
 
 def _axial_parts(algorithm: Algorithm, max_weight: int) -> tuple:
@@ -283,8 +293,6 @@ def _axial_parts(algorithm: Algorithm, max_weight: int) -> tuple:
     return tuple(out)
 
 
-@cache
-@reproducible_sympy
 def step_error_values(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIGHT) -> tuple:
     """One-step error on (4.1) by weight: ``((w, (x_w, y_w, z_w)), …)``, nonzero parts only.
 
@@ -310,41 +318,69 @@ def step_error_values(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIG
     >>> [w for w, _ in step_error_values(get("lebedev-panov-4"))]
     [5, 7]
     """
+    return _step_error_values(_checked(algorithm), S.check_max_weight(max_weight))
+
+
+@cache
+@reproducible_sympy
+def _step_error_values(algorithm: Algorithm, max_weight: int) -> tuple:
     err = _precession_error(algorithm)
     out = []
-    for w in range(S.check_max_weight(max_weight) + 1):
+    for w in range(max_weight + 1):
         part = err.part(w)
         if any(part):
             out.append((w, tuple(_reduce_trig(c) for c in part)))
     return tuple(out)
 
 
-def _alpha_squared(p) -> Fraction:
-    """α²-coefficient of a polynomial in (e, s, c) at e = −1, s = sin α, c = cos α (lower orders must vanish)."""
-    low = [Fraction(0), Fraction(0), Fraction(0)]
-    for (ie, is_, ic), coeff in p.items():
-        c = Fraction(int(coeff.numerator), int(coeff.denominator)) * (-1) ** ie
-        if is_ == 0:
-            low[0] += c
-            low[2] += -c * Fraction(ic, 2)  # cos^j α = 1 − j α²/2 + O(α⁴)
-        elif is_ == 1:
-            low[1] += c
-        elif is_ == 2:
-            low[2] += c  # sin² α = α² + O(α⁴)
-    if low[0] or low[1]:
-        raise ValueError(f"Expected a coning drift of order α², got terms of order α^0 or α^1 ({low[0]}, {low[1]})")
-    return low[2]
+def _truncated_product(a: list, b: list) -> list:
+    n = len(a)
+    out = [Fraction(0)] * n
+    for i, x in enumerate(a):
+        if x:
+            for j in range(n - i):
+                if b[j]:
+                    out[i + j] += x * b[j]
+    return out
 
 
 @cache
-def coning_drift_series(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIGHT) -> tuple:
-    """Coning drift from the general series: ``u = α² ν Σ_w c_w (νH)^(w−1) + O(α⁴)``.
+def _trig_powers(kind: str, power: int, order: int) -> tuple:
+    """Taylor coefficients in α through α^order of sin^power α or cos^power α."""
+    if power == 0:
+        return (Fraction(1),) + (Fraction(0),) * order
+    base = [Fraction(0)] * (order + 1)
+    for k in range(order + 1):
+        if kind == "sin" and k % 2 == 1:
+            base[k] = Fraction((-1) ** (k // 2), math.factorial(k))
+        if kind == "cos" and k % 2 == 0:
+            base[k] = Fraction((-1) ** (k // 2), math.factorial(k))
+    return tuple(_truncated_product(list(_trig_powers(kind, power - 1, order)), base))
+
+
+def _alpha_coefficients(p, order: int) -> list:
+    """Taylor coefficients in α through α^order of a polynomial in (e, s, c) at e = −1, s = sin α, c = cos α."""
+    out = [Fraction(0)] * (order + 1)
+    for (ie, is_, ic), coeff in p.items():
+        c = Fraction(int(coeff.numerator), int(coeff.denominator)) * (-1) ** ie
+        if is_ > order:
+            continue
+        term = _truncated_product(list(_trig_powers("sin", is_, order)), list(_trig_powers("cos", ic, order)))
+        for k, t in enumerate(term):
+            out[k] += c * t
+    return out
+
+
+def coning_drift_series(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIGHT, *, alpha_power: int = 2) -> tuple:
+    """Coning drift from the general series, by weight: the terms in ``α^alpha_power``.
 
     Classical coning is the precession (4.1) at ε = −1 with half-cone angle
     α = ϑ.  The drift is taken along the cone axis ``a = −n``, the direction of
     the mean inertial angular velocity ``−ν(1 − cos α) n`` (exact minus
     algorithm: positive when the computed attitude lags the coning rotation),
-    as in :func:`coning_drift`, which gives the same numbers in closed form.
+    as in :func:`coning_drift`, which gives the α² terms in closed form.  With
+    ``c_w`` returned, ``u = Σ_k α^k ν Σ_w c_w^(k) (νH)^(w−1)``; the drift has no
+    α⁰ or α¹ terms (checked).
 
     Parameters
     ----------
@@ -352,13 +388,35 @@ def coning_drift_series(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WE
         The algorithm.
     max_weight : int
         Highest weight kept.
+    alpha_power : int, keyword-only
+        Power of α (even, ≥ 2): 2 is the leading coning drift, 4 its first
+        correction (for pairwise algorithms it starts at (ωh)⁴ whatever their
+        α² order, so it dominates at large α).
 
     Returns
     -------
     tuple of Fraction
-        ``c_0 … c_max_weight`` (``c_0 = 0``).
+        ``c_0 … c_max_weight``.
+
+    Raises
+    ------
+    ValueError
+        For an odd or non-positive ``alpha_power``.
     """
-    return tuple(-_alpha_squared(p) for p in _axial_parts(algorithm, S.check_max_weight(max_weight)))
+    if isinstance(alpha_power, bool) or not isinstance(alpha_power, int) or alpha_power < 2 or alpha_power % 2:
+        raise ValueError(f"Expected `alpha_power` to be an even integer >= 2, got {alpha_power!r}")
+    return _coning_drift_series(_checked(algorithm), S.check_max_weight(max_weight), alpha_power)
+
+
+@cache
+def _coning_drift_series(algorithm: Algorithm, max_weight: int, alpha_power: int) -> tuple:
+    out = []
+    for p in _axial_parts(algorithm, max_weight):
+        coeffs = _alpha_coefficients(p, alpha_power)
+        if coeffs[0] or coeffs[1]:
+            raise ValueError(f"Expected a coning drift of order α², got terms of order α^0 or α^1 ({coeffs[0]}, {coeffs[1]})")
+        out.append(-coeffs[alpha_power])
+    return tuple(out)
 
 
 # ---------------------------------------------------------------------------
@@ -400,15 +458,13 @@ class StructureFunctions:
 
 
 def _content(expr) -> Fraction:
-    poly = sp.Poly(expr, EPS, COS)
-    coeffs = [sp.Rational(c) for c in poly.coeffs()]
-    num = sp.igcd(*[c.p for c in coeffs]) if coeffs else 1
-    den = sp.ilcm(*[c.q for c in coeffs]) if coeffs else 1
-    return Fraction(int(num), int(den))
+    """gcd of the numerators over lcm of the denominators of the coefficients of ``expr`` in ε, cos ϑ."""
+    coeffs = [sp.Rational(c) for c in sp.Poly(expr, EPS, COS).coeffs()]
+    num = math.gcd(*[int(c.p) for c in coeffs]) if coeffs else 1
+    den = math.lcm(*[int(c.q) for c in coeffs]) if coeffs else 1
+    return Fraction(num, den)
 
 
-@cache
-@reproducible_sympy
 def structure_functions(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEIGHT) -> StructureFunctions:
     """``A_ρ, B_ρ, f_ρ, g_ρ, f_ρ°, g_ρ°`` of ``algorithm`` (Lebedev & Panov 1989, section 5).
 
@@ -426,7 +482,9 @@ def structure_functions(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WE
     Raises
     ------
     ValueError
-        If the local error vanishes through ``max_weight``.
+        If the local error vanishes through ``max_weight``, or its leading part
+        has no component along the precession axis on (4.1) (then f and g
+        vanish, e.g. Savage's ``p_0 × p_1/12``, whose h⁴ error ``x_02`` is transverse).
 
     Examples
     --------
@@ -435,11 +493,23 @@ def structure_functions(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WE
     >>> sf.f, sf.g
     (-epsilon, epsilon*cos(vartheta) + 1)
     """
+    return _structure_functions(_checked(algorithm), S.check_max_weight(max_weight))
+
+
+@cache
+@reproducible_sympy
+def _structure_functions(algorithm: Algorithm, max_weight: int) -> StructureFunctions:
     rho = S.local_error(algorithm, max_weight).order
     if rho is None:
         raise ValueError(f"Expected an algorithm with a nonzero local error through h^{max_weight}, got {algorithm.name!r}")
     scale = QQ(algorithm.samples) ** (rho + 1)  # coefficient of h^(ρ+1)
     _, y, z = (_reduce_trig(c * scale) for c in _precession_local_error(algorithm).part(rho + 1))
+    if y == 0 and z == 0:
+        raise ValueError(
+            f"Expected a leading local error with a component along the precession axis, got none for {algorithm.name!r}: "
+            f"its weight-{rho + 1} error is transverse on (4.1), the structure functions vanish and the drift starts at a higher weight "
+            "(see drift_coefficients)"
+        )
     f_raw = sp.expand(sp.cancel(z / (EPS * (1 - COS**2))))
     g_raw = sp.expand(sp.cancel(y / (EPS * SIN)))
     delta = _content(g_raw) if g_raw != 0 else _content(f_raw)
@@ -509,7 +579,6 @@ def _sine_form(expr: sp.Expr) -> sp.Expr:
     return sp.expand(TR8(sp.expand(expr)))
 
 
-@cache
 def lag_response(lag: int) -> sp.Expr:
     """``R_l(x)``: α²-coefficient of ``a·(p_i × p_j)`` for ``j − i = lag`` under coning (ν = 1, x = νh).
 
@@ -539,6 +608,11 @@ def lag_response(lag: int) -> sp.Expr:
     """
     if isinstance(lag, bool) or not isinstance(lag, int) or lag < 1:
         raise ValueError(f"Expected `lag` to be a positive integer, got {lag!r}")
+    return _lag_response(lag)
+
+
+@cache
+def _lag_response(lag: int) -> sp.Expr:
     s = sp.Symbol("s", real=True)
     pi = _coning_increment(s, s + X)
     pj = _coning_increment(s + lag * X, s + (lag + 1) * X)
@@ -548,7 +622,6 @@ def lag_response(lag: int) -> sp.Expr:
     return out
 
 
-@cache
 def exact_coning_response(samples: int) -> sp.Expr:
     """``E(N x)``: α²-coefficient of ``a·(Δφ_exact − P)`` over the step ``H = N h`` under coning (x = νh, ν = 1).
 
@@ -560,18 +633,36 @@ def exact_coning_response(samples: int) -> sp.Expr:
     Parameters
     ----------
     samples : int
-        N.
+        N ≥ 1.
 
     Returns
     -------
     sympy.Expr
         A function of :data:`X`.
 
+    Raises
+    ------
+    TypeError, ValueError
+        If ``samples`` is not a positive integer.
+
     Examples
     --------
     >>> exact_coning_response(1)
     x/2 - sin(x)/2
     """
+    return _exact_coning_response(_positive_int(samples, "samples"))
+
+
+def _positive_int(value, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"Expected `{name}` to be an integer, got {type(value).__name__}")
+    if value < 1:
+        raise ValueError(f"Expected `{name}` >= 1, got {value}")
+    return value
+
+
+@cache
+def _exact_coning_response(samples: int) -> sp.Expr:
     a = ALPHA
     H = samples * X
 
@@ -864,7 +955,6 @@ def coning_drift_closed_form(lag_sums, samples: int) -> sp.Expr:
     return sp.simplify((exact_coning_response(samples) - total) / (samples * X))
 
 
-@cache
 def optimal_coning_algorithm(samples: int, *, history: int = 0) -> Algorithm:
     """Optimal coning algorithm: lag sums that cancel the coning drift through the highest order.
 
@@ -905,6 +995,11 @@ def optimal_coning_algorithm(samples: int, *, history: int = 0) -> Algorithm:
             raise TypeError(f"Expected `{name}` to be an integer, got {type(value).__name__}")
     if samples < 1 or history < 0 or samples + history < 2:
         raise ValueError(f"Expected `samples` >= 1, `history` >= 0 and samples + history >= 2, got {samples} and {history}")
+    return _optimal_coning_algorithm(samples, history)
+
+
+@cache
+def _optimal_coning_algorithm(samples: int, history: int) -> Algorithm:
     L = samples + history - 1
     n = 2 * L + 2
     lags = [_lag_taylor(lag, n + 1) for lag in range(1, L + 1)]
@@ -929,7 +1024,6 @@ def optimal_coning_algorithm(samples: int, *, history: int = 0) -> Algorithm:
     return Algorithm(f"optimal-coning-{suffix}", samples, tuple(terms), f"optimal coning algorithm ({what}; lag sums)", "Ignagni (1990, 1996); derived by the package")
 
 
-@cache
 def coning_constant(samples: int) -> tuple:
     """``(m, C_N)``: the optimal N-sample coning drift is ``α² ν (νH)^m / C_N`` to leading order.
 

@@ -492,7 +492,6 @@ def _local_error_series(algorithm: Algorithm) -> G.Graded:
     return G.combine([(1, exact_increment_series()), (-1, _algorithm_series(algorithm))])
 
 
-@cache
 def local_error(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> LocalError:
     """Local-error series of ``algorithm`` through ``max_weight`` (exact minus algorithm).
 
@@ -520,9 +519,14 @@ def local_error(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> L
     >>> local_error(get("lebedev-panov-2")).order
     2
     """
-    check_max_weight(max_weight)
-    series = _local_error_series(algorithm)
-    return LocalError(algorithm, series.parts(max_weight))
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    return _local_error(algorithm, check_max_weight(max_weight))
+
+
+@cache
+def _local_error(algorithm: Algorithm, max_weight: int) -> LocalError:
+    return LocalError(algorithm, _local_error_series(algorithm).parts(max_weight))
 
 
 # ---------------------------------------------------------------------------
@@ -742,7 +746,6 @@ class ErrorCoefficients:
         return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
 
 
-@cache
 def error_coefficients(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> ErrorCoefficients:
     """Leading local-error coefficients (Table 2 convention, see :class:`ErrorCoefficients`).
 
@@ -768,6 +771,12 @@ def error_coefficients(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGH
     (4, Fraction(1, 45), [0, 0, 64, 192, -64])
     """
     err = local_error(algorithm, max_weight)
+    return _error_coefficients(err.algorithm, err.max_weight)
+
+
+@cache
+def _error_coefficients(algorithm: Algorithm, max_weight: int) -> ErrorCoefficients:
+    err = _local_error(algorithm, max_weight)
     rho = err.order
     if rho is None:
         return ErrorCoefficients(None, Fraction(0), {}, (), max_weight)
