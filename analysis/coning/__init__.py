@@ -20,7 +20,10 @@ published_check
 local_error
     One-step local error on a motion with no symmetry (tumbling motion).
 drift_theory
-    Asymptotic drift and accumulated error from the symbolic one-step series.
+    Asymptotic drift and accumulated error from the symbolic one-step series;
+    coning drift in closed form as compiled functions.
+frequency_response
+    Coning drift against ωh for several algorithms, with simulator checks.
 computational_load
     Operation counts, the largest step for a drift budget and the computational
     load (Budennyi, Kalinovsky, Panov et al., eq. (6)).

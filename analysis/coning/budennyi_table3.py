@@ -375,7 +375,7 @@ def coning_error_histories(*, conditions: Table3Conditions | None = None, durati
 class LeadingEstimates(NamedTuple):
     """The two estimates of u_a for a cell whose fourth-order drift cancels (ρ = 6), signed.
 
-    Rates are along the precession axis, algorithm minus exact, so that
+    Rates are along the precession axis, exact minus algorithm, so that
     ``full = mid_step + transport``; u_a is their magnitude.
 
     Attributes

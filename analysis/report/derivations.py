@@ -345,8 +345,8 @@ def _order6_section() -> list:
         "Where the fourth-order drift cancels, the papers' estimate (the leading local error, here of weight 7, expanded at",
         "the middle of the step and projected on the precession axis: Lebedev & Panov 1989, (5.2)–(5.3); the formula (3) of",
         "Budennyi et al. is lost in the stored text, which cites Panov (1995) for it) and the full leading term of the drift",
-        "series differ by the transport of the weight-5 error. Signed rates along the precession axis (algorithm minus",
-        "exact), deg/h; u_a is the magnitude:",
+        "series differ by the transport of the weight-5 error. Signed rates along the precession axis (exact minus",
+        "algorithm, the package's convention), deg/h; u_a is the magnitude:",
         "",
         "| alg. | u_a printed | mid-step estimate | full leading term | transport | u* printed | u* ours | printed / mid-step | printed / full |",
         "|---|---|---|---|---|---|---|---|---|",
@@ -435,7 +435,8 @@ def _coning_section() -> list:
     lines += [
         "",
         "The same constants fall out of the general series of section 6 as a special case: at ε = −1 and ϑ = α → 0,",
-        f"$d_5/\\alpha^2 \\to {_tex(l2)}$ for two-sample (N = 2) and $d_7/\\alpha^2 \\to {_tex(l3)}$ for optimal-3 (N = 3), i.e. $1/C_2$ and $1/C_3$",
+        f"$d_5/\\alpha^2 \\to {_tex(l2)}$ for two-sample (N = 2) and $d_7/\\alpha^2 \\to {_tex(l3)}$ for optimal-3 (N = 3), i.e. $-1/C_2$ and $-1/C_3$",
+        "along the precession axis (exact minus algorithm; the cone axis is its opposite at ε = −1)",
         "(Ignagni 1990). For N = 4 the remainder is of weight 9, beyond the $h^7$ series, and comes from the closed form only.",
         "",
     ]

@@ -8,12 +8,15 @@ registry
     The published algorithms, each with its source.
 polynomial_fit
     Polynomial-fit algorithms (ω fitted through the N increments).
-published
-    Published figures of the domain, as reference data with their source.
+graded
+    Series graded by weight, with parts computed on demand (any ring).
+magnus
+    The exact rotation-vector increment as a Lie series, weight by weight.
 series
-    The exact rotation-vector increment and the algorithm error series.
+    Component polynomials: the algorithm series and the local error to any weight.
 drift
-    Asymptotic drift under regular precession, structure functions, optimal coning.
+    Drift under regular precession to any weight, structure functions, coning
+    drift in closed form, optimal coning.
 leading_drift
     The leading drift term two ways (mid-step projection, full coefficient); coning limits.
 series_summary
@@ -23,5 +26,6 @@ printed_checks
 formula_one
     Assignments of the Table 1 constants to cross products (formula (1) of Budennyi et al.).
 published
-    The printed tables and formulas of the coning papers, with their sources (reference data).
+    The printed tables and formulas of the coning papers and published algorithm
+    figures, with their sources (reference data).
 """

@@ -45,7 +45,7 @@ class LeadingDrift:
     """Two estimates of the weight-w drift coefficient of one algorithm (ν = 1, H = 1).
 
     The drift rate along the precession axis is ``c(ε, ϑ) ν^w H^(w−1)`` [rad/s]
-    for either coefficient c (algorithm minus exact).
+    for either coefficient c (exact minus algorithm, the package's convention).
 
     Attributes
     ----------
@@ -186,7 +186,9 @@ def optimal_coning(samples: int) -> OptimalConing:
 def small_cone_limit(algorithm: Algorithm, weight: int) -> sp.Expr:
     """``lim_{α→0} d_w(ε = −1, ϑ = α) / α²``: the leading coning drift coefficient for a small cone angle.
 
-    For the optimal N-sample class at w = 2N + 1 this is ``±1/C_N``.
+    For the optimal N-sample class at w = 2N + 1 this is ``−1/C_N``: the drift
+    is along the precession axis n (exact minus algorithm), and the cone axis of
+    classical coning (ε = −1, the direction of the mean inertial rate) is −n.
 
     Parameters
     ----------
@@ -204,7 +206,7 @@ def small_cone_limit(algorithm: Algorithm, weight: int) -> sp.Expr:
     --------
     >>> from strapdown.derivations.coning.registry import get
     >>> small_cone_limit(get("two-sample"), 5)
-    1/960
+    -1/960
     """
     alpha = sp.Symbol("alpha", positive=True)
     d = D.drift_coefficients(algorithm)[weight]

@@ -139,9 +139,9 @@ def eq_2_4_check(printed: tuple | None = None) -> Eq24Check:
     """
     words = tuple(P.EQ_2_4.items()) if printed is None else printed
     err = S.local_error(get("lebedev-panov-6"))
-    # (2.4) is exact minus algorithm; the series is algorithm minus exact.
-    negated = S.lie_vector([(tuple(int(ch) for ch in w), -P.EQ_2_4_FACTOR * c) for w, c in words])
-    same = all(a == b for a, b in zip(err.part(7, unit="h"), negated))
+    # (2.4) and the series are both exact minus algorithm.
+    printed_error = S.lie_vector([(tuple(int(ch) for ch in w), P.EQ_2_4_FACTOR * c) for w, c in words])
+    same = all(a == b for a, b in zip(err.part(7, unit="h"), printed_error))
     lower = tuple(w for w in range(7) if any(err.parts[w]))
     return Eq24Check(same, lower)
 
