@@ -7,6 +7,7 @@ Panov et al., Tables 1–5; Lebedev & Panov 1989, section 6 and eqs. (1.12), (2.
 from __future__ import annotations
 
 import json
+import math
 from fractions import Fraction
 
 import numpy as np
@@ -110,7 +111,7 @@ def test_leading_drift_transport_is_common_to_algorithms_3_and_5():
 
 
 def test_table_3_order_6_estimates():
-    """Algorithm 5's printed u_a is the mid-step estimate; algorithm 3's is neither estimate."""
+    """Algorithm 5's printed u_a is the mid-step estimate; algorithm 3's is neither of these two."""
     rows = {r.printed.algorithm: r for r in T3.drift_estimates() if r.order == 6}
     assert sorted(rows) == [3, 5]
     five, three = rows[5], rows[3]
@@ -198,5 +199,20 @@ def test_coning_and_core_errata_are_classified(tmp_path):
     entries = [e for module in (algorithms, derivations, errata) for e in module.errata(ctx)]
     assert all(e.kind in ("misprint", "ambiguous") for e in entries)
     ambiguous = [e for e in entries if e.kind == "ambiguous"]
-    assert [e.source for e in ambiguous] == ["Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (ρ = 6)"]
+    assert [e.source for e in ambiguous] == [f"Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm {k} under coning (ρ = 6)" for k in (3, 5)]
     assert all(e.alternatives and "Correct" not in e.correct for e in ambiguous)
+
+
+def test_table_3_algorithm_3_is_the_small_cone_angle_term():
+    """Algorithm 3's printed u_a is the ϑ² part of the leading drift, c ϑ² ν (ν h)⁶ with c = 2/315; algorithm 5's is not."""
+    est = {e.printed.algorithm: e for e in T3.leading_estimates()}
+    three, five = est[3], est[5]
+    assert deg_per_h(abs(three.small_angle)) == pytest.approx(three.printed.u_a, rel=0.002)
+    assert abs(five.printed_vs_small_angle) > 0.02
+    # the ϑ² part is the classical coning drift of `derive coning-drift`: c α² ω (ω h)^6
+    from strapdown.derivations.coning.drift import coning_drift
+
+    m = P.BUDENNYI_CONDITIONS
+    c = coning_drift(get("panov-4s-3"))
+    omega, alpha, h = 2 * math.pi * m.freq_hz, math.radians(m.nutation_deg), m.step / m.samples
+    assert abs(three.small_angle) == pytest.approx(float(c.coefficient) * alpha**2 * omega * (omega * h) ** c.order, rel=1e-9)

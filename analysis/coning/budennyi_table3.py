@@ -31,7 +31,7 @@ import numpy as np
 from ...derivations.coning import drift as D
 from ...derivations.coning import published as P
 from ...derivations.coning.algorithms import Algorithm
-from ...derivations.coning.leading_drift import leading_drift
+from ...derivations.coning.leading_drift import leading_drift, small_cone_limit
 from ...derivations.coning.registry import get
 from ..core.units import deg_per_h, rad
 from ..core.validation import positive
@@ -373,10 +373,13 @@ def coning_error_histories(*, conditions: Table3Conditions | None = None, durati
 
 
 class LeadingEstimates(NamedTuple):
-    """The two estimates of u_a for a cell whose fourth-order drift cancels (ρ = 6), signed.
+    """Three estimates of u_a for a cell whose fourth-order drift cancels (ρ = 6), signed.
 
     Rates are along the precession axis, exact minus algorithm, so that
-    ``full = mid_step + transport``; u_a is their magnitude.
+    ``full = mid_step + transport``; u_a is their magnitude.  ``small_angle``
+    is the part of ``full`` that is of second order in the nutation ϑ (the
+    classical small-cone-angle coning drift ``c ϑ² ν (ν h)^6``); the rest of
+    ``full`` is of order ϑ⁴ and above.
 
     Attributes
     ----------
@@ -390,6 +393,8 @@ class LeadingEstimates(NamedTuple):
         ``full − mid_step``: the transport of the weight-5 error [rad/s].
     simulated : float
         |u*| by parallel computation [rad/s].
+    small_angle : float
+        The ϑ² part of ``full``: ``lim d_7/ϑ² · ϑ² ν⁷ H⁶`` [rad/s].
     """
 
     printed: P.BudennyiTable3Row
@@ -397,6 +402,7 @@ class LeadingEstimates(NamedTuple):
     full: float
     transport: float
     simulated: float
+    small_angle: float
 
     @property
     def printed_vs_mid_step(self) -> float:
@@ -409,13 +415,18 @@ class LeadingEstimates(NamedTuple):
         return self.printed.u_a / deg_per_h(abs(self.full)) - 1
 
     @property
+    def printed_vs_small_angle(self) -> float:
+        """``printed u_a / |small_angle| − 1`` (in the printed unit)."""
+        return self.printed.u_a / deg_per_h(abs(self.small_angle)) - 1
+
+    @property
     def full_vs_simulated(self) -> float:
         """``|full| / simulated − 1``."""
         return abs(self.full) / self.simulated - 1
 
 
 def leading_estimates(*, conditions: Table3Conditions | None = None, simulation_duration: float = 20.0) -> tuple:
-    """Both estimates of u_a, signed, for the rows of Table 3 whose drift is of order 6.
+    """The three estimates of u_a, signed, for the rows of Table 3 whose drift is of order 6.
 
     Parameters
     ----------
@@ -439,8 +450,10 @@ def leading_estimates(*, conditions: Table3Conditions | None = None, simulation_
         if r.order != 6:
             continue
         m = c.motion(r.printed.eps)
-        est = leading_drift(get(f"panov-4s-{r.printed.algorithm}"), 7)
+        alg = get(f"panov-4s-{r.printed.algorithm}")
+        est = leading_drift(alg, 7)
         scale = m.nu**7 * c.step**6
         mid, full = (float(e.subs({D.EPS: m.eps, D.THETA: m.nutation})) * scale for e in (est.mid_step, est.full))
-        out.append(LeadingEstimates(r.printed, mid, full, full - mid, r.simulated))
+        small = float(small_cone_limit(alg, 7)) * m.nutation**2 * scale if m.eps == -1.0 else math.nan
+        out.append(LeadingEstimates(r.printed, mid, full, full - mid, r.simulated, small))
     return tuple(out)
