@@ -107,8 +107,6 @@ PENDING = {
     "strapdown.analysis.multistage.convergence",
     "strapdown.analysis.multistage.ship_angles",
     "strapdown.analysis.multistage.stage_control",
-    "strapdown.analysis.multistage.stages",
-    "strapdown.analysis.multistage.trajectory",
     "strapdown.analysis.report",
     "strapdown.analysis.report.algorithms",
     "strapdown.analysis.report.azimuth",
