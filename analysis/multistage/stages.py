@@ -58,6 +58,7 @@ __all__ = [
     "accelerometer_quaternion",
     "tilt_quaternion",
     "run_stage",
+    "recursion_inputs",
     "run_multistage",
     "plotnikov_1999_stages",
     "simulate",
@@ -294,10 +295,35 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
     """
     from . import stage_loop
 
-    if not isinstance(stage, Stage):
-        raise TypeError(f"Expected `stage` to be a Stage, got {type(stage).__name__}")
     if engine not in ENGINES:
         raise ValueError(f"Expected `engine` in {ENGINES}, got {engine!r}")
+    args = recursion_inputs(stage, step, rotation, force, gravity=gravity, reference=reference, initial=initial)
+    loop = stage_loop.stage_loop if engine == "compiled" else stage_loop.stage_loop_python
+    return loop(*args)
+
+
+def recursion_inputs(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81, reference=None, initial=(1.0, 0.0, 0.0, 0.0)) -> tuple:
+    """The arguments of :func:`strapdown.analysis.multistage.stage_loop.stage_loop` for one stage.
+
+    Parameters
+    ----------
+    stage, step, rotation, force, gravity, reference, initial
+        As for :func:`run_stage`.
+
+    Returns
+    -------
+    tuple
+        ``(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, gains, switch, c, rho, step)``.
+
+    Raises
+    ------
+    ValueError
+        For missing or mis-shaped inputs.
+    TypeError
+        If ``stage`` is not a Stage.
+    """
+    if not isinstance(stage, Stage):
+        raise TypeError(f"Expected `stage` to be a Stage, got {type(stage).__name__}")
     h = positive(step, "step")
     dq = np.ascontiguousarray(as_array(rotation, "rotation", last=4))
     if dq.ndim != 2 or dq.shape[0] < 1:
@@ -322,22 +348,7 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
     mask = np.array([j in stage.components for j in range(4)])
     maps = np.array([correction_map(k, l, stage.c, 0.5 * h) for _, k, l in stage.schedule])
     gains = np.array([(k, l) for _, k, l in stage.schedule], dtype=float)
-    loop = stage_loop.stage_loop if engine == "compiled" else stage_loop.stage_loop_python
-    return loop(
-        nu0,
-        dq,
-        ref_start,
-        ref_end,
-        mask,
-        stage.reference == "external",
-        _segments(stage.schedule, n_steps, h),
-        maps,
-        gains,
-        SWITCH_MODES.index(stage.switch),
-        stage.c,
-        stage.rho,
-        h,
-    )
+    return (nu0, dq, ref_start, ref_end, mask, stage.reference == "external", _segments(stage.schedule, n_steps, h), maps, gains, SWITCH_MODES.index(stage.switch), stage.c, stage.rho, h)
 
 
 # ---------------------------------------------------------------------------

@@ -313,17 +313,22 @@ def eta_azimuth(scenario: Scenario, t):
     lat_b = float(sc.latitude_at(tb))
     rate_b = sc.accel * sc.accel_duration / sc.earth_radius  # φ' at constant velocity
 
-    def antiderivative(tt):
-        # F(t) = ∫_{ta}^{t} sin φ dτ, piecewise.
-        before = np.sin(sc.latitude) * (np.minimum(tt, ta) - ta)
-        upper = np.clip(tt, ta, tb)
-        width = upper - ta
-        during = width * (np.sin(sc.latitude_at(ta + width[..., None] * x)) @ w)
-        d = np.maximum(tt - tb, 0.0)
-        after = d * np.sin(lat_b + 0.5 * rate_b * d) * np.sinc(rate_b * d / (2.0 * np.pi))
-        return before + during + after
+    def during(width):
+        return width * (np.sin(sc.latitude_at(ta + width[..., None] * x)) @ w)
 
-    return -sc.earth_rate * (antiderivative(t) - antiderivative(np.zeros(())))
+    full = float(during(np.array(sc.accel_duration)))
+
+    def antiderivative(tt):
+        # F(t) = ∫_{ta}^{t} sin φ dτ, piecewise; the quadrature only where ta < t < tb.
+        out = np.sin(sc.latitude) * (np.minimum(tt, ta) - ta)
+        inside = (tt > ta) & (tt < tb)
+        out = out + np.where(tt >= tb, full, 0.0)
+        if np.any(inside):
+            out[inside] += during(tt[inside] - ta)
+        d = np.maximum(tt - tb, 0.0)
+        return out + d * np.sin(lat_b + 0.5 * rate_b * d) * np.sinc(rate_b * d / (2.0 * np.pi))
+
+    return -sc.earth_rate * (antiderivative(np.atleast_1d(t)).reshape(t.shape) - antiderivative(np.zeros(1))[0])
 
 
 class Truth(NamedTuple):
@@ -381,6 +386,13 @@ def truth(scenario: Scenario, t) -> Truth:
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
     sc = scenario
     t = np.asarray(t, dtype=float)
+    lat, vel, wander, mu_geo, mu, angles, f_geo, f_body = _motion(sc, t)
+    lam = quat.multiply(earth.geographic_to_inertial(t, lat, np.zeros_like(lat), sc.earth_rate), mu_geo)
+    return Truth(lam, mu, angles, f_body, f_geo, lat, vel, wander)
+
+
+def _motion(sc: Scenario, t):
+    """Position, attitudes relative to ζ and η, and the specific force (everything but λ)."""
     lat = sc.latitude_at(t)
     vel = sc.north_velocity(t)
     acc = sc.north_acceleration(t)
@@ -397,9 +409,8 @@ def truth(scenario: Scenario, t) -> Truth:
         mu_geo = quat.multiply(earth.axis_rotation(1, wander), mu)
         angles = rock
         f_geo = np.stack([acc, np.full_like(acc, sc.gravity), np.zeros_like(acc)], axis=-1)
-    lam = quat.multiply(earth.geographic_to_inertial(t, lat, np.zeros_like(lat), sc.earth_rate), mu_geo)
     f_body = quat.rotate(quat.conjugate(mu_geo), f_geo)
-    return Truth(lam, mu, angles, f_body, f_geo, lat, vel, wander)
+    return lat, vel, wander, mu_geo, mu, angles, f_geo, f_body
 
 
 def grid(scenario: Scenario, step) -> np.ndarray:
@@ -467,8 +478,8 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     lam = at_grid.attitude_inertial
     d_body = quat.multiply(quat.conjugate(lam[:-1]), lam[1:])
     gyro = quat.quat_to_rotvec(d_body, canonical=True, validate=False)
-    at_nodes = truth(scenario, t[:-1, None] + h * x)
-    accel = np.einsum("nkj,k->nj", at_nodes.specific_force, w)
+    f_nodes = _motion(scenario, t[:-1, None] + h * x)[-1]
+    accel = np.einsum("nkj,k->nj", f_nodes, w)
     ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=at_grid.attitude, angles=at_grid.angles, velocity=at_grid.velocity, scenario=scenario)
     if scenario.sensors.is_ideal:
         return ideal
