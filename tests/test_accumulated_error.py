@@ -90,7 +90,7 @@ def test_dual_part_is_the_directional_derivative():
 def test_attitude_error_grows_at_the_drift_rate():
     # Secular part: |δφ(t)| / t tends to the simulated constant drift (least-squares slope over 100 s).
     alg, eps = get("lebedev-panov-6"), -1.0
-    simulated = float(simulate(alg, RegularPrecession(eps, NU, NUTATION), H_SAMPLE, DURATION).drift_deg_per_h)
+    simulated = float(simulate(alg, RegularPrecession(eps, NU, NUTATION), H_SAMPLE, DURATION).drift_rate) * RAD_PER_S_TO_DEG_PER_H
     theory = np.linalg.norm(asymptotic_attitude_error(alg, 1e4, eps=eps, nu=NU, nutation=NUTATION, step=4 * H_SAMPLE)) / 1e4
     assert theory * RAD_PER_S_TO_DEG_PER_H == pytest.approx(simulated, rel=5e-3)
 

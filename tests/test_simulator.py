@@ -14,6 +14,7 @@ from strapdown.analysis.coning.precession import RegularPrecession, exact_state,
 from strapdown.analysis.coning.simulator import drift_rate, prefix_product, sample_increments, simulate, step_count
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.core.units import deg_per_h
 from strapdown.derivations.coning.registry import get
 
 
@@ -123,7 +124,7 @@ def test_convergence_order_attitude_and_velocity(order, eps):
     drift, dwi = [], []
     for h in hs:
         r = simulate(get(f"lebedev-panov-{order}"), m, h, 20.0, w_inertial0=(20.0, 35.0, 40.0), velocity=True)
-        drift.append(float(r.drift_deg_per_h))
+        drift.append(float(deg_per_h(r.drift_rate)))
         dwi.append(float(r.final_dw_inertial))
     for values in (drift, dwi):
         slope = np.polyfit(np.log(hs), np.log(values), 1)[0]
@@ -151,7 +152,7 @@ TABLE_3_U_STAR = [
 def test_budennyi_table_3_u_star(number, eps, printed):
     m = RegularPrecession(eps, 2 * np.pi * 10.0, np.radians(1.0))
     r = simulate(get(f"panov-4s-{number}"), m, 0.0025, 100.0)
-    assert float(r.drift_deg_per_h) == pytest.approx(printed, rel=0.02)
+    assert float(deg_per_h(r.drift_rate)) == pytest.approx(printed, rel=0.02)
 
 
 def test_budennyi_table_1_column_2_as_printed_does_not_reproduce_table_3():
@@ -176,7 +177,7 @@ def _lp(order, eps, variant, h=0.01):
     nd, td, w0, lam0 = VARIANTS[variant]
     m = RegularPrecession(eps, 2 * np.pi, _NUT, nd, td)
     r = simulate(get(f"lebedev-panov-{order}"), m, h, 100.0, attitude0=lam0, w_inertial0=w0, velocity=True)
-    return {"drift": float(r.drift_deg_per_h), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
+    return {"drift": float(deg_per_h(r.drift_rate)), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
 
 
 # Lebedev & Panov (1989), section 6, table (t = 100 s, ν = 2π s⁻¹, ϑ = 10°, h = 0.01 s):

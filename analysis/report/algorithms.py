@@ -21,6 +21,7 @@ from ..coning.drift_theory import asymptotic_velocity_error
 from ..coning.local_error import BUDENNYI_BASIS, TumblingMotion, error_coefficients, local_error
 from ..coning.precession import RegularPrecession, exact_state
 from ..coning.simulator import simulate
+from ..core.units import deg_per_h
 from . import Erratum, Section
 
 SECTION = Section(
@@ -136,7 +137,7 @@ def table3_drift(algorithm: Algorithm, *, duration: float | None = None) -> dict
     s = TABLE3_SETUP
     motions = [RegularPrecession(eps, s["nu"], s["nutation"]) for eps in (-1.0, 0.5)]
     r = simulate(algorithm, motions, s["sample_interval"], duration or s["duration"])
-    return {-1.0: float(r.drift_deg_per_h[0]), 0.5: float(r.drift_deg_per_h[1])}
+    return {-1.0: float(deg_per_h(r.drift_rate[0])), 0.5: float(deg_per_h(r.drift_rate[1]))}
 
 
 @cache
@@ -162,7 +163,7 @@ def _lp_run(order: int, eps: float, variant: int, sample_interval: float | None 
 def lp_values(order: int, eps: float, variant: int, sample_interval: float | None = None) -> dict:
     """Drift [deg/h], |ΔW_E|, |ΔW_I| [m/s] at t = 100 s of the order-ρ algorithm (2.2)/(2.5)."""
     r = _lp_run(order, eps, variant, sample_interval)
-    return {"drift": float(r.drift_deg_per_h), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
+    return {"drift": float(deg_per_h(r.drift_rate)), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
 
 
 @cache
@@ -294,7 +295,7 @@ def order_study(quick: bool = False) -> dict:
         for name in names():
             alg = get(name)
             big_h = np.array(steps)
-            drifts = np.array([float(simulate(alg, motion, H / alg.samples, 20.0).drift_deg_per_h) for H in big_h])
+            drifts = np.array([float(deg_per_h(simulate(alg, motion, H / alg.samples, 20.0).drift_rate)) for H in big_h])
             slope = float(np.polyfit(np.log(big_h), np.log(drifts), 1)[0])
             table[name] = (big_h, drifts, slope)
         out[eps] = table

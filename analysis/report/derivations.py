@@ -112,7 +112,7 @@ def simulated_table3() -> dict:
     out = {}
     for (k, eps) in TABLE_3:
         r = simulate(get(f"panov-4s-{k}"), RegularPrecession(eps, NU10, NUT1), H01 / 4, 20.0)
-        out[(k, eps)] = float(r.drift_deg_per_h)
+        out[(k, eps)] = float(r.drift_rate) * RAD_PER_S_TO_DEG_PER_H
     return out
 
 
