@@ -131,6 +131,12 @@ class YawReading:
         Peak |Δψ| after two stages over the run [rad].
     true_yaw_end : float
         True yaw relative to η at the end of the run [rad].
+    series_time : ndarray
+        Times of the decimated series [s].
+    series_stage1 : ndarray
+        Δψ after stage 1 on ``series_time`` [rad].
+    series_two_stage : ndarray
+        Δψ after two stages on ``series_time`` [rad].
     """
 
     components: tuple
@@ -140,6 +146,9 @@ class YawReading:
     stage1_peak: float
     two_stage_peak: float
     true_yaw_end: float
+    series_time: np.ndarray
+    series_stage1: np.ndarray
+    series_two_stage: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -186,12 +195,16 @@ def yaw_study(scenario: Scenario | None = None, *, step: float = 0.1, times=(600
     data = sample(sc, step, rng=rng)
     times = np.asarray([t for t in times if 0.0 <= t <= sc.duration], dtype=float)
     idx = np.rint(times / data.step).astype(int)
+    every = max(1, data.time.size // 2500)
     readings = []
     for comps in ((1, 3), (0, 1, 2, 3)):
         stages = plotnikov_1999_stages(sc.gravity, sc.earth_radius, stage1_components=comps)
         res = run_multistage(data, stages, engine=engine)
         peak = res.peak()
-        readings.append(YawReading(comps, data.time[idx], res.errors[0, idx, 0], res.errors[1, idx, 0], float(peak[0, 0]), float(peak[1, 0]), float(data.angles[-1, 0])))
+        e = res.errors[:, :, 0]
+        readings.append(
+            YawReading(comps, data.time[idx], e[0, idx], e[1, idx], float(peak[0, 0]), float(peak[1, 0]), float(data.angles[-1, 0]), data.time[::every], e[0, ::every], e[1, ::every])
+        )
     stage1_all = plotnikov_1999_stages(sc.gravity, sc.earth_radius, stage1_components=(0, 1, 2, 3))[0]
     identity = composite_identity(data, stage1_all, engine=engine)
     return YawStudy(tuple(readings), identity, float(sc.earth_rate * np.sin(sc.latitude)))

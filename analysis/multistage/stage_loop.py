@@ -26,6 +26,7 @@ that the tests compare the compiled loop against.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import expm
@@ -65,9 +66,14 @@ def correction_map(k: float, l: float, c: float, tau: float) -> np.ndarray:
     >>> correction_map(0.0, 0.0, 1.0, 0.5).tolist()
     [1.0, 0.25, 0.0, 1.0, 0.0, 0.0]
     """
+    return np.array(_correction_map(float(k), float(l), float(c), float(tau)))
+
+
+@lru_cache(maxsize=256)
+def _correction_map(k, l, c, tau):
     a = np.array([[-0.5 * k * c, 0.5, 0.5 * k], [-l * c, 0.0, l], [0.0, 0.0, 0.0]])
     e = expm(a * tau)
-    return np.array([e[0, 0], e[0, 1], e[1, 0], e[1, 1], e[0, 2], e[1, 2]])
+    return (e[0, 0], e[0, 1], e[1, 0], e[1, 1], e[0, 2], e[1, 2])
 
 
 def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, gains, switch, c, rho, step):
