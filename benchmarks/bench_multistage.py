@@ -5,10 +5,10 @@ section 5, 5000 s at h = 0.02 s), timing the recursion alone:
 
 * "previous": the loop over Python floats that the package used before the
   recursion was compiled (copied below, components 1 and 3 only);
-* "reference": :func:`strapdown.analysis.multistage.stage_loop.stage_loop_python`,
+* "reference": :func:`strapdown.analysis.multistage.stage_recursion.stage_loop_python`,
   the plain-Python reference the tests compare the compiled loop against
   (it also handles all four components and the switch modes);
-* "compiled": :func:`strapdown.analysis.multistage.stage_loop.stage_loop` (numba).
+* "compiled": :func:`strapdown.analysis.multistage.stage_recursion.stage_loop` (numba).
 
 Target: the compiled loop at least 50 times the previous one's rate.  The
 whole pipeline (sampling the truth and sensors, both stages, composition) is
@@ -28,7 +28,7 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 from strapdown.analysis.core import quaternion as quat  # noqa: E402
-from strapdown.analysis.multistage import stage_loop  # noqa: E402
+from strapdown.analysis.multistage import stage_recursion  # noqa: E402
 from strapdown.analysis.multistage.stages import plotnikov_1999_stages, recursion_inputs, run_multistage  # noqa: E402
 from strapdown.analysis.multistage.trajectory import Scenario, sample  # noqa: E402
 
@@ -103,13 +103,13 @@ def main(repeats: int = 5) -> None:
     print(f"{'stage':>26} {'previous [us/step]':>19} {'reference [us/step]':>20} {'compiled [us/step]':>19} {'compiled/previous':>18} {'target':>7}")
     for name, st in (("1: tilt quaternion (1.10)", stages[0]), ("2: (1.4), Schuler switch", stages[1])):
         args = recursion_inputs(st, step, dq, data.accel)
-        stage_loop.stage_loop(*args)  # load the compiled code (cached on disk)
+        stage_recursion.stage_loop(*args)  # load the compiled code (cached on disk)
         nu_prev, _ = _previous(args)
-        nu_comp, _ = stage_loop.stage_loop(*args)
+        nu_comp, _ = stage_recursion.stage_loop(*args)
         assert np.abs(nu_prev - nu_comp).max() < 1e-12
         t_prev = _best(lambda args=args: _previous(args), 1)
-        t_ref = _best(lambda args=args: stage_loop.stage_loop_python(*args), 1)
-        t_comp = _best(lambda args=args: stage_loop.stage_loop(*args), repeats)
+        t_ref = _best(lambda args=args: stage_recursion.stage_loop_python(*args), 1)
+        t_comp = _best(lambda args=args: stage_recursion.stage_loop(*args), repeats)
         print(f"{name:>26} {1e6 * t_prev / n:19.3f} {1e6 * t_ref / n:20.3f} {1e6 * t_comp / n:19.4f} {t_prev / t_comp:17.0f}x {'>= 50x':>7}")
     print()
     print("whole pipeline (sampling, both stages, composition)")

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from strapdown.analysis.multistage.stage_control import StageLoop
+from strapdown.analysis.multistage.tilt_loop import StageLoop
 from strapdown.derivations.multistage.schuler import SYMBOLS, derive
 
 s = SYMBOLS.s

@@ -17,7 +17,7 @@ _G, _R = 9.81, 6.371e6
 
 def _loop(args):
     from ..core.validation import as_float, nonnegative, positive
-    from ..multistage.stage_control import StageLoop
+    from ..multistage.tilt_loop import StageLoop
 
     g = positive(args.gravity_m_s2, "--gravity-m-s2")
     r = positive(args.earth_radius, "--earth-radius")

@@ -10,7 +10,7 @@ sensors
     Gyro and accelerometer errors and the sampled sensor record.
 trajectory
     The section-5 scenario: the true motion, its sampling, the residual check of the truth model.
-stage_loop
+stage_recursion
     The time-stepping recursion of one stage: compiled (numba) and the plain-Python reference.
 stages
     The corrected attitude stages and their cascade, simulated.
@@ -18,7 +18,7 @@ composition
     The composite attitude (2.6): the stage-1 corrections cancel; the yaw study.
 decay_rates
     Exponential decay rates of the first-variant stage: exact, at rest, guaranteed, simulated.
-stage_control
+tilt_loop
     python-control analysis of a stage loop: poles, damping, root loci, responses, Bode data.
 gain_design
     Gains from a requested loop, Schuler tuning, bumpless switch, the Schuler error budget.

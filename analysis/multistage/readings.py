@@ -26,8 +26,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..core import montecarlo
-from .stage_control import StageLoop
 from .stages import plotnikov_1999_stages, run_multistage
+from .tilt_loop import StageLoop
 from .trajectory import Scenario, sample
 
 __all__ = ["Reading", "ReadingResult", "standard_readings", "run_readings", "NamedLoop", "section5_loops"]

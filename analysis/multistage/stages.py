@@ -28,10 +28,10 @@ How μ⁺ is formed (``Stage.reference``):
 
 The integral is carried as the state ``y`` with ``y' = l (μ⁺ − cν)`` — the
 form of (3.1); what happens to it at a change of the gain schedule is the
-``switch`` of the stage (:data:`strapdown.analysis.multistage.stage_loop.SWITCH_MODES`).
+``switch`` of the stage (:data:`strapdown.analysis.multistage.stage_recursion.SWITCH_MODES`).
 
 Each stage is integrated by the splitting recursion of
-:mod:`strapdown.analysis.multistage.stage_loop` (second order, compiled); the
+:mod:`strapdown.analysis.multistage.stage_recursion` (second order, compiled); the
 rest is vectorised.
 """
 
@@ -46,7 +46,7 @@ from ..core import quaternion as quat
 from ..core.validation import as_array, as_float, nonnegative, positive
 from .sensors import SensorData
 from .ship_angles import angles_to_quat, quat_to_angles, wrap_angle
-from .stage_loop import SWITCH_MODES, correction_map
+from .stage_recursion import SWITCH_MODES, correction_map
 from .trajectory import Scenario, sample
 
 __all__ = [
@@ -273,7 +273,7 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
         ν(t0).
     engine : {"compiled", "python"}
         The numba-compiled recursion, or the plain-Python reference
-        (:mod:`strapdown.analysis.multistage.stage_loop`).
+        (:mod:`strapdown.analysis.multistage.stage_recursion`).
 
     Returns
     -------
@@ -293,17 +293,17 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
     ----------
     Plotnikov (1999), eqs. (1.5), (2.1).
     """
-    from . import stage_loop
+    from . import stage_recursion
 
     if engine not in ENGINES:
         raise ValueError(f"Expected `engine` in {ENGINES}, got {engine!r}")
     args = recursion_inputs(stage, step, rotation, force, gravity=gravity, reference=reference, initial=initial)
-    loop = stage_loop.stage_loop if engine == "compiled" else stage_loop.stage_loop_python
+    loop = stage_recursion.stage_loop if engine == "compiled" else stage_recursion.stage_loop_python
     return loop(*args)
 
 
 def recursion_inputs(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81, reference=None, initial=(1.0, 0.0, 0.0, 0.0)) -> tuple:
-    """The arguments of :func:`strapdown.analysis.multistage.stage_loop.stage_loop` for one stage.
+    """The arguments of :func:`strapdown.analysis.multistage.stage_recursion.stage_loop` for one stage.
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """Convergence of the stage integrator: halving the step divides the error by 4 (second order).
 
-The splitting recursion of :mod:`strapdown.analysis.multistage.stage_loop` is
+The splitting recursion of :mod:`strapdown.analysis.multistage.stage_recursion` is
 second order in the step h.  :func:`step_convergence` runs the cascade on the
 same scenario with a sequence of steps and measures the difference of each run
 from the finest one at the common grid points.

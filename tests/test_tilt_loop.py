@@ -4,7 +4,7 @@ import control
 import numpy as np
 import pytest
 
-from strapdown.analysis.multistage.stage_control import StageLoop, classify_poles, root_locus_k, root_locus_l
+from strapdown.analysis.multistage.tilt_loop import StageLoop, classify_poles, root_locus_k, root_locus_l
 
 
 def test_poles_damping_natural_frequency():
@@ -92,7 +92,7 @@ def test_drift_response_peak_is_the_earth_rate_transient():
 
 
 def test_typed_responses():
-    from strapdown.analysis.multistage.stage_control import complementary_filter, responses
+    from strapdown.analysis.multistage.tilt_loop import complementary_filter, responses
 
     loop = StageLoop(0.015, 1.25e-4)
     r = responses(loop, np.linspace(0.0, 500.0, 101))

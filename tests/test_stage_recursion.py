@@ -5,7 +5,7 @@ import pytest
 from scipy.linalg import expm
 
 from strapdown.analysis.core import quaternion as quat
-from strapdown.analysis.multistage.stage_loop import correction_map
+from strapdown.analysis.multistage.stage_recursion import correction_map
 from strapdown.analysis.multistage.stages import Stage, run_stage
 
 
