@@ -102,14 +102,6 @@ def test_schuler_cancellation_without_earth_rotation():
     assert r.tilt()[1].max() < 2e-4 < 0.05 < r.tilt()[0].max()
 
 
-def test_step_convergence_second_order():
-    sc = Scenario(duration=1250.0)
-    runs = [simulate(sc, step=h) for h in (0.2, 0.1, 0.05)]
-    d1 = np.abs(runs[0].composite - runs[2].composite[:, ::4]).max()
-    d2 = np.abs(runs[1].composite - runs[2].composite[:, ::2]).max()
-    assert 3.0 < d1 / d2 < 6.0  # (1 - 1/16)/(1 - 1/4) * 4 = 5 for second order
-
-
 def test_printed_stages():
     s1, s2 = plotnikov_1999_stages()
     assert s2.schedule[0][1:] == PRINTED_GAINS.stage2_before
