@@ -11,22 +11,14 @@ from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.core import quaternion as quat
 from strapdown.derivations.coning import drift as D
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning.registry import get
 
 e, c, s, td = D.EPS, D.COS, D.SIN, D.THETA_DUAL
 
 # Lebedev & Panov (1989), section 5, printed structure functions (ρ = 2 and 4,
 # algorithm (2.2) truncated to that order).
-PRINTED_STRUCTURE = [
-    ("lebedev-panov-2", "f", -e),
-    ("lebedev-panov-2", "g", 1 + e * c),
-    ("lebedev-panov-2", "f_dual", sp.Integer(0)),
-    ("lebedev-panov-2", "g_dual", -e * td * s),
-    ("lebedev-panov-4", "f", -e * (4 * e**2 + 24 * e * c + 23)),
-    ("lebedev-panov-4", "g", 4 * e**3 * c + 8 * e**2 * (3 * c**2 - 1) + 19 * e * c + 7),
-    ("lebedev-panov-4", "f_dual", 24 * e**2 * td * s),
-    ("lebedev-panov-4", "g_dual", -e * td * s * (4 * e**2 + 48 * e * c + 19)),
-]
+PRINTED_STRUCTURE = [(f"lebedev-panov-{rho}", which, expr) for rho, functions in P.STRUCTURE_FUNCTIONS.items() for which, expr in functions.items()]
 
 
 @pytest.mark.parametrize("name, which, printed", PRINTED_STRUCTURE)
@@ -42,18 +34,7 @@ def test_structure_function_normalisation():
 
 # Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3: ϑ = 1°, f = 10 Hz, H = 0.01 s,
 # drift in deg/h: (algorithm, ε, ρ, u*, u_a).  u_a of algorithm 5 at ε = 0.5 is not printed.
-TABLE_3 = [
-    (1, -1.0, 4, 2.47, 2.51),
-    (2, -1.0, 4, 1.42, 1.44),
-    (3, -1.0, 6, 3.95e-4, 3.76e-4),
-    (4, -1.0, 4, 9.60e-2, 9.92e-2),
-    (5, -1.0, 6, 5.98e-4, 6.45e-4),
-    (1, 0.5, 4, 6.72e-2, 5.35e-2),
-    (2, 0.5, 4, 1.31e-1, 1.20e-1),
-    (3, 0.5, 4, 6.45e-1, 6.41e-1),
-    (4, 0.5, 4, 5.95e-1, 5.91e-1),
-    (5, 0.5, 4, 6.45e-1, None),
-]
+TABLE_3 = [(r.algorithm, r.eps, r.order, r.u_star, r.u_a) for r in P.BUDENNYI_TABLE_3]
 # ρ = 6 rows: the printed u_a omits the transport of the weight-5 error (see
 # reports/derivations.md); the derived u_a agrees with the simulated u* instead.
 TABLE_3_ERRATA = {(3, -1.0), (5, -1.0)}

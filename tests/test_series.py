@@ -10,6 +10,7 @@ from scipy.integrate import solve_ivp
 
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.core.dual import Dual
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning import series as S
 from strapdown.derivations.coning.algorithms import Algorithm, Term
 from strapdown.derivations.coning.registry import get, names
@@ -104,14 +105,8 @@ def test_orders(name, order):
 # Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2: δ4 and k03, k12, k002, k110, k0001,
 # convention exact − algorithm, coefficient of h^5.  Entries marked "erratum" are
 # contradicted by the derivation (evidence in reports/derivations.md).
-TABLE_2 = [
-    # algorithm, δ4, (k03, k12, k002, k110, k0001), erratum
-    (1, Fraction(4, 45), (-1, 46, 16, 48, -16), None),
-    (2, Fraction(1, 45), (16, 124, 64, 192, -64), None),
-    (3, Fraction(1, 45), (0, 0, 64, 192, -64), None),
-    (4, Fraction(1, 315), (52, 0, 488, 1344, -488), {2: 448, 4: -448}),
-    (5, Fraction(1, 45), (0, 0, 64, 192, -64), None),
-]
+_TABLE_2_ERRATA = {4: {2: 448, 4: -448}}
+TABLE_2 = [(c.algorithm, c.delta, c.k, _TABLE_2_ERRATA.get(c.algorithm)) for c in P.BUDENNYI_TABLE_2]
 
 
 @pytest.mark.parametrize("number, delta, printed, erratum", TABLE_2)
@@ -143,11 +138,7 @@ def test_table_1_row_2_as_printed_contradicts_table_2():
 
 # ------------------------------------------------------------------ eq. (2.4)
 # Lebedev & Panov (1989), eq. (2.4): δφ = 8/945 h^7 (Σ c x), exact − algorithm.
-EQ_2_4 = {
-    "23": 92, "05": 1, "14": 6, "004": 6, "013": 42, "103": 24, "112": -66, "202": -116, "301": -30,
-    "0003": -34, "0012": -28, "0102": 128, "0201": -340, "1101": 246, "2001": 28, "00002": -64,
-    "01001": -64, "10001": 256, "000001": 64, "1002": -176,
-}  # fmt: skip
+EQ_2_4 = P.EQ_2_4
 
 
 def _eq_2_4():

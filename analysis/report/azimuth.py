@@ -548,4 +548,15 @@ def errata(ctx) -> list:
             "azimuth",
         )
     )
+    out.append(
+        Erratum(
+            "Hrechka & Koroliov, the expression before eq. (16)",
+            "α̂*ₙ = arctg [sin φ sin β*₀,ₙ / (cos φ cos γ*₀,ₙ + sin φ cos β*₀,ₙ sin γ*₀,ₙ)]",
+            "σ̂*ₙ = arctg [sin φ sin β*₀,ₙ / (cos φ cos γ*₀,ₙ + sin φ cos β*₀,ₙ sin γ*₀,ₙ)]: the estimate of σ that (16) adds to −arctg(f₂/f₁)",
+            "The right-hand side is σ = arctg(B/A) of (2) with A*, B* at the sample means, and (16), α̂* = −arctg(f₂/f₁) + σ̂*ₙ, uses σ̂*ₙ, "
+            "which is defined nowhere else; read as α̂*ₙ, the azimuth estimate would lack the −arctg(f₂/f₁) term of (2).",
+            "azimuth",
+            kind="misprint",
+        )
+    )
     return out

@@ -869,82 +869,109 @@ def errata(ctx) -> list:
             "Plotnikov (1999), eq. (3.7), W₃⁽¹⁾",
             "W₃⁽¹⁾ = W₃ − gα − W₁β",
             "W₃⁽¹⁾ = W₃ − gα + W₁β (then M₁₁ = −W₃⁽¹⁾/g = α − n₃ − n₁β, as printed in (3.7)–(3.8))",
-            f"Misprint, decided by the symbolic first-order expansion of Δ̄∘W∘Δ (derivations/multistage/schuler.py): for {c.samples} random "
+            f"Decided by the symbolic first-order expansion of Δ̄∘W∘Δ (derivations/multistage/schuler.py): for {c.samples} random "
             f"small rotations (|α|, |β|, |χ| ≤ {c.small_angle:g} rad) and |W₁| ≤ 20 m/s², the derived form differs from the exact rotation by at most "
             f"{c.derived_w3:.1e} m/s², the printed one by {c.printed_w3:.1e} m/s²; the printed M₁₁ agrees with the derived sign ({c.printed_m11:.1e}).",
             "stability",
+            kind="misprint",
         ),
         Erratum(
             "Plotnikov (1999), section 5, l⁽¹⁾ after 600 s",
             "l⁽¹⁾ = (1.24·10⁻³) s⁻²",
             f"l⁽¹⁾ = (1.24·10⁻³)² = g/R = {g / r:.4e} s⁻² (the square was lost)",
-            f"Misprint, decided by the paper's own condition: the text says the Schuler conditions hold, which (3.11) makes l = g/R; "
+            f"Decided by the paper's own condition: the text says the Schuler conditions hold, which (3.11) makes l = g/R; "
             f"√(g/R) = {np.sqrt(g / r):.5e} s⁻¹ is the printed number. With the printed value the linearised stage's peak tilt error "
             f"for 20 m/s² over 20 s is {peak_printed:.3g} rad instead of 0.",
             "stability",
+            kind="misprint",
         ),
         Erratum(
             "Plotnikov (1999), section 5, rocking envelope",
             "E = exp(−0.1(t − 600)) for t = 1000…5000 s",
-            "ambiguous: likely reading exp(−0.1(t − 1000)) (origin at the start of rocking); exp(−0.001(t − 600)) also fits the print",
-            f"Ambiguous, the text cannot decide: as printed E(1000 s) = {_printed_envelope_at_start():.1e}, "
-            "i.e. no rocking at all. The readings table of the stability report runs the printed form, the origin at 1000 s and a decay of 10⁻³ s⁻¹: "
-            f"against the default the two-stage peak errors change by at most {100 * two_stage_change(printed_env):.1f} % and {100 * two_stage_change(slow_env):.1f} %.",
+            "likely reading: E = exp(−0.1(t − 1000)), the origin at the start of rocking (default)",
+            f"The text cannot decide: as printed E(1000 s) = {_printed_envelope_at_start():.1e}, i.e. no rocking at all. Against the default, the "
+            f"two-stage peak errors change by at most {100 * two_stage_change(printed_env):.1f} % with the printed form and "
+            f"{100 * two_stage_change(slow_env):.1f} % with exp(−0.001(t − 600)) (readings table of the stability report).",
             "stability",
+            kind="ambiguous",
+            alternatives=(
+                f"exp(−0.1(t − 600)) as printed (stage-1 roll peak {printed_env.peaks[0].roll:.2e} rad); exp(−0.001(t − 600)), rocking through the run "
+                f"(stage-1 roll peak {slow_env.peaks[0].roll:.2e} rad against {default.peaks[0].roll:.2e})"
+            ),
         ),
         Erratum(
             "Plotnikov (1999), eq. (1.9), cos γ",
             "cos γ = −n_x2/h",
             "cos γ = n_x2/h (from W_x2 = g cos θ cos γ in (1.8))",
-            f"Misprint, decided by (1.8) (derivations/multistage/tilt_quaternion.py: matches print = {tilt.cos_gamma_matches_printed}); on {c.samples} random "
+            f"Decided by (1.8) (derivations/multistage/tilt_quaternion.py: matches print = {tilt.cos_gamma_matches_printed}); on {c.samples} random "
             f"attitudes the printed form misses cos γ by up to {c.printed_cos_gamma:.2f}, the derived one by {c.derived_cos_gamma:.1e}.",
             "stability",
+            kind="misprint",
         ),
         Erratum(
             "Plotnikov (1999), eq. (1.10), μ0 and μ3",
             "μ0 = ½(h/n + n_x2/n + n_x3/h + 1)^½,  μ3 = (n_x1 n_x2 + n_x1)/(4μ0 n h)",
             "μ0 = ½(h/n + n_x2/n + n_x2/h + 1)^½,  μ3 = n_x1(n_x2 + h)/(4μ0 n h)",
-            "Misprint, decided by substituting (1.9) into (1.7) with ψ = 0 (derivations/multistage/tilt_quaternion.py; components that match the print: "
+            "Decided by substituting (1.9) into (1.7) with ψ = 0 (derivations/multistage/tilt_quaternion.py; components that match the print: "
             f"{', '.join(f'μ{i}' for i, m in enumerate(tilt.matches_printed) if m)}). On {c.samples} random attitudes (ψ = 0, |θ|, |γ| ≤ 0.6 rad) the printed "
             f"(1.10) differs from the true quaternion by up to {c.printed_1_10:.2f}, the derived one by {c.derived_1_10:.1e} (the package's tilt quaternion: {c.package_tilt:.1e}).",
             "stability",
+            kind="misprint",
         ),
         Erratum(
             "Plotnikov (1999), section 1 after (1.6), c for the accelerometer quaternion",
             "c = 2 (second variant, μ⁺ from the accelerometers)",
-            "ambiguous: c = 2 fits the whole-angle (1.4); with the half-angle (1.10) used in section 5 the likely reading is c = 1",
-            f"Ambiguous, the text cannot decide which quaternion c = 2 was meant for. A stage with the stage-1 gains on a body pitched by 0.1 rad settles "
-            f"at {whole:.4f} rad with (1.10) and c = 1, at {half:.4f} rad with (1.10) and c = 2. In section 5 the printed c = 2 moves the stage-1 pitch "
-            f"peak from {default.peaks[0].pitch:.3f} to {printed_c.peaks[0].pitch:.3f} rad and the two-stage pitch peak from {default.peaks[1].pitch:.2e} to "
-            f"{printed_c.peaks[1].pitch:.2e} rad: neither is near the printed {PAPER.stage1_pitch_peak.value:.1e}, so the example does not decide it (readings table).",
+            "likely reading: c = 2 for the whole-angle (1.4), c = 1 for the half-angle (1.10) used by stage 1 in section 5 (default)",
+            f"The text cannot decide which quaternion c = 2 was meant for. A stage with the stage-1 gains on a body pitched by 0.1 rad settles "
+            f"at {whole:.4f} rad with (1.10) and c = 1, at {half:.4f} rad with (1.10) and c = 2. Section 5 does not decide it either: neither reading "
+            f"brings the stage-1 pitch near the printed {PAPER.stage1_pitch_peak.value:.1e} rad (readings table).",
             "stability",
+            kind="ambiguous",
+            alternatives=(
+                f"c = 2 with (1.10) as printed: the static tilt is halved; in section 5 the stage-1 pitch peak is {printed_c.peaks[0].pitch:.3f} rad "
+                f"(default {default.peaks[0].pitch:.3f}) and the two-stage pitch peak {printed_c.peaks[1].pitch:.2e} rad (default {default.peaks[1].pitch:.2e})"
+            ),
         ),
         Erratum(
             "Plotnikov (1999), section 5, acceleration",
             "V̇ζ₁ = 20 m/s² for t = 1200…1220 s",
-            "ambiguous: 20 m/s² as printed (default); 2 m/s² would bring the stage-1 pitch near the printed 3.4·10⁻² rad only together with a second change",
-            f"Ambiguous, the text cannot decide: with (1.10) and 20 m/s² the stage-1 pitch peak is {default.peaks[0].pitch:.3f} rad; 2 m/s² alone gives "
-            f"{accel2.peaks[0].pitch:.3f} rad, and 2 m/s² with stage 1 on (1.4), c = 2 gives {accel2_pure.peaks[0].pitch:.3f} rad (readings table of the "
-            "stability report). No single change matches the print.",
+            "likely reading: 20 m/s² as printed (default)",
+            f"The text cannot decide: with (1.10) and 20 m/s² the stage-1 pitch peak is {default.peaks[0].pitch:.3f} rad against the printed "
+            f"{PAPER.stage1_pitch_peak.value:.1e}; no single change of the reading matches the print (readings table of the stability report).",
             "stability",
+            kind="ambiguous",
+            alternatives=(
+                f"2 m/s²: stage-1 pitch peak {accel2.peaks[0].pitch:.3f} rad; 2 m/s² together with stage 1 on (1.4), c = 2 (a second change): "
+                f"{accel2_pure.peaks[0].pitch:.3f} rad, two-stage {accel2_pure.peaks[1].pitch:.2e} rad"
+            ),
         ),
         Erratum(
             "Plotnikov (1999), sections 1 and 5, components corrected by stage 1",
             "\"asymptotic stability only for the part of the components where correction is introduced\"; section 5 gives no list",
-            "ambiguous: the horizontal components 1, 3 (default) or all four of (1.10); likely reading for the printed yaw: all four",
-            "Ambiguous, the text cannot decide. With all four components stage 1 pulls its yaw to the ψ = 0 of (1.10) and its yaw error at the 600 s "
-            f"switch is {all_four.yaw_at_switch[0]:+.2e} rad (printed {PAPER.yaw_stage1.value:+.0e}), which the composite (2.6) undoes (every stage-1 correction "
-            f"cancels in ν₁∘ν, derived symbolically): after two stages the yaw peak is {all_four.peaks[1].yaw:.1e} rad against the printed "
-            f"{PAPER.yaw_two_stage.value:+.1e}. With components 1, 3 the stage-1 yaw error at 600 s is {default.yaw_at_switch[0]:+.1e} rad.",
+            "likely reading for the printed yaw: all four components of (1.10); the package's default stays 1, 3 (the reading whose errors the stability report explains)",
+            "The text cannot decide. (1.4) has only the components 1 and 3; (1.10) has all four, and correcting them all pulls the stage-1 yaw to "
+            "the ψ = 0 of (1.10) — the stage-1 yaw error β of (3.8), ψ₁⁺ = β + const, that stage 2 takes up — which the composite (2.6) undoes "
+            "(every stage-1 correction cancels in ν₁∘ν, derived symbolically). With all four components the stage-1 yaw error at the 600 s switch is "
+            f"{all_four.yaw_at_switch[0]:+.2e} rad (printed {PAPER.yaw_stage1.value:+.0e}), growing to {all_four.peaks[0].yaw:.2e} rad by the end; after two "
+            f"stages its peak is {all_four.peaks[1].yaw:.1e} rad (printed {PAPER.yaw_two_stage.value:+.1e}).",
             "stability",
+            kind="ambiguous",
+            alternatives=(
+                f"components 1, 3 (default): stage-1 yaw error at 600 s {default.yaw_at_switch[0]:+.1e} rad, peaks {default.peaks[0].yaw:.1e} (stage 1) and "
+                f"{default.peaks[1].yaw:.1e} rad (two stages) — it cannot give the printed yaw numbers"
+            ),
         ),
         Erratum(
             "Plotnikov (1999), section 5, the integral at the gain switch of stage 2",
             "\"from t = 600 s only integral correction with the Schuler conditions\"",
-            "ambiguous: the integral state carried through the switch (default) or bumpless; rescaling l∫(μ⁺ − 2ν)dτ with the new l is unlikely",
-            "Ambiguous, the text cannot decide. Rescaling the integral by l_new/l_old discards the Earth rate it holds and raises the two-stage roll to "
-            f"{rescale.peaks[1].roll:.1e} rad and pitch to {rescale.peaks[1].pitch:.1e} rad (printed bound {PAPER.two_stage_pitch_bound.value:.1e}); the carried "
-            f"and the bumpless integral give two-stage pitch peaks of {default.peaks[1].pitch:.2e} and {bumpless.peaks[1].pitch:.2e} rad (readings table).",
+            "likely reading: the integral state carried through the switch (default)",
+            "The text cannot decide. Rescaling the integral by l_new/l_old discards the Earth rate it holds; carrying it, or a bumpless switch, "
+            f"keeps the two-stage pitch below the printed bound {PAPER.two_stage_pitch_bound.value:.1e} rad (readings table).",
             "stability",
+            kind="ambiguous",
+            alternatives=(
+                f"bumpless: two-stage pitch peak {bumpless.peaks[1].pitch:.2e} rad (carried: {default.peaks[1].pitch:.2e}); l(t)∫(μ⁺ − 2ν)dτ rescaled with "
+                f"the new l: two-stage roll {rescale.peaks[1].roll:.1e} rad, pitch {rescale.peaks[1].pitch:.1e} rad"
+            ),
         ),
     ]

@@ -14,4 +14,14 @@ series
     The exact rotation-vector increment and the algorithm error series.
 drift
     Asymptotic drift under regular precession, structure functions, optimal coning.
+leading_drift
+    The leading drift term two ways (mid-step projection, full coefficient); coning limits.
+series_summary
+    The series of each algorithm in the shape a reader needs (order, weights, factored drift).
+printed_checks
+    Table 2, eq. (2.4) and the structure functions as printed against the derivations.
+formula_one
+    Assignments of the Table 1 constants to cross products (formula (1) of Budennyi et al.).
+published
+    The printed tables and formulas of the coning papers, with their sources (reference data).
 """
