@@ -70,3 +70,11 @@ def test_published_numbers_load_without_sympy():
     assert out == "False"
     assert PAPER.yaw_stage1.value == -3e-2 and PAPER.stage1_pitch_peak.place.startswith("section 5")
     assert np.isclose(SECTION5.rocking_frequency, np.pi)
+
+
+def test_scenario_defaults_are_the_printed_setup():
+    sc = Scenario()
+    assert (sc.duration, sc.rocking_start, sc.accel_start, sc.accel_duration, sc.accel) == (SECTION5.duration, SECTION5.rest_end, SECTION5.accel_start, SECTION5.accel_duration, SECTION5.accel)
+    assert sc.rocking_amplitude == SECTION5.rocking_amplitude and sc.rocking_decay == SECTION5.envelope_decay
+    assert sc.rocking_decay_origin is None  # a reading: the printed origin is 600 s
+    assert [abs(b) for b in sc.sensors.accel_bias] == [SECTION5.accel_bias] * 3

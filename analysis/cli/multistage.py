@@ -83,20 +83,22 @@ def register(commands) -> None:
     commands : strapdown.analysis.cli.Commands
         The command registry.
     """
+    from ...derivations.multistage.published import SECTION5 as S5
+
     p = commands.add("multistage", _run, "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5")
-    p.add_argument("--duration", type=float, default=5000.0, help="length of the run [s] (default 5000)")
+    p.add_argument("--duration", type=float, default=S5.duration, help=f"length of the run [s] (default {S5.duration:g})")
     p.add_argument("--step", type=float, default=0.02, help="integration step [s] (default 0.02)")
-    p.add_argument("--accel-m-s2", type=float, default=20.0, help="northward acceleration [m/s²] (default 20, as printed)")
-    p.add_argument("--accel-duration", type=float, default=20.0, help="its duration [s] (default 20)")
-    p.add_argument("--lat-deg", type=float, default=45.0, help="initial latitude [deg] (default 45)")
+    p.add_argument("--accel-m-s2", type=float, default=S5.accel, help=f"northward acceleration [m/s²] (default {S5.accel:g}, as printed)")
+    p.add_argument("--accel-duration", type=float, default=S5.accel_duration, help=f"its duration [s] (default {S5.accel_duration:g})")
+    p.add_argument("--lat-deg", type=float, default=S5.latitude_deg, help=f"initial latitude [deg] (default {S5.latitude_deg:g})")
     p.add_argument(
         "--truth",
         choices=("rotating-earth", "no-coriolis"),
         default="rotating-earth",
         help="truth model: consistent motion over the rotating Earth, or the earlier one without Coriolis and V²/R (default: rotating-earth)",
     )
-    p.add_argument("--rocking-decay-per-s", type=float, default=0.1, help="decay rate d of the rocking envelope exp(-d(t - t_d)) [1/s] (default 0.1, as printed)")
-    p.add_argument("--rocking-origin", type=float, default=None, help="t_d of the envelope [s] (default: the start of rocking, 1000; printed: 600)")
+    p.add_argument("--rocking-decay-per-s", type=float, default=S5.envelope_decay, help=f"decay rate d of the rocking envelope exp(-d(t - t_d)) [1/s] (default {S5.envelope_decay:g}, as printed)")
+    p.add_argument("--rocking-origin", type=float, default=None, help=f"t_d of the envelope [s] (default: the start of rocking, {S5.rest_end:g}; printed: {S5.envelope_origin:g})")
     p.add_argument("--stage1-reference", choices=("tilt", "pure"), default="tilt", help="accelerometer quaternion of stage 1: (1.10) 'tilt' or (1.4) 'pure' (default: tilt)")
     p.add_argument("--stage1-c", type=float, default=None, help="factor c of stage 1 [-] (default: 1 for tilt, 2 for pure; printed: 2)")
     p.add_argument("--stage1-components", choices=("horizontal", "all"), default="horizontal", help="components of ν corrected by stage 1: 1 and 3, or all four (default: horizontal)")

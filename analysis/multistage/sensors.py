@@ -84,7 +84,15 @@ class SensorErrors:
         -------
         SensorErrors
         """
-        return cls(gyro_scale=1e-5, gyro_drift=(0.5e-7, -0.5e-7, 0.5e-7), accel_scale=1e-5, accel_bias=(1e-3, -1e-3, 1e-3))
+        from ...derivations.multistage.published import SECTION5
+
+        signs = np.array([1.0, -1.0, 1.0])
+        return cls(
+            gyro_scale=SECTION5.scale_factor_error,
+            gyro_drift=tuple(SECTION5.gyro_drift * signs),
+            accel_scale=SECTION5.scale_factor_error,
+            accel_bias=tuple(SECTION5.accel_bias * signs),
+        )
 
     @property
     def is_ideal(self) -> bool:

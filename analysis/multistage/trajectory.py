@@ -55,6 +55,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...derivations.multistage.published import SECTION5
 from ..core import quaternion as quat
 from ..core.validation import as_float, nonnegative, positive
 from . import earth
@@ -97,6 +98,11 @@ def _triple(x, name) -> tuple:
 @dataclass(frozen=True)
 class Scenario:
     """The motion of Plotnikov (1999), section 5, with every constant a parameter.
+
+    The defaults are the printed values
+    (:data:`strapdown.derivations.multistage.published.SECTION5`) except where
+    the text cannot be taken literally: the envelope origin (None: the start of
+    rocking, printed 600 s) and the onset time constant (not in the paper).
 
     Parameters
     ----------
@@ -142,21 +148,21 @@ class Scenario:
     0.0012409
     """
 
-    duration: float = 5000.0
-    latitude: float = float(np.radians(45.0))
+    duration: float = SECTION5.duration
+    latitude: float = float(np.radians(SECTION5.latitude_deg))
     gravity: float = 9.81
     earth_radius: float = 6.371e6
     earth_rate: float = 7.292115e-5
-    rocking_start: float = 1000.0
-    rocking_amplitude: tuple = (0.2, 0.1, 0.1)
-    rocking_frequency: float = float(np.pi)
-    rocking_phase: tuple = (0.5 * float(np.pi), 0.0, 0.0)
-    rocking_decay: float = 0.1
+    rocking_start: float = SECTION5.rest_end
+    rocking_amplitude: tuple = SECTION5.rocking_amplitude
+    rocking_frequency: float = SECTION5.rocking_frequency
+    rocking_phase: tuple = SECTION5.rocking_phase
+    rocking_decay: float = SECTION5.envelope_decay
     rocking_decay_origin: float | None = None
     rocking_onset: float = 1.0
-    accel_start: float = 1200.0
-    accel_duration: float = 20.0
-    accel: float = 20.0
+    accel_start: float = SECTION5.accel_start
+    accel_duration: float = SECTION5.accel_duration
+    accel: float = SECTION5.accel
     truth: str = "rotating-earth"
     sensors: SensorErrors = field(default_factory=SensorErrors.plotnikov_1999)
 
