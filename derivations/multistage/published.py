@@ -34,7 +34,7 @@ __all__ = [
     "PRINTED_C_SECOND_VARIANT",
 ]
 #: Printed formulas and their symbols, built with SymPy on first access (module ``__getattr__``).
-_LAZY = ("SYMBOLS", "PRINTED_COS_GAMMA_1_9", "PRINTED_TILT_QUATERNION_1_10", "PRINTED_W3_3_7", "PRINTED_M11_3_7", "PRINTED_M13_3_7")
+_LAZY = ("SYMBOLS", "PRINTED_COS_GAMMA_1_9", "PRINTED_TILT_QUATERNION_1_10", "PRINTED_W3_3_7", "PRINTED_M11_3_7", "PRINTED_M13_3_7", "PRINTED_LINEARISED_3_8")
 __all__ += list(_LAZY)
 
 SOURCE = "Plotnikov (1999)"
@@ -244,6 +244,27 @@ def _formulas() -> dict:
         "PRINTED_M11_3_7": s.alpha - s.W3 / s.g - s.W1 / s.g * s.beta,
         # (3.7) as printed: M13 = n_η1(1) = W1(1)/g = n1 + χ − n3β.
         "PRINTED_M13_3_7": s.W1 / s.g + s.chi - s.W3 / s.g * s.beta,
+        "PRINTED_LINEARISED_3_8": _linearised_3_8(sp),
+    }
+
+
+def _linearised_3_8(sp) -> dict:
+    """(3.8) as printed, with the integrals as states y₁, y₃ (y' = l(…)), in functions of t.
+
+    The names are those of :data:`strapdown.derivations.multistage.schuler.SYMBOLS`
+    (SymPy functions with equal names and assumptions are equal).
+    """
+    t = sp.Symbol("t", real=True)
+    k, l = sp.symbols("k l", positive=True)
+    f = {n: sp.Function(n, real=True)(t) for n in ("alpha", "beta", "chi", "theta1", "gamma1", "omega1", "omega3", "y1", "y3", "n1", "n3")}
+    theta_in = f["chi"] + f["n1"] - f["theta1"] - f["n3"] * f["beta"]
+    gamma_in = f["alpha"] - f["n3"] - f["gamma1"] - f["n1"] * f["beta"]
+    return {
+        "psi1": sp.diff(f["beta"], t),
+        "theta1": sp.diff(f["chi"], t) + f["omega3"] + k * theta_in + f["y3"],
+        "gamma1": sp.diff(f["alpha"], t) + f["omega1"] + k * gamma_in + f["y1"],
+        "y3": l * theta_in,
+        "y1": l * gamma_in,
     }
 
 
