@@ -12,8 +12,10 @@ subpackage         analysis (numerics)                         derivations (SymP
                    units, Monte Carlo, filterpy adapter        (``derivations.reproducible``)
 ``coning``         algorithm evaluation, exact motions,        algorithms as data, the registry,
                    simulator, drift theory, sampling design    error series, drift, optimal coning
-``multistage``     corrected attitude stages, trajectory,      Lyapunov function, Schuler
-                   convergence rates, python-control loops     linearisation
+``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
+                   truth over the rotating Earth, decay rates  linearisation, composition, tilt
+                   python-control loops, gain design, sensor   quaternion, published data
+                   statistics, readings of section 5
 ``gyrocompass``    rocking models, azimuth Monte Carlo,        azimuth-error series, bounds
                    bound sweeps, admissible rocking            (14)–(15)
 ``cli``            the ``strapdown`` command line

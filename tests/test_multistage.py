@@ -6,9 +6,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.multistage.sensors import SensorErrors
 from strapdown.analysis.multistage.ship_angles import angles_to_quat, quat_to_angles
 from strapdown.analysis.multistage.stages import Stage, accelerometer_quaternion, plotnikov_1999_stages, run_stage, simulate, tilt_quaternion
-from strapdown.analysis.multistage.trajectory import Scenario, SensorErrors, sample
+from strapdown.analysis.multistage.trajectory import Scenario, sample
+from strapdown.derivations.multistage.published import PRINTED_GAINS
 
 
 @given(st.floats(-3, 3), st.floats(-1.5, 1.5), st.floats(-3, 3))
@@ -36,7 +38,7 @@ def test_accelerometer_quaternions_small_tilt():
 def test_sensor_model():
     sc = Scenario(duration=20.0, sensors=SensorErrors(gyro_drift=(1e-3, 0, 0)))
     d = sample(sc, 0.5)
-    # Earth rate (north, in η1) + drift on x1.
+    # Body fixed to the Earth with x1 north: Earth rate Ω cos φ + drift on x1.
     np.testing.assert_allclose(d.gyro[:, 0] / 0.5, 7.292115e-5 * np.cos(np.radians(45)) + 1e-3, rtol=1e-6)
     noisy = Scenario(duration=20.0, sensors=SensorErrors(gyro_noise=1e-4, accel_noise=1e-3))
     a, b = sample(noisy, 0.5, rng=3), sample(noisy, 0.5, rng=3)
@@ -100,18 +102,13 @@ def test_schuler_cancellation_without_earth_rotation():
     assert r.tilt()[1].max() < 2e-4 < 0.05 < r.tilt()[0].max()
 
 
-def test_step_convergence_second_order():
-    sc = Scenario(duration=1250.0)
-    runs = [simulate(sc, step=h) for h in (0.2, 0.1, 0.05)]
-    d1 = np.abs(runs[0].composite - runs[2].composite[:, ::4]).max()
-    d2 = np.abs(runs[1].composite - runs[2].composite[:, ::2]).max()
-    assert 3.0 < d1 / d2 < 6.0  # (1 - 1/16)/(1 - 1/4) * 4 = 5 for second order
-
-
-def test_gain_switch_keeps_integral():
+def test_printed_stages():
     s1, s2 = plotnikov_1999_stages()
-    assert s2.schedule[1] == (600.0, 0.0, 9.81 / 6.371e6)
+    assert s2.schedule[0][1:] == PRINTED_GAINS.stage2_before
+    assert s2.schedule[1] == (PRINTED_GAINS.switch_time, 0.0, 9.81 / 6.371e6)
+    assert s1.schedule[0][1:] == PRINTED_GAINS.stage1
     assert s1.effective_gains[0][1:] == (0.005, 2.5e-5)
+    assert s1.components == (1, 3) and s2.switch == "carry"
 
 
 @pytest.mark.parametrize(
@@ -124,6 +121,11 @@ def test_gain_switch_keeps_integral():
         (dict(schedule=()), "at least one"),
         (dict(schedule=((0.0, 0.01, 1e-4),), reference="gps"), "reference"),
         (dict(schedule=((0.0, 0.01, 1e-4),), rho=-1.0), "rho"),
+        (dict(schedule=((0.0, 0.01, 1e-4),), reference="pure", components=(0, 1, 3)), "no components 0 and 2"),
+        (dict(schedule=((0.0, 0.01, 1e-4),), reference="tilt", components=(4,)), "components"),
+        (dict(schedule=((0.0, 0.01, 1e-4),), reference="tilt", components="all"), "components"),
+        (dict(schedule=((0.0, 0.01, 1e-4),), switch="hold"), "switch"),
+        (dict(schedule=((0.0, 0.01, 0.0), (5.0, 0.0, 1e-6)), switch="rescale"), "nonzero integral gain"),
     ],
 )
 def test_bad_stage(kwargs, match):
@@ -136,7 +138,9 @@ def test_unstable_gains_are_simulated_not_refused():
     assert np.all(np.isfinite(r.errors)) and np.abs(r.errors).max() > 1e-3
 
 
-@pytest.mark.parametrize("kwargs", [dict(duration=0.0), dict(duration=np.nan), dict(latitude=2.0), dict(accel=np.inf), dict(rocking_amplitude=(1, 2))])
+@pytest.mark.parametrize(
+    "kwargs", [dict(duration=0.0), dict(duration=np.nan), dict(latitude=2.0), dict(accel=np.inf), dict(rocking_amplitude=(1, 2)), dict(truth="flat"), dict(rocking_decay_origin=np.nan)]
+)
 def test_bad_scenario(kwargs):
     with pytest.raises((ValueError, TypeError)):
         Scenario(**kwargs)

@@ -26,26 +26,44 @@ def test_stability_json(capsys):
 
 
 def test_stability_schuler(capsys):
-    code, out, _ = run(capsys, "stability", "--schuler", "--accel", "5", "--accel-duration", "60", "--json")
+    code, out, _ = run(capsys, "stability", "--schuler", "--accel-m-s2", "5", "--accel-duration", "60", "--json")
     data = json.loads(out)
     assert code == 0 and data["peak_tilt_error_rad"] == 0.0 and data["stability"] == "marginal"
     assert data["l_per_s2"] == pytest.approx(9.81 / 6.371e6) and data["k_per_s"] == 0.0
 
 
-def test_unstable_is_flagged(capsys):
-    code, out, _ = run(capsys, "stability", "--k", "-0.01", "--l", "5e-5", "--json")
-    assert code == 0 and json.loads(out)["stability"] == "unstable"
+@pytest.mark.parametrize("k,l", [("-0.01", "5e-5"), ("0.01", "-1e-5"), ("0", "0")])
+def test_unstable_gains_are_an_error(capsys, k, l):
+    code, out, err = run(capsys, "stability", f"--k={k}", f"--l={l}", "--json")
+    assert code == 2 and out == "" and "stable loop" in err and "--k" in err and len(err.strip().splitlines()) == 1
+
+
+def test_stability_design(capsys):
+    code, out, _ = run(capsys, "stability", "--natural-frequency-rad-s", "0.005", "--damping", "0.7", "--reference", "tilt", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["damping"] == [pytest.approx(0.7)] * 2 and data["natural_frequency_rad_s"] == [pytest.approx(0.005)] * 2
+    assert data["design"] == {"reference": "tilt", "c": 1.0, "stage_k_per_s": pytest.approx(0.014), "stage_l_per_s2": pytest.approx(5e-5)}
+
+
+def test_stability_units_in_options(capsys):
+    code, out, _ = run(capsys, "stability", "--schuler", "--gravity-m-s2", "9.8", "--earth-radius", "6.4e6", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["l_per_s2"] == pytest.approx(9.8 / 6.4e6)
 
 
 @pytest.mark.parametrize(
     "argv,match",
     [
-        (["--k", "nan", "--l", "1e-5"], "`k` to be finite"),
-        (["--k", "0.01", "--l", "inf"], "`l` to be finite"),
+        (["--k", "nan", "--l", "1e-5"], "`--k` to be finite"),
+        (["--k", "0.01", "--l", "inf"], "`--l` to be finite"),
         (["--k", "fast", "--l", "1e-5"], "invalid float"),
         (["--k", "0.01"], "--l"),
-        (["--k", "0.01", "--l", "1e-5", "--accel-duration", "0"], "accel_duration"),
-        (["--schuler", "--k", "0.1"], "either"),
+        (["--k", "0.01", "--l", "1e-5", "--accel-duration", "0"], "`--accel-duration` > 0"),
+        (["--k", "0.01", "--l", "1e-5", "--horizon", "5"], "`--horizon` >="),
+        (["--schuler", "--k", "0.1"], "one of"),
+        (["--schuler", "--earth-radius", "-1"], "`--earth-radius` > 0"),
+        (["--natural-frequency-rad-s", "0.01"], "both"),
+        (["--natural-frequency-rad-s", "-0.01", "--damping", "0.5"], "`--natural-frequency-rad-s` > 0"),
     ],
 )
 def test_stability_bad_input(capsys, argv, match):
@@ -73,4 +91,17 @@ def test_multistage_short(capsys):
 
 def test_multistage_zero_length(capsys):
     code, _, err = run(capsys, "multistage", "--duration", "0")
-    assert code == 2 and "`duration` > 0" in err
+    assert code == 2 and "`--duration` > 0" in err
+
+
+@pytest.mark.parametrize("argv,match", [(["--lat-deg", "95"], "`--lat-deg` in (-90, 90) degrees"), (["--stage1-c", "0"], "`--stage1-c` > 0"), (["--step", "0.03"], "`step`")])
+def test_multistage_bad_input(capsys, argv, match):
+    code, _, err = run(capsys, "multistage", "--duration", "1300", *argv)
+    assert code == 2 and match in err and len(err.strip().splitlines()) == 1
+
+
+def test_multistage_readings(capsys):
+    code, out, _ = run(capsys, "multistage", "--duration", "1300", "--step", "0.2", "--stage1-components", "all", "--switch", "bumpless", "--truth", "no-coriolis", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["readings"]["stage1_components"] == [0, 1, 2, 3] and data["readings"]["truth"] == "no-coriolis"
+    assert set(data["stages"][0]) == {"stage", "peak_yaw_error_rad", "peak_pitch_error_rad", "peak_roll_error_rad", "peak_tilt_error_rad"}

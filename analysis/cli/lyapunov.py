@@ -41,4 +41,11 @@ def _run(args) -> Result:
 
 
 def register(commands) -> None:
+    """Add ``strapdown derive lyapunov``.
+
+    Parameters
+    ----------
+    commands : strapdown.analysis.cli.Commands
+        The command registry.
+    """
     commands.add("lyapunov", _run, "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))", group="derive")

@@ -1,50 +1,106 @@
-"""``strapdown stability``: poles, damping and Schuler behaviour of a corrected stage."""
+"""``strapdown stability``: poles, damping and Schuler behaviour of a corrected stage (Plotnikov 1999).
+
+The gains come from ``--k``/``--l`` (the loop gains of the (1.4) stage), from
+``--schuler`` (k = 0, l = g/R), or from a requested loop
+``--natural-frequency-rad-s``/``--damping`` (the stage gains k, l for the
+chosen ``--reference`` are printed as well).  The warm path imports neither
+SymPy nor the derivations: the transfer function comes from generated code
+cached on disk (:mod:`strapdown.analysis.core.cache`).
+"""
 
 from __future__ import annotations
 
 from . import Result
 
+_G, _R = 9.81, 6.371e6
+
+
+def _loop(args):
+    from ..core.validation import as_float, nonnegative, positive
+    from ..multistage.tilt_loop import StageLoop
+
+    g = positive(args.gravity_m_s2, "--gravity-m-s2")
+    r = positive(args.earth_radius, "--earth-radius")
+    manual = args.k is not None or args.l is not None
+    design = args.natural_frequency_rad_s is not None or args.damping is not None
+    if sum((bool(args.schuler), manual, design)) > 1:
+        raise ValueError("Expected one of `--schuler`, `--k`/`--l` or `--natural-frequency-rad-s`/`--damping`, got more than one")
+    if args.schuler:
+        return StageLoop.schuler(g, r), None
+    if design:
+        from ..multistage.gain_design import design_gains
+
+        if args.natural_frequency_rad_s is None or args.damping is None:
+            raise ValueError("Expected both `--natural-frequency-rad-s` and `--damping`, got only one")
+        gains = design_gains(positive(args.natural_frequency_rad_s, "--natural-frequency-rad-s"), nonnegative(args.damping, "--damping"), reference=args.reference)
+        return gains.loop(g, r), gains
+    if args.k is None or args.l is None:
+        raise ValueError("Expected `--k` and `--l` (or `--schuler`, or `--natural-frequency-rad-s` and `--damping`), got " + ("neither" if not manual else "only one"))
+    loop = StageLoop(as_float(args.k, "--k"), as_float(args.l, "--l"), g, r)
+    if loop.stability == "unstable":
+        poles = ", ".join(f"{z.real:+.3g}{z.imag:+.3g}j" for z in loop.poles())
+        raise ValueError(f"Expected `--k` and `--l` giving a stable loop (both >= 0, not both 0), got k = {loop.k:g} 1/s, l = {loop.l:g} 1/s²: poles {poles}, the tilt error grows without bound")
+    return loop, None
+
 
 def _run(args) -> Result:
-    from ..multistage.stage_control import StageLoop
+    from ..core.validation import positive
 
-    if args.schuler:
-        if args.k is not None or args.l is not None:
-            raise ValueError("Expected either `--schuler` or `--k`/`--l`, got both")
-        loop = StageLoop.schuler(args.g, args.R)
-    else:
-        if args.k is None or args.l is None:
-            raise ValueError("Expected `--k` and `--l` (or `--schuler`), got " + ("neither" if args.k is None and args.l is None else "only one"))
-        loop = StageLoop(args.k, args.l, args.g, args.R)
-    data = loop.summary(args.accel, args.accel_duration, horizon=args.horizon)
-    data["schuler_tuning"] = bool(args.schuler)
-    poles = ", ".join(f"{re:+.4g}{im:+.4g}j" for re, im in data["poles"])
-    text = "\n".join(
-        [
-            f"stage gains: k = {loop.k:g} 1/s, l = {loop.l:g} 1/s²  (g = {loop.gravity:g} m/s², R = {loop.earth_radius:g} m)",
-            f"poles: {poles}",
-            "damping: " + ", ".join(f"{z:.4g}" for z in data["damping"]),
-            "natural frequency: " + ", ".join(f"{w:.4g}" for w in data["natural_frequency_rad_s"]) + " rad/s",
-            f"stability: {data['stability']}",
-            f"Schuler period: {data['schuler_period_s']:.1f} s ({data['schuler_period_s'] / 60:.2f} min)",
-            f"peak tilt error for {data['accel_m_s2']:g} m/s² over {data['accel_duration_s']:g} s "
-            f"(horizon {data['horizon_s']:.0f} s): {data['peak_tilt_error_rad']:.4g} rad",
-        ]
-    )
-    return Result(data, text)
+    loop, gains = _loop(args)
+    accel_duration = positive(args.accel_duration, "--accel-duration")
+    horizon = None if args.horizon is None else positive(args.horizon, "--horizon")
+    if horizon is not None and horizon < accel_duration:
+        raise ValueError(f"Expected `--horizon` >= `--accel-duration` ({accel_duration:g} s), got {horizon:g} s")
+    s = loop.summary(args.accel_m_s2, accel_duration, horizon=horizon)
+    data = {
+        "k_per_s": s.k,
+        "l_per_s2": s.l,
+        "g_m_s2": s.gravity,
+        "R_m": s.earth_radius,
+        "schuler_period_s": s.schuler_period,
+        "poles": [[z.real + 0.0, z.imag + 0.0] for z in s.poles],
+        "damping": list(s.damping),
+        "natural_frequency_rad_s": list(s.natural_frequency),
+        "stability": s.stability,
+        "accel_m_s2": s.accel,
+        "accel_duration_s": s.accel_duration,
+        "horizon_s": s.horizon,
+        "peak_tilt_error_rad": s.peak_tilt_error,
+        "schuler_tuning": bool(args.schuler),
+    }
+    lines = [f"loop gains: K = {s.k:g} 1/s, L = {s.l:g} 1/s²  (g = {s.gravity:g} m/s², R = {s.earth_radius:g} m)"]
+    if gains is not None:
+        data["design"] = {"reference": gains.reference, "c": gains.c, "stage_k_per_s": gains.k, "stage_l_per_s2": gains.l}
+        lines.append(f"stage gains for the reference {gains.reference!r} (c = {gains.c:g}): k = {gains.k:.6g} 1/s, l = {gains.l:.6g} 1/s²")
+    poles = ", ".join(f"{z.real:+.4g}{z.imag:+.4g}j" for z in s.poles)
+    lines += [
+        f"poles: {poles}",
+        "damping: " + ", ".join(f"{z:.4g}" for z in s.damping),
+        "natural frequency: " + ", ".join(f"{w:.4g}" for w in s.natural_frequency) + " rad/s",
+        f"stability: {s.stability}",
+        f"Schuler period: {s.schuler_period:.1f} s ({s.schuler_period / 60:.2f} min)",
+        f"peak tilt error for {s.accel:g} m/s² over {s.accel_duration:g} s (horizon {s.horizon:.0f} s): {s.peak_tilt_error:.4g} rad",
+    ]
+    return Result(data, "\n".join(lines))
 
 
 def register(commands) -> None:
-    p = commands.add(
-        "stability",
-        _run,
-        "poles, damping, stability and peak tilt error of a corrected attitude stage (Plotnikov 1999)",
-    )
-    p.add_argument("--k", type=float, help="position-correction gain k [1/s]")
-    p.add_argument("--l", type=float, help="integral-correction gain l [1/s²]")
-    p.add_argument("--schuler", action="store_true", help="Schuler tuning: k = 0, l = g/R")
-    p.add_argument("--accel", type=float, default=20.0, help="horizontal acceleration A [m/s²] (default 20)")
+    """Add ``strapdown stability``.
+
+    Parameters
+    ----------
+    commands : strapdown.analysis.cli.Commands
+        The command registry.
+    """
+    p = commands.add("stability", _run, "poles, damping, stability and peak tilt error of a corrected attitude stage (Plotnikov 1999)")
+    p.add_argument("--k", type=float, help="loop position gain k [1/s] (no default; with --l)")
+    p.add_argument("--l", type=float, help="loop integral gain l [1/s²] (no default; with --k)")
+    p.add_argument("--schuler", action="store_true", help="Schuler tuning: k = 0, l = g/R (default: off)")
+    p.add_argument("--natural-frequency-rad-s", type=float, help="design: natural frequency ω_n of the tilt loop [rad/s] (no default; with --damping)")
+    p.add_argument("--damping", type=float, help="design: damping ratio ζ [-] (no default; with --natural-frequency-rad-s)")
+    p.add_argument("--reference", choices=("pure", "tilt"), default="pure", help="design: accelerometer quaternion of the stage, (1.4) 'pure' (c = 2) or (1.10) 'tilt' (c = 1) (default: pure)")
+    p.add_argument("--accel-m-s2", type=float, default=20.0, help="horizontal acceleration A [m/s²] (default 20)")
     p.add_argument("--accel-duration", type=float, default=20.0, help="duration T of the acceleration [s] (default 20)")
     p.add_argument("--horizon", type=float, default=None, help="end of the response [s] (default T + 2 Schuler periods)")
-    p.add_argument("--g", type=float, default=9.81, help="gravity g [m/s²] (default 9.81)")
-    p.add_argument("--R", type=float, default=6.371e6, help="Earth radius R [m] (default 6.371e6)")
+    p.add_argument("--gravity-m-s2", type=float, default=_G, help=f"gravity g [m/s²] (default {_G:g})")
+    p.add_argument("--earth-radius", type=float, default=_R, help=f"Earth radius R [m] (default {_R:g})")

@@ -19,6 +19,7 @@ __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
     "DEG_PER_H_TO_RAD_PER_S",
     "SECONDS_PER_HOUR",
+    "STANDARD_GRAVITY",
     "ARCSEC_PER_RAD",
     "deg",
     "rad",
@@ -27,6 +28,8 @@ __all__ = [
 ]
 
 SECONDS_PER_HOUR = 3600.0
+#: Standard gravity g₀ [m/s²] (for specific forces quoted in g or µg).
+STANDARD_GRAVITY = 9.80665
 #: One degree [rad].
 DEG = math.pi / 180.0
 RAD_PER_DEG = DEG

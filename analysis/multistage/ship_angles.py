@@ -104,6 +104,16 @@ def quat_to_angles(q):
 
 
 def wrap_angle(a):
-    """Wrap angles to (−π, π] [rad]."""
+    """Wrap angles to (−π, π] [rad].
+
+    Parameters
+    ----------
+    a : array_like
+        Angles [rad].
+
+    Returns
+    -------
+    ndarray
+    """
     a = np.asarray(a, dtype=float)
     return np.pi - np.mod(np.pi - a, 2.0 * np.pi)

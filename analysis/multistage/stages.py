@@ -18,56 +18,58 @@ How μ⁺ is formed (``Stage.reference``):
     is corrected and the kinematic term is kept.
 ``"pure"``
     the pure quaternion (1.4) of load factors, ``M = {0, (f × e₂)/g}`` =
-    ``(0, −n₃, 0, n₁)`` as in (3.7), compared with ``2ν`` (c = 2) on the
-    horizontal components 1 and 3 only: the angles in M are whole angles, those
-    in ν half angles.
+    ``(0, −n₃, 0, n₁)`` as in (3.7): whole angles, compared with ``2ν`` of half
+    angles, hence c = 2; only the components 1 and 3 exist.
 ``"tilt"``
     the tilt quaternion (1.9)–(1.10) with ψ = 0, a unit quaternion of half
-    angles, so that the consistent factor is c = 1; corrected on components 1
-    and 3 only.  (With c = 2 the stage settles at half the tilt; the report
-    shows this numerically.)
+    angles, so that the consistent factor is c = 1 (with c = 2 the stage
+    settles at half the tilt).  The paper leaves open which components are
+    corrected: the horizontal ones, 1 and 3 (default), or all four.
 
 The integral is carried as the state ``y`` with ``y' = l (μ⁺ − cν)`` — the
-form of (3.1) — so that a gain switch (as at 600 s in section 5) leaves the
-accumulated integral correction in place.
+form of (3.1); what happens to it at a change of the gain schedule is the
+``switch`` of the stage (:data:`strapdown.analysis.multistage.stage_recursion.SWITCH_MODES`).
 
-Numerical scheme.  Each step of length h is a symmetric (Strang) splitting:
-half a step of the correction flow, half a step of the norm flow
-``ν' = ½ρ(1 − |ν|²)ν``, the kinematic flow over h, and the two half steps in
-reverse order.  The correction flow is linear with constant coefficients on a
-step and is integrated exactly (matrix exponential); the norm flow is solved in
-closed form (logistic); the kinematic flow is exact for the measured rotation
-increment.  The scheme is second order in h; the report shows the
-convergence study.  The recursion is sequential by nature and runs as one
-plain loop over floats; everything else is vectorised.
+Each stage is integrated by the splitting recursion of
+:mod:`strapdown.analysis.multistage.stage_recursion` (second order, compiled); the
+rest is vectorised.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import expm
 
 from ..core import quaternion as quat
 from ..core.validation import as_array, as_float, nonnegative, positive
+from .sensors import SensorData
 from .ship_angles import angles_to_quat, quat_to_angles, wrap_angle
-from .trajectory import Scenario, SensorData, sample
+from .stage_recursion import SWITCH_MODES, correction_map
+from .trajectory import Scenario, sample
 
 __all__ = [
+    "REFERENCES",
+    "ENGINES",
     "Stage",
+    "StagePeaks",
     "MultistageResult",
     "accelerometer_quaternion",
     "tilt_quaternion",
     "run_stage",
+    "recursion_inputs",
     "run_multistage",
     "plotnikov_1999_stages",
     "simulate",
 ]
 
-_REFERENCES = ("external", "pure", "tilt")
+#: How μ⁺ is formed (module docstring).
+REFERENCES = ("external", "pure", "tilt")
+#: Implementations of the stage recursion: numba-compiled, or the plain-Python reference.
+ENGINES = ("compiled", "python")
 _DEFAULT_C = {"external": 1.0, "pure": 2.0, "tilt": 1.0}
+_DEFAULT_COMPONENTS = {"external": (0, 1, 2, 3), "pure": (1, 3), "tilt": (1, 3)}
 
 
 @dataclass(frozen=True)
@@ -86,17 +88,27 @@ class Stage:
         The factor c of (1.5); by default 1 for "external" and "tilt", 2 for "pure".
     rho : float
         Norm-keeping gain ρ [1/s], >= 0.
+    components : tuple of int, optional
+        Corrected components of ν (0 … 3); by default (1, 3) for "pure" and
+        "tilt", all four for "external".  "pure" has only 1 and 3.
+    switch : {"carry", "rescale", "bumpless"}
+        What the integral state does at a change of the schedule: kept,
+        rescaled by ``l_new/l_old``, or shifted to keep the correction continuous.
 
     Examples
     --------
     >>> Stage(((0.0, 0.01, 5e-5),), "pure").c
     2.0
+    >>> Stage(((0.0, 0.01, 5e-5),), "tilt", components=(0, 1, 2, 3)).components
+    (0, 1, 2, 3)
     """
 
     schedule: tuple
     reference: str = "pure"
     c: float | None = None
     rho: float = 1.0
+    components: tuple | None = None
+    switch: str = "carry"
 
     def __post_init__(self):
         rows = self.schedule
@@ -118,16 +130,51 @@ class Stage:
         if any(b[0] <= a[0] for a, b in zip(clean, clean[1:])):
             raise ValueError("Expected `schedule` start times to increase strictly")
         object.__setattr__(self, "schedule", tuple(clean))
-        if self.reference not in _REFERENCES:
-            raise ValueError(f"Expected `reference` in {_REFERENCES}, got {self.reference!r}")
+        if self.reference not in REFERENCES:
+            raise ValueError(f"Expected `reference` in {REFERENCES}, got {self.reference!r}")
         c = _DEFAULT_C[self.reference] if self.c is None else positive(self.c, "c")
         object.__setattr__(self, "c", c)
         object.__setattr__(self, "rho", nonnegative(self.rho, "rho"))
+        comps = _DEFAULT_COMPONENTS[self.reference] if self.components is None else self.components
+        try:
+            comps = tuple(sorted({int(j) for j in comps}))
+        except (TypeError, ValueError):
+            raise TypeError(f"Expected `components` to be a sequence of component indices 0..3, got {self.components!r}") from None
+        if not comps or any(j not in (0, 1, 2, 3) for j in comps):
+            raise ValueError(f"Expected `components` among 0, 1, 2, 3 (at least one), got {self.components!r}")
+        if self.reference == "pure" and not set(comps) <= {1, 3}:
+            raise ValueError(f"Expected `components` within (1, 3) for the reference 'pure' (the quaternion (1.4) has no components 0 and 2), got {comps}")
+        object.__setattr__(self, "components", comps)
+        if self.switch not in SWITCH_MODES:
+            raise ValueError(f"Expected `switch` in {SWITCH_MODES}, got {self.switch!r}")
+        if self.switch == "rescale" and any(row[2] == 0.0 for row in clean[:-1]):
+            raise ValueError("Expected a nonzero integral gain `l` before every change of the schedule with switch 'rescale' (the rescaling divides by it)")
 
     @classmethod
     def constant(cls, k, l, reference: str = "pure", **kw) -> Stage:
-        """A stage with fixed gains k [1/s], l [1/s²]."""
+        """A stage with fixed gains.
+
+        Parameters
+        ----------
+        k : float
+            Position gain [1/s].
+        l : float
+            Integral gain [1/s²].
+        reference : str
+            As for :class:`Stage`.
+        **kw
+            Other fields of :class:`Stage`.
+
+        Returns
+        -------
+        Stage
+        """
         return cls(((0.0, k, l),), reference, **kw)
+
+    @property
+    def angle_factor(self) -> float:
+        """How many half angles of ν one unit of μ⁺ carries: 2 for "pure" (whole angles), 1 otherwise."""
+        return 2.0 if self.reference == "pure" else 1.0
 
     @property
     def effective_gains(self) -> tuple:
@@ -137,6 +184,11 @@ class Stage:
         (ν carries half angles); for the (1.4) stage with c = 2 they are k and l.
         """
         return tuple((t, k * self.c / 2.0, l * self.c / 2.0) for t, k, l in self.schedule)
+
+    @property
+    def static_gain(self) -> float:
+        """Steady-state estimate per unit of true tilt: ``a/c`` with a = :attr:`angle_factor` (1 when consistent)."""
+        return self.angle_factor / self.c
 
 
 # ---------------------------------------------------------------------------
@@ -191,116 +243,19 @@ def tilt_quaternion(force):
 # ---------------------------------------------------------------------------
 # One stage
 # ---------------------------------------------------------------------------
-def _correction_map(k, l, c, tau):
-    """Exact flow over ``tau`` of ``v' = ½(k(m − cv) + y)``, ``y' = l(m − cv)`` (m frozen).
-
-    Returns the 2×2 transition matrix and the 2-vector multiplying m.
-    """
-    a = np.array([[-0.5 * k * c, 0.5, 0.5 * k], [-l * c, 0.0, l], [0.0, 0.0, 0.0]])
-    e = expm(a * tau)
-    return (e[0, 0], e[0, 1], e[1, 0], e[1, 1], e[0, 2], e[1, 2])
-
-
-def _segments(schedule, n_steps, step):
-    """Step-index ranges of each schedule row (switches rounded to the grid)."""
+def _segments(schedule, n_steps, step) -> np.ndarray:
+    """First step of each schedule row (switches rounded to the grid), and N."""
     starts = [min(n_steps, int(round(t / step))) for t, _, _ in schedule] + [n_steps]
-    return [(starts[i], starts[i + 1]) for i in range(len(schedule))]
+    return np.array(starts, dtype=np.int64)
 
 
-def _loop_horizontal(nu, dq, target, segments, maps, rho, step):
-    """Splitting recursion with correction on components 1 and 3 (references "pure", "tilt").
-
-    ``target`` holds (m1, m3) per step.  Sequential by nature; plain floats for speed.
-    """
-    n0, n1, n2, n3 = nu
-    y1 = y3 = 0.0
-    out = [(n0, n1, n2, n3)]
-    outy = [(0.0, 0.0)]
-    grow = math.exp(rho * step * 0.5)
-    sqrt = math.sqrt
-    norm_flow = rho > 0.0
-    for (i0, i1), (e11, e12, e21, e22, f1, f2) in zip(segments, maps):
-        for n in range(i0, i1):
-            m1, m3 = target[n]
-            a1 = e11 * n1 + e12 * y1 + f1 * m1
-            y1 = e21 * n1 + e22 * y1 + f2 * m1
-            a3 = e11 * n3 + e12 * y3 + f1 * m3
-            y3 = e21 * n3 + e22 * y3 + f2 * m3
-            a0, a2 = n0, n2
-            if norm_flow:
-                r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
-                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
-                a0, a1, a2, a3 = a0 * f, a1 * f, a2 * f, a3 * f
-            b0, b1, b2, b3 = dq[n]
-            c0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
-            c1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
-            c2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
-            c3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
-            if norm_flow:
-                r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
-                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
-                c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
-            n0, n2 = c0, c2
-            n1 = e11 * c1 + e12 * y1 + f1 * m1
-            y1 = e21 * c1 + e22 * y1 + f2 * m1
-            n3 = e11 * c3 + e12 * y3 + f1 * m3
-            y3 = e21 * c3 + e22 * y3 + f2 * m3
-            out.append((n0, n1, n2, n3))
-            outy.append((y1, y3))
-    nu_out = np.array(out)
-    y_out = np.zeros_like(nu_out)
-    y_out[:, [1, 3]] = np.array(outy)
-    return nu_out, y_out
-
-
-def _loop_external(nu, dq, ref, segments, maps, rho, step):
-    """Splitting recursion of the first variant: every component corrected toward ``ref``,
-    with the exact kinematic step ``ν ← μ_{n+1} + (ν − μ_n)∘Δq`` of (1.5)."""
-    v = list(nu)
-    y = [0.0, 0.0, 0.0, 0.0]
-    out = [tuple(v)]
-    outy = [tuple(y)]
-    grow = math.exp(rho * step * 0.5)
-    sqrt = math.sqrt
-    norm_flow = rho > 0.0
-    for (i0, i1), (e11, e12, e21, e22, f1, f2) in zip(segments, maps):
-        for n in range(i0, i1):
-            p, q = ref[n], ref[n + 1]
-            for j in range(4):
-                vj, yj, mj = v[j], y[j], p[j]
-                v[j] = e11 * vj + e12 * yj + f1 * mj
-                y[j] = e21 * vj + e22 * yj + f2 * mj
-            a0, a1, a2, a3 = v
-            if norm_flow:
-                r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
-                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
-                a0, a1, a2, a3 = a0 * f, a1 * f, a2 * f, a3 * f
-            a0, a1, a2, a3 = a0 - p[0], a1 - p[1], a2 - p[2], a3 - p[3]
-            b0, b1, b2, b3 = dq[n]
-            c0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3 + q[0]
-            c1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2 + q[1]
-            c2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1 + q[2]
-            c3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0 + q[3]
-            if norm_flow:
-                r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
-                f = sqrt(grow / (1.0 - r + r * grow))  # exact norm flow over h/2
-                c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
-            v = [c0, c1, c2, c3]
-            for j in range(4):
-                vj, yj, mj = v[j], y[j], q[j]
-                v[j] = e11 * vj + e12 * yj + f1 * mj
-                y[j] = e21 * vj + e22 * yj + f2 * mj
-            out.append(tuple(v))
-            outy.append(tuple(y))
-    return np.array(out), np.array(outy)
-
-
-def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81, reference=None, initial=(1.0, 0.0, 0.0, 0.0)):
+def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81, reference=None, initial=(1.0, 0.0, 0.0, 0.0), engine: str = "compiled"):
     """Integrate one stage over a uniform grid.
 
     Parameters
     ----------
     stage : Stage
+        The stage.
     step : float
         Grid step h [s].
     rotation : array_like, shape (N, 4)
@@ -316,6 +271,9 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
         External attitude μ at the grid points (reference "external").
     initial : array_like, shape (4,)
         ν(t0).
+    engine : {"compiled", "python"}
+        The numba-compiled recursion, or the plain-Python reference
+        (:mod:`strapdown.analysis.multistage.stage_recursion`).
 
     Returns
     -------
@@ -328,37 +286,91 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
     ------
     ValueError
         For missing or mis-shaped inputs.
+    TypeError
+        If ``stage`` is not a Stage.
+
+    References
+    ----------
+    Plotnikov (1999), eqs. (1.5), (2.1).
+    """
+    from . import stage_recursion
+
+    if engine not in ENGINES:
+        raise ValueError(f"Expected `engine` in {ENGINES}, got {engine!r}")
+    args = recursion_inputs(stage, step, rotation, force, gravity=gravity, reference=reference, initial=initial)
+    loop = stage_recursion.stage_loop if engine == "compiled" else stage_recursion.stage_loop_python
+    return loop(*args)
+
+
+def recursion_inputs(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81, reference=None, initial=(1.0, 0.0, 0.0, 0.0)) -> tuple:
+    """The arguments of :func:`strapdown.analysis.multistage.stage_recursion.stage_loop` for one stage.
+
+    Parameters
+    ----------
+    stage, step, rotation, force, gravity, reference, initial
+        As for :func:`run_stage`.
+
+    Returns
+    -------
+    tuple
+        ``(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, gains, switch, c, rho, step)``.
+
+    Raises
+    ------
+    ValueError
+        For missing or mis-shaped inputs.
+    TypeError
+        If ``stage`` is not a Stage.
     """
     if not isinstance(stage, Stage):
         raise TypeError(f"Expected `stage` to be a Stage, got {type(stage).__name__}")
     h = positive(step, "step")
-    dq = as_array(rotation, "rotation", last=4)
+    dq = np.ascontiguousarray(as_array(rotation, "rotation", last=4))
     if dq.ndim != 2 or dq.shape[0] < 1:
         raise ValueError(f"Expected `rotation` with shape (N, 4), N >= 1, got shape {dq.shape}")
     n_steps = dq.shape[0]
-    nu0 = as_array(initial, "initial", last=4)
-    segments = _segments(stage.schedule, n_steps, h)
-    maps = [_correction_map(k, l, stage.c, 0.5 * h) for _, k, l in stage.schedule]
-    start = tuple(float(v) for v in nu0)
+    nu0 = as_array(initial, "initial", last=4).reshape(4)
     if stage.reference == "external":
         if reference is None:
             raise ValueError("Expected `reference` (the external attitude μ) for a stage with reference 'external', got None")
         ref = as_array(reference, "reference", last=4)
         if ref.shape != (n_steps + 1, 4):
             raise ValueError(f"Expected `reference` with shape ({n_steps + 1}, 4), got shape {ref.shape}")
-        return _loop_external(start, dq.tolist(), ref.tolist(), segments, maps, stage.rho, h)
-    if force is None:
-        raise ValueError(f"Expected `force` for a stage with reference {stage.reference!r}, got None")
-    f = as_array(force, "force", last=3)
-    if f.shape != (n_steps, 3):
-        raise ValueError(f"Expected `force` with shape ({n_steps}, 3), got shape {f.shape}")
-    m = accelerometer_quaternion(f, gravity) if stage.reference == "pure" else tilt_quaternion(f)
-    return _loop_horizontal(start, dq.tolist(), m[:, [1, 3]].tolist(), segments, maps, stage.rho, h)
+        ref_start, ref_end = np.ascontiguousarray(ref[:-1]), np.ascontiguousarray(ref[1:])
+    else:
+        if force is None:
+            raise ValueError(f"Expected `force` for a stage with reference {stage.reference!r}, got None")
+        f = as_array(force, "force", last=3)
+        if f.shape != (n_steps, 3):
+            raise ValueError(f"Expected `force` with shape ({n_steps}, 3), got shape {f.shape}")
+        m = accelerometer_quaternion(f, gravity) if stage.reference == "pure" else tilt_quaternion(f)
+        ref_start = ref_end = np.ascontiguousarray(m)
+    mask = np.array([j in stage.components for j in range(4)])
+    maps = np.array([correction_map(k, l, stage.c, 0.5 * h) for _, k, l in stage.schedule])
+    gains = np.array([(k, l) for _, k, l in stage.schedule], dtype=float)
+    return (nu0, dq, ref_start, ref_end, mask, stage.reference == "external", _segments(stage.schedule, n_steps, h), maps, gains, SWITCH_MODES.index(stage.switch), stage.c, stage.rho, h)
 
 
 # ---------------------------------------------------------------------------
 # The cascade
 # ---------------------------------------------------------------------------
+class StagePeaks(NamedTuple):
+    """Largest absolute angle errors after one stage of the cascade [rad].
+
+    Attributes
+    ----------
+    yaw, pitch, roll : float
+        Peaks of |Δψ|, |Δθ|, |Δγ|.
+    tilt : float
+        Peak of √(Δθ² + Δγ²).
+    """
+
+    yaw: float
+    pitch: float
+    roll: float
+    tilt: float
+
+
 @dataclass(frozen=True)
 class MultistageResult:
     """Outcome of a multistage run.
@@ -366,6 +378,7 @@ class MultistageResult:
     Attributes
     ----------
     time : ndarray, shape (N+1,)
+        Grid [s].
     stages : ndarray, shape (m, N+1, 4)
         Normalised stage quaternions ν, ν_1, …, ν_{m−1}.
     composite : ndarray, shape (m, N+1, 4)
@@ -373,7 +386,7 @@ class MultistageResult:
     errors : ndarray, shape (m, N+1, 3)
         Angle errors (Δψ, Δθ, Δγ) = estimate − truth after 1, …, m stages [rad].
     truth : ndarray, shape (N+1, 3)
-        True (ψ, θ, γ) [rad].
+        True (ψ, θ, γ) relative to η [rad].
     """
 
     time: np.ndarray
@@ -382,14 +395,42 @@ class MultistageResult:
     errors: np.ndarray
     truth: np.ndarray
 
-    def peak(self, since: float = 0.0) -> np.ndarray:
-        """Largest |error| per stage and angle for t >= ``since``, shape (m, 3) [rad]."""
-        sel = self.time >= since
+    def peak(self, since: float = 0.0, until: float = np.inf) -> np.ndarray:
+        """Largest |error| per stage and angle for ``since <= t <= until``.
+
+        Parameters
+        ----------
+        since, until : float
+            Time window [s].
+
+        Returns
+        -------
+        ndarray, shape (m, 3)
+            [rad].
+        """
+        sel = (self.time >= since) & (self.time <= until)
         return np.abs(self.errors[:, sel, :]).max(axis=1)
 
     def tilt(self) -> np.ndarray:
         """Tilt error magnitude √(Δθ² + Δγ²) per stage, shape (m, N+1) [rad]."""
         return np.hypot(self.errors[..., 1], self.errors[..., 2])
+
+    def peaks(self, since: float = 0.0, until: float = np.inf) -> tuple:
+        """:class:`StagePeaks` after each stage for ``since <= t <= until``.
+
+        Parameters
+        ----------
+        since, until : float
+            Time window [s].
+
+        Returns
+        -------
+        tuple of StagePeaks
+        """
+        sel = (self.time >= since) & (self.time <= until)
+        p = np.abs(self.errors[:, sel, :]).max(axis=1)
+        tilt = self.tilt()[:, sel].max(axis=1)
+        return tuple(StagePeaks(float(a), float(b), float(c), float(d)) for (a, b, c), d in zip(p, tilt))
 
 
 def _half(dq):
@@ -397,20 +438,35 @@ def _half(dq):
     return quat.rotvec_to_quat(0.5 * quat.quat_to_rotvec(dq, canonical=True, validate=False), validate=False)
 
 
-def run_multistage(data: SensorData, stages) -> MultistageResult:
+def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> MultistageResult:
     """Run the cascade (1.5), (2.1)–(2.4) on sampled signals and compose by (2.6).
+
+    The input of stage j+1 is the frame modelled by stage j, (2.2): its
+    increments ``ν_n ∘ Δq_n ∘ ν̄_{n+1}`` (the discrete form of
+    ``ω_η(1) = ν∘(ω − ω^(1))∘ν̄``) and the specific force re-projected with
+    the stage estimate at mid-step.
 
     Parameters
     ----------
     data : SensorData
-        Gyro increments and specific force of the body (see :func:`strapdown.analysis.multistage.trajectory.sample`).
+        Gyro increments and specific force of the body
+        (:func:`strapdown.analysis.multistage.trajectory.sample`).
     stages : sequence of Stage
         Stage 1 first.  Only stage 1 may use the reference "external"
         (fed with the true attitude).
+    engine : {"compiled", "python"}
+        Implementation of the stage recursion (:func:`run_stage`).
 
     Returns
     -------
     MultistageResult
+
+    Raises
+    ------
+    TypeError
+        For a wrong ``data`` or ``stages`` type.
+    ValueError
+        If a stage after the first uses the reference "external".
     """
     if not isinstance(data, SensorData):
         raise TypeError(f"Expected `data` to be a SensorData, got {type(data).__name__}")
@@ -425,13 +481,13 @@ def run_multistage(data: SensorData, stages) -> MultistageResult:
     nus, comps = [], []
     comp = None
     for j, stage in enumerate(stages):
-        nu, _ = run_stage(stage, data.step, dq, force, gravity=g, reference=data.attitude if stage.reference == "external" else None)
+        ref = data.attitude if stage.reference == "external" else None
+        nu, _ = run_stage(stage, data.step, dq, force, gravity=g, reference=ref, engine=engine)
         nu = nu / np.linalg.norm(nu, axis=-1, keepdims=True)
         nus.append(nu)
         comp = nu if comp is None else quat.multiply(nu, comp)
         comps.append(comp)
         if j + 1 < len(stages):
-            # Input of the next stage: the frame modelled by this one, (2.2).
             half = _half(dq)
             mid = quat.multiply(nu[:-1], half) + quat.multiply(nu[1:], quat.conjugate(half))
             mid /= np.linalg.norm(mid, axis=-1, keepdims=True)
@@ -443,43 +499,81 @@ def run_multistage(data: SensorData, stages) -> MultistageResult:
     return MultistageResult(time=data.time, stages=np.array(nus), composite=comps, errors=errors, truth=data.angles)
 
 
-def plotnikov_1999_stages(gravity: float = 9.81, earth_radius: float = 6.371e6, *, switch_time: float = 600.0, rho: float = 1.0) -> tuple:
-    """The two stages of Plotnikov (1999), section 5.
+def plotnikov_1999_stages(
+    gravity: float = 9.81,
+    earth_radius: float = 6.371e6,
+    *,
+    switch_time: float | None = None,
+    rho: float = 1.0,
+    stage1_reference: str = "tilt",
+    stage1_c: float | None = None,
+    stage1_components: tuple | None = None,
+    switch: str = "carry",
+) -> tuple:
+    """The two stages of Plotnikov (1999), section 5, with the readings the text leaves open.
 
-    Stage 1: k = 0.01 s⁻¹, l = 0.5·10⁻⁴ s⁻², μ⁺ from (1.9)–(1.10).
-    Stage 2: k⁽¹⁾ = 1.5·10⁻² s⁻¹, l⁽¹⁾ = 1.25·10⁻⁴ s⁻² until ``switch_time``,
+    Stage 1: k = 0.01 s⁻¹, l = 0.5·10⁻⁴ s⁻² (printed), μ⁺ from (1.9)–(1.10).
+    Stage 2: k⁽¹⁾ = 1.5·10⁻² s⁻¹, l⁽¹⁾ = 1.25·10⁻⁴ s⁻² until the switch,
     then Schuler tuning k⁽¹⁾ = 0, l⁽¹⁾ = g/R; μ₁⁺ from (1.4).
 
     Parameters
     ----------
-    gravity, earth_radius : float
-        g [m/s²] and R [m] of the Schuler tuning.
-    switch_time : float
-        Gain switch of stage 2 [s].
+    gravity : float
+        g [m/s²] of the Schuler tuning.
+    earth_radius : float
+        R [m] of the Schuler tuning.
+    switch_time : float, optional
+        Gain switch of stage 2 [s]; default the printed 600 s.
     rho : float
         Norm-keeping gain ρ [1/s] of both stages (not given in the paper).
+    stage1_reference : {"tilt", "pure"}
+        μ⁺ of stage 1: (1.10) as section 5 says, or (1.4).
+    stage1_c : float, optional
+        c of stage 1; default the consistent one (1 for "tilt", 2 for "pure").
+    stage1_components : tuple of int, optional
+        Components corrected by stage 1; default (1, 3).
+    switch : {"carry", "rescale", "bumpless"}
+        What the integral state of stage 2 does at the switch.
+
+    Returns
+    -------
+    tuple of Stage
     """
+    from ...derivations.multistage.published import PRINTED_GAINS
+
     g = positive(gravity, "gravity")
     r = positive(earth_radius, "earth_radius")
-    t = positive(switch_time, "switch_time")
+    t = positive(PRINTED_GAINS.switch_time if switch_time is None else switch_time, "switch_time")
+    if stage1_reference not in ("tilt", "pure"):
+        raise ValueError(f"Expected `stage1_reference` in ('tilt', 'pure'), got {stage1_reference!r}")
+    k1, l1 = PRINTED_GAINS.stage1
+    k2, l2 = PRINTED_GAINS.stage2_before
     return (
-        Stage(((0.0, 0.01, 0.5e-4),), "tilt", rho=rho),
-        Stage(((0.0, 1.5e-2, 1.25e-4), (t, 0.0, g / r)), "pure", rho=rho),
+        Stage(((0.0, k1, l1),), stage1_reference, c=stage1_c, rho=rho, components=stage1_components),
+        Stage(((0.0, k2, l2), (t, 0.0, g / r)), "pure", rho=rho, switch=switch),
     )
 
 
-def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.02, rng=0) -> MultistageResult:
+def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.02, rng=None, engine: str = "compiled") -> MultistageResult:
     """Sample ``scenario`` and run the cascade ``stages`` (defaults: section 5 of Plotnikov 1999).
 
     Parameters
     ----------
     scenario : Scenario, optional
+        Default :class:`strapdown.analysis.multistage.trajectory.Scenario`.
     stages : sequence of Stage, optional
+        Default :func:`plotnikov_1999_stages`.
     step : float
         Grid step h [s].
-    rng : numpy.random.Generator, int or None
+    rng : numpy.random.Generator, int, SeedSequence or None
         Sensor-noise source.
+    engine : {"compiled", "python"}
+        Implementation of the stage recursion.
+
+    Returns
+    -------
+    MultistageResult
     """
     scenario = Scenario() if scenario is None else scenario
     stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius) if stages is None else stages
-    return run_multistage(sample(scenario, step, rng=rng), stages)
+    return run_multistage(sample(scenario, step, rng=rng), stages, engine=engine)

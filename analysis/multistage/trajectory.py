@@ -1,12 +1,13 @@
 """True motion and sensor signals of the example of Plotnikov (1999), section 5.
 
-The body moves over a spherical, rotating Earth.  Its attitude is given by
-Krylov angles (:mod:`strapdown.analysis.multistage.ship_angles`) relative to the *azimuth-free horizontal
-frame* η of the paper: axis 2 up, axes 1 and 3 horizontal, and no absolute
-rotation about the vertical (so the absolute rate of η has components
-``(ω1, 0, ω3)``, as in (3.7)).  η coincides with the geographic frame
-``ζ = (north, up, east)`` at ``t = 0`` and then turns relative to it about the
-vertical at ``−Ω sin φ``.
+The body moves over the spherical, rotating Earth of
+:mod:`strapdown.analysis.multistage.earth`.  The stages estimate its attitude
+relative to the *azimuth-free horizontal frame* η of the paper: axis 2 up, axes
+1 and 3 horizontal, and no absolute rotation about the vertical.  η coincides
+with the geographic frame ζ = (north, up, east) at t = 0 and then turns
+relative to it about the vertical by the azimuth ``w(t) = −∫Ω sin φ dτ``
+(:func:`eta_azimuth`), so that its absolute rate ``(ω₁, 0, ω₃)`` has no
+vertical component, as in (3.7).
 
 Timeline (every constant is a field of :class:`Scenario`):
 
@@ -14,104 +15,94 @@ Timeline (every constant is a field of :class:`Scenario`):
 * from ``rocking_start``: rocking
   ``ψ = A_ψ E(t) sin(ϖt + φ_ψ)``, ``θ = A_θ E(t) sin(ϖt + φ_θ)``,
   ``γ = A_γ E(t) sin(ϖt + φ_γ)`` with the envelope
-  ``E(t) = exp(−d (t − t_r)) (1 − exp(−(t − t_r)/τ_on))``;
+  ``E(t) = exp(−d (t − t_d)) (1 − exp(−(t − t_r)/τ_on))`` for t > t_r;
 * from ``accel_start``: northward acceleration ``a`` for ``accel_duration``,
   then constant velocity.
 
-The printed envelope ``E = exp(−0.1 (t − 600))`` is ``≈ 4·10⁻¹⁸`` at the start
-of rocking (t = 1000 s), i.e. no rocking at all; the default reads the 600 as
-the rocking start and adds a smooth onset ``τ_on`` so that the yaw (phase π/2)
-does not jump.  Coriolis and centripetal accelerations are neglected, as in
-the paper's derivation (3.7) where ``V̇ = W``.
+The printed envelope is ``E = exp(−0.1 (t − 600))`` for t = 1000…5000 s, i.e.
+``d = 0.1 s⁻¹`` and ``t_d = 600 s``; it is ``≈ 4·10⁻¹⁸`` when rocking starts.
+The readings ``t_d = t_r`` (default) and ``d = 10⁻³ s⁻¹`` are both parameters.
+The onset factor (``τ_on``, not in the paper) keeps the yaw (phase π/2) from
+jumping by 0.2 rad.
 
-Sensors.  The gyro triad delivers rotation-vector increments over each step
-and the accelerometer triad the mean specific force over each step.  The ideal
-signals are exact (the attitude is known in closed form, the frame rotation is
-integrated by 3-point Gauss–Legendre quadrature); the errors are a scale
-factor, a constant bias (gyro drift) and white noise drawn from a seeded
-generator.
+Truth models (``Scenario.truth``):
+
+``"rotating-earth"`` (default)
+    The body is fixed to the Earth while at rest; the rocking angles are
+    Krylov angles relative to ζ, so the yaw relative to η grows by
+    ``Ω sin φ t``.  Gyros and accelerometers see the same motion: the gyro
+    increments are those of the exact inertial attitude, and the specific
+    force includes the Coriolis and centripetal terms
+    (:func:`strapdown.analysis.multistage.earth.specific_force_geographic`).
+    :func:`specific_force_residual` checks this independently.
+``"no-coriolis"``
+    The inconsistent model of earlier versions: the rocking angles are
+    taken relative to η (at rest the body turns with η, not with the Earth)
+    and the accelerometers see only ``(V̇, g, 0)``, without the Coriolis
+    specific force and V²/R, while the gyros see the Earth and transport rates.
+    Kept to show what the inconsistency does.
+
+Sensors (:mod:`strapdown.analysis.multistage.sensors`): the gyro increments are
+the rotation vectors of ``λ̄(t_n) ∘ λ(t_{n+1})`` for the exact inertial
+attitude λ; the accelerometers deliver the mean body-frame specific force over
+each step by 3-point Gauss–Legendre quadrature.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
+from ...derivations.multistage.published import SECTION5
 from ..core import quaternion as quat
-from ..core.validation import as_array, as_float, nonnegative, positive
-from .ship_angles import angles_to_quat
+from ..core.validation import as_float, nonnegative, positive
+from . import earth
+from .sensors import SensorData, SensorErrors, corrupt
+from .ship_angles import angles_to_quat, wrap_angle
 
-__all__ = ["SensorErrors", "Scenario", "SensorData", "sample", "GAUSS3"]
+__all__ = [
+    "TRUTH_MODELS",
+    "GAUSS3",
+    "Scenario",
+    "Truth",
+    "eta_azimuth",
+    "truth",
+    "grid",
+    "sample",
+    "ResidualCheck",
+    "specific_force_residual",
+]
+
+#: Truth models of :class:`Scenario` (module docstring).
+TRUTH_MODELS = ("rotating-earth", "no-coriolis")
 
 #: 3-point Gauss–Legendre nodes and weights on [0, 1].
 GAUSS3 = (
     np.array([0.5 - np.sqrt(0.15), 0.5, 0.5 + np.sqrt(0.15)]),
     np.array([5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0]),
 )
+_GL16 = tuple(0.5 * (v + 1.0) if i == 0 else 0.5 * v for i, v in enumerate(np.polynomial.legendre.leggauss(16)))
 
 
 def _triple(x, name) -> tuple:
-    arr = as_array(x, name)
+    arr = np.asarray(x, dtype=float)
     if arr.shape == ():
         arr = np.full(3, float(arr))
     if arr.shape != (3,):
         raise ValueError(f"Expected `{name}` to be a scalar or 3 components, got shape {arr.shape}")
-    return tuple(float(v) for v in arr)
-
-
-@dataclass(frozen=True)
-class SensorErrors:
-    """Gyro and accelerometer error model (per axis of the body frame x).
-
-    Parameters
-    ----------
-    gyro_scale : float or 3 floats
-        Gyro scale-factor error [-].
-    gyro_drift : float or 3 floats
-        Gyro bias (drift) [rad/s].
-    gyro_noise : float
-        Angle random walk: white rate noise density [rad/√s].
-    accel_scale : float or 3 floats
-        Accelerometer scale-factor error [-].
-    accel_bias : float or 3 floats
-        Accelerometer bias [m/s²].
-    accel_noise : float
-        Velocity random walk: white specific-force noise density [m/s/√s].
-
-    Examples
-    --------
-    >>> SensorErrors.plotnikov_1999().gyro_drift
-    (5e-08, -5e-08, 5e-08)
-    """
-
-    gyro_scale: tuple = (0.0, 0.0, 0.0)
-    gyro_drift: tuple = (0.0, 0.0, 0.0)
-    gyro_noise: float = 0.0
-    accel_scale: tuple = (0.0, 0.0, 0.0)
-    accel_bias: tuple = (0.0, 0.0, 0.0)
-    accel_noise: float = 0.0
-
-    def __post_init__(self):
-        for name in ("gyro_scale", "gyro_drift", "accel_scale", "accel_bias"):
-            object.__setattr__(self, name, _triple(getattr(self, name), name))
-        object.__setattr__(self, "gyro_noise", nonnegative(self.gyro_noise, "gyro_noise"))
-        object.__setattr__(self, "accel_noise", nonnegative(self.accel_noise, "accel_noise"))
-
-    @classmethod
-    def plotnikov_1999(cls) -> SensorErrors:
-        """The errors of Plotnikov (1999), section 5.
-
-        Scale factors 10⁻³ % for both triads; gyro drift 0.5·10⁻⁷ s⁻¹ and
-        accelerometer bias 10⁻³ m/s² "with different signs by component",
-        taken here as (+, −, +).  No noise is given in the paper.
-        """
-        return cls(gyro_scale=1e-5, gyro_drift=(0.5e-7, -0.5e-7, 0.5e-7), accel_scale=1e-5, accel_bias=(1e-3, -1e-3, 1e-3))
+    return tuple(as_float(v, name) for v in arr)
 
 
 @dataclass(frozen=True)
 class Scenario:
     """The motion of Plotnikov (1999), section 5, with every constant a parameter.
+
+    The defaults are the printed values
+    (:data:`strapdown.derivations.multistage.published.SECTION5`) except where
+    the text cannot be taken literally: the envelope origin (None: the start of
+    rocking, printed 600 s) and the onset time constant (not in the paper).
 
     Parameters
     ----------
@@ -120,7 +111,7 @@ class Scenario:
     latitude : float
         Initial latitude φ0 [rad], in (−π/2, π/2).
     gravity : float
-        Magnitude g of gravity [m/s²], > 0.
+        Plumb-bob gravity g [m/s²], > 0.
     earth_radius : float
         Earth radius R [m], > 0.
     earth_rate : float
@@ -135,6 +126,8 @@ class Scenario:
         Phases (φ_ψ, φ_θ, φ_γ) [rad].
     rocking_decay : float
         Envelope decay rate d [1/s], >= 0.
+    rocking_decay_origin : float or None
+        Time t_d where the decaying factor is 1 [s]; None: ``rocking_start``.
     rocking_onset : float
         Onset time constant τ_on of the envelope [s], >= 0 (0: abrupt start).
     accel_start : float
@@ -143,6 +136,8 @@ class Scenario:
         Its duration [s], >= 0.
     accel : float
         Its magnitude [m/s²].
+    truth : {"rotating-earth", "no-coriolis"}
+        Truth model (module docstring).
     sensors : SensorErrors
         Sensor errors.
 
@@ -153,20 +148,22 @@ class Scenario:
     0.0012409
     """
 
-    duration: float = 5000.0
-    latitude: float = float(np.radians(45.0))
+    duration: float = SECTION5.duration
+    latitude: float = float(np.radians(SECTION5.latitude_deg))
     gravity: float = 9.81
     earth_radius: float = 6.371e6
     earth_rate: float = 7.292115e-5
-    rocking_start: float = 1000.0
-    rocking_amplitude: tuple = (0.2, 0.1, 0.1)
-    rocking_frequency: float = float(np.pi)
-    rocking_phase: tuple = (0.5 * float(np.pi), 0.0, 0.0)
-    rocking_decay: float = 0.1
+    rocking_start: float = SECTION5.rest_end
+    rocking_amplitude: tuple = SECTION5.rocking_amplitude
+    rocking_frequency: float = SECTION5.rocking_frequency
+    rocking_phase: tuple = SECTION5.rocking_phase
+    rocking_decay: float = SECTION5.envelope_decay
+    rocking_decay_origin: float | None = None
     rocking_onset: float = 1.0
-    accel_start: float = 1200.0
-    accel_duration: float = 20.0
-    accel: float = 20.0
+    accel_start: float = SECTION5.accel_start
+    accel_duration: float = SECTION5.accel_duration
+    accel: float = SECTION5.accel
+    truth: str = "rotating-earth"
     sensors: SensorErrors = field(default_factory=SensorErrors.plotnikov_1999)
 
     def __post_init__(self):
@@ -184,10 +181,14 @@ class Scenario:
         set_(self, "rocking_frequency", as_float(self.rocking_frequency, "rocking_frequency"))
         set_(self, "rocking_phase", _triple(self.rocking_phase, "rocking_phase"))
         set_(self, "rocking_decay", nonnegative(self.rocking_decay, "rocking_decay"))
+        if self.rocking_decay_origin is not None:
+            set_(self, "rocking_decay_origin", as_float(self.rocking_decay_origin, "rocking_decay_origin"))
         set_(self, "rocking_onset", nonnegative(self.rocking_onset, "rocking_onset"))
         set_(self, "accel_start", as_float(self.accel_start, "accel_start"))
         set_(self, "accel_duration", nonnegative(self.accel_duration, "accel_duration"))
         set_(self, "accel", as_float(self.accel, "accel"))
+        if self.truth not in TRUTH_MODELS:
+            raise ValueError(f"Expected `truth` in {TRUTH_MODELS}, got {self.truth!r}")
         if not isinstance(self.sensors, SensorErrors):
             raise TypeError(f"Expected `sensors` to be a SensorErrors, got {type(self.sensors).__name__}")
 
@@ -203,112 +204,234 @@ class Scenario:
         ev = [self.rocking_start, self.accel_start, self.accel_start + self.accel_duration]
         return tuple(sorted(e for e in ev if 0.0 < e < self.duration))
 
-    # ------------------------------------------------------------ truth, vectorised in t
+    # ------------------------------------------------------------ motion, vectorised in t
     def north_velocity(self, t):
-        """Northward ground speed V(t) [m/s]."""
+        """Northward ground speed V(t) [m/s].
+
+        Parameters
+        ----------
+        t : array_like
+            Time [s].
+
+        Returns
+        -------
+        ndarray
+        """
         tau = np.clip(np.asarray(t, dtype=float) - self.accel_start, 0.0, self.accel_duration)
         return self.accel * tau
 
     def north_acceleration(self, t):
-        """Northward acceleration V'(t) [m/s²] (right-continuous)."""
+        """Northward acceleration V̇(t) [m/s²] (right-continuous).
+
+        Parameters
+        ----------
+        t : array_like
+            Time [s].
+
+        Returns
+        -------
+        ndarray
+        """
         t = np.asarray(t, dtype=float)
         on = (t >= self.accel_start) & (t < self.accel_start + self.accel_duration)
         return np.where(on, self.accel, 0.0)
 
     def latitude_at(self, t):
-        """Latitude φ(t) [rad] of the northward run on the sphere."""
+        """Latitude φ(t) [rad] of the northward run on the sphere.
+
+        Parameters
+        ----------
+        t : array_like
+            Time [s].
+
+        Returns
+        -------
+        ndarray
+        """
         t = np.asarray(t, dtype=float)
         a, ta, T = self.accel, self.accel_start, self.accel_duration
         tau = np.clip(t - ta, 0.0, T)
         dist = 0.5 * a * tau * tau + a * T * np.maximum(t - ta - T, 0.0)
         return self.latitude + dist / self.earth_radius
 
-    def angles(self, t):
-        """True Krylov angles (ψ, θ, γ) of the body relative to η [rad], shape (..., 3)."""
+    def envelope(self, t):
+        """Rocking envelope E(t) [-] (0 before ``rocking_start``).
+
+        Parameters
+        ----------
+        t : array_like
+            Time [s].
+
+        Returns
+        -------
+        ndarray
+        """
         t = np.asarray(t, dtype=float)
         tau = t - self.rocking_start
         on = tau > 0.0
         tau_p = np.where(on, tau, 0.0)
-        env = np.exp(-self.rocking_decay * tau_p)
+        origin = self.rocking_start if self.rocking_decay_origin is None else self.rocking_decay_origin
+        env = np.exp(-self.rocking_decay * (np.where(on, t, origin) - origin))
         if self.rocking_onset > 0.0:
             env = env * -np.expm1(-tau_p / self.rocking_onset)
-        env = np.where(on, env, 0.0)
-        amp, ph = np.asarray(self.rocking_amplitude), np.asarray(self.rocking_phase)
-        return amp * env[..., None] * np.sin(self.rocking_frequency * t[..., None] + ph)
+        return np.where(on, env, 0.0)
 
-    def attitude(self, t):
-        """True attitude μ(t) (body x → η), shape (..., 4)."""
-        a = self.angles(t)
-        return angles_to_quat(a[..., 0], a[..., 1], a[..., 2])
+    def rocking_angles(self, t):
+        """Rocking Krylov angles (ψ, θ, γ) [rad], shape (..., 3).
 
-    def _wander(self, grid):
-        """Azimuth a(t) of η in ζ on ``grid`` (a' = −Ω sin φ), by Gauss quadrature per interval."""
-        x, w = GAUSS3
-        h = np.diff(grid)
-        nodes = grid[:-1, None] + h[:, None] * x
-        inc = -(self.earth_rate * np.sin(self.latitude_at(nodes)) @ w) * h
-        return np.concatenate([[0.0], np.cumsum(inc)])
+        Relative to ζ for the truth model "rotating-earth", to η for "no-coriolis".
 
-    def frame_rate(self, t, wander):
-        """Absolute angular rate of η in η axes [rad/s] (vertical component 0).
+        Parameters
+        ----------
+        t : array_like
+            Time [s].
 
-        ``wander`` is the azimuth a(t) of η relative to ζ at the same times.
+        Returns
+        -------
+        ndarray
         """
-        lat = self.latitude_at(t)
-        w_geo = np.stack([self.earth_rate * np.cos(lat), 0.0 * lat, -self.north_velocity(t) / self.earth_radius], axis=-1)
-        return _about_up(-wander, w_geo)
-
-    def specific_force_eta(self, t, wander):
-        """Specific force in η axes [m/s²]: northward acceleration plus the reaction to gravity."""
-        a = self.north_acceleration(t)
-        f_geo = np.stack([a, 0.0 * a + self.gravity, 0.0 * a], axis=-1)
-        return _about_up(-wander, f_geo)
+        t = np.asarray(t, dtype=float)
+        amp, ph = np.asarray(self.rocking_amplitude), np.asarray(self.rocking_phase)
+        return amp * self.envelope(t)[..., None] * np.sin(self.rocking_frequency * t[..., None] + ph)
 
 
-def _about_up(angle, v):
-    """Rotate vectors ``v`` (..., 3) by ``angle`` about axis 2 (up)."""
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * v[..., 0] + s * v[..., 2], v[..., 1], -s * v[..., 0] + c * v[..., 2]], axis=-1)
+def eta_azimuth(scenario: Scenario, t):
+    """Azimuth w(t) of η relative to ζ about the vertical [rad]: ``w' = −Ω sin φ``, ``w(0) = 0``.
+
+    Closed form at rest and at constant velocity, 16-point Gauss–Legendre
+    quadrature over the acceleration (exact to round-off).
+
+    Parameters
+    ----------
+    scenario : Scenario
+    t : array_like
+        Time [s], >= 0.
+
+    Returns
+    -------
+    ndarray
+        ``v_ζ = q₂(w) ∘ v_η ∘ q̄₂(w)``.
+    """
+    sc = scenario
+    t = np.asarray(t, dtype=float)
+    ta, tb = sc.accel_start, sc.accel_start + sc.accel_duration
+    x, w = _GL16
+    lat_b = float(sc.latitude_at(tb))
+    rate_b = sc.accel * sc.accel_duration / sc.earth_radius  # φ' at constant velocity
+
+    def during(width):
+        return width * (np.sin(sc.latitude_at(ta + width[..., None] * x)) @ w)
+
+    full = float(during(np.array(sc.accel_duration)))
+
+    def antiderivative(tt):
+        # F(t) = ∫_{ta}^{t} sin φ dτ, piecewise; the quadrature only where ta < t < tb.
+        out = np.sin(sc.latitude) * (np.minimum(tt, ta) - ta)
+        inside = (tt > ta) & (tt < tb)
+        out = out + np.where(tt >= tb, full, 0.0)
+        if np.any(inside):
+            out[inside] += during(tt[inside] - ta)
+        d = np.maximum(tt - tb, 0.0)
+        return out + d * np.sin(lat_b + 0.5 * rate_b * d) * np.sinc(rate_b * d / (2.0 * np.pi))
+
+    return -sc.earth_rate * (antiderivative(np.atleast_1d(t)).reshape(t.shape) - antiderivative(np.zeros(1))[0])
 
 
-@dataclass(frozen=True)
-class SensorData:
-    """Sampled truth and sensor signals on a uniform grid.
+class Truth(NamedTuple):
+    """The true motion at given times (:func:`truth`).
 
     Attributes
     ----------
-    time : ndarray, shape (N+1,)
-        Grid t_n = n h [s].
-    step : float
-        h [s].
-    gyro : ndarray, shape (N, 3)
-        Measured rotation-vector increments of the body over [t_n, t_{n+1}] [rad].
-    accel : ndarray, shape (N, 3)
-        Measured mean specific force in x over [t_n, t_{n+1}] [m/s²].
-    attitude : ndarray, shape (N+1, 4)
-        True μ(t_n), body x → η.
-    angles : ndarray, shape (N+1, 3)
-        True (ψ, θ, γ)(t_n) [rad].
-    frame_rate : ndarray, shape (N+1, 3)
-        Absolute rate of η in η axes at t_n [rad/s].
-    velocity : ndarray, shape (N+1,)
-        Northward speed [m/s].
-    scenario : Scenario
+    attitude_inertial : ndarray, shape (..., 4)
+        λ: body x → inertial ξ.
+    attitude : ndarray, shape (..., 4)
+        μ: body x → η.
+    angles : ndarray, shape (..., 3)
+        Krylov angles (ψ, θ, γ) of μ [rad] (yaw wrapped to (−π, π]).
+    specific_force : ndarray, shape (..., 3)
+        Specific force in body axes [m/s²].
+    specific_force_geographic : ndarray, shape (..., 3)
+        Specific force in ζ (north, up, east) [m/s²].
+    latitude : ndarray
+        φ [rad].
+    velocity : ndarray
+        Northward ground speed [m/s].
+    eta_azimuth : ndarray
+        w [rad].
     """
 
-    time: np.ndarray
-    step: float
-    gyro: np.ndarray
-    accel: np.ndarray
+    attitude_inertial: np.ndarray
     attitude: np.ndarray
     angles: np.ndarray
-    frame_rate: np.ndarray
+    specific_force: np.ndarray
+    specific_force_geographic: np.ndarray
+    latitude: np.ndarray
     velocity: np.ndarray
-    scenario: Scenario
+    eta_azimuth: np.ndarray
+
+
+def truth(scenario: Scenario, t) -> Truth:
+    """The true attitude and specific force of ``scenario`` at times ``t``.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    t : array_like
+        Time [s].
+
+    Returns
+    -------
+    Truth
+
+    Raises
+    ------
+    TypeError
+        If ``scenario`` is not a Scenario.
+    """
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
+    sc = scenario
+    t = np.asarray(t, dtype=float)
+    lat, vel, wander, mu_geo, mu, angles, f_geo, f_body = _motion(sc, t)
+    lam = quat.multiply(earth.geographic_to_inertial(t, lat, np.zeros_like(lat), sc.earth_rate), mu_geo)
+    return Truth(lam, mu, angles, f_body, f_geo, lat, vel, wander)
+
+
+def _motion(sc: Scenario, t):
+    """Position, attitudes relative to ζ and η, and the specific force (everything but λ)."""
+    lat = sc.latitude_at(t)
+    vel = sc.north_velocity(t)
+    acc = sc.north_acceleration(t)
+    wander = eta_azimuth(sc, t)
+    rock = sc.rocking_angles(t)
+    q_rock = angles_to_quat(rock[..., 0], rock[..., 1], rock[..., 2])
+    if sc.truth == "rotating-earth":
+        mu_geo = q_rock
+        mu = quat.multiply(earth.axis_rotation(1, -wander), mu_geo)
+        angles = np.stack([wrap_angle(rock[..., 0] - wander), rock[..., 1], rock[..., 2]], axis=-1)
+        f_geo = earth.specific_force_geographic(lat, vel, acc, gravity=sc.gravity, earth_rate=sc.earth_rate, earth_radius=sc.earth_radius)
+    else:
+        mu = q_rock
+        mu_geo = quat.multiply(earth.axis_rotation(1, wander), mu)
+        angles = rock
+        f_geo = np.stack([acc, np.full_like(acc, sc.gravity), np.zeros_like(acc)], axis=-1)
+    f_body = quat.rotate(quat.conjugate(mu_geo), f_geo)
+    return lat, vel, wander, mu_geo, mu, angles, f_geo, f_body
 
 
 def grid(scenario: Scenario, step) -> np.ndarray:
     """Uniform time grid of step ``step`` that contains every event of ``scenario``.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    step : float
+        Grid step h [s].
+
+    Returns
+    -------
+    ndarray, shape (N+1,)
+        ``t_n = n h`` [s].
 
     Raises
     ------
@@ -334,8 +457,8 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     scenario : Scenario
     step : float
         Sampling interval h [s]; must divide the duration and put every event on the grid.
-    rng : numpy.random.Generator, int or None
-        Source of the sensor noise (two streams are spawned: gyro, accelerometer).
+    rng : numpy.random.Generator, int, SeedSequence or None
+        Source of the sensor noise (see :func:`strapdown.analysis.multistage.sensors.corrupt`).
 
     Returns
     -------
@@ -357,39 +480,99 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     t = grid(scenario, step)
     h = float(step)
     x, w = GAUSS3
-    nodes = t[:-1, None] + h * x  # (N, 3)
-    wander = scenario._wander(t)
-    wander_nodes = np.interp(nodes, t, wander)
+    at_grid = truth(scenario, t)
+    lam = at_grid.attitude_inertial
+    d_body = quat.multiply(quat.conjugate(lam[:-1]), lam[1:])
+    gyro = quat.quat_to_rotvec(d_body, canonical=True, validate=False)
+    f_nodes = _motion(scenario, t[:-1, None] + h * x)[-1]
+    accel = np.einsum("nkj,k->nj", f_nodes, w)
+    ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=at_grid.attitude, angles=at_grid.angles, velocity=at_grid.velocity, scenario=scenario)
+    if scenario.sensors.is_ideal:
+        return ideal
+    return corrupt(ideal, scenario.sensors, rng=rng)
 
-    # Rotation of η over each step, in η axes at its start (ω_η turns slowly).
-    rate_nodes = scenario.frame_rate(nodes, wander_nodes)  # (N, 3, 3)
-    d_eta = quat.rotvec_to_quat(np.einsum("nkj,k->nj", rate_nodes, w) * h)
-    mu = scenario.attitude(t)
-    # Body increment λ̄_n λ_{n+1} = μ̄_n ∘ Δε_n ∘ μ_{n+1}.
-    d_body = quat.multiply(quat.multiply(quat.conjugate(mu[:-1]), d_eta), mu[1:])
-    gyro_true = quat.quat_to_rotvec(d_body, canonical=True, validate=False)
 
-    f_eta = scenario.specific_force_eta(nodes, wander_nodes)
-    mu_nodes = scenario.attitude(nodes)
-    f_body = quat.rotate(quat.conjugate(mu_nodes), f_eta)
-    accel_true = np.einsum("nkj,k->nj", f_body, w)
+@dataclass(frozen=True)
+class ResidualCheck:
+    """Outcome of :func:`specific_force_residual`.
 
-    s = scenario.sensors
-    gyro_rng, accel_rng = np.random.default_rng(rng).spawn(2)
-    gyro = (1.0 + np.asarray(s.gyro_scale)) * gyro_true + np.asarray(s.gyro_drift) * h
-    if s.gyro_noise > 0.0:
-        gyro = gyro + s.gyro_noise * np.sqrt(h) * gyro_rng.standard_normal(gyro.shape)
-    accel = (1.0 + np.asarray(s.accel_scale)) * accel_true + np.asarray(s.accel_bias)
-    if s.accel_noise > 0.0:
-        accel = accel + s.accel_noise / np.sqrt(h) * accel_rng.standard_normal(accel.shape)
-    return SensorData(
-        time=t,
-        step=h,
-        gyro=gyro,
-        accel=accel,
-        attitude=mu,
-        angles=scenario.angles(t),
-        frame_rate=scenario.frame_rate(t, wander),
-        velocity=scenario.north_velocity(t),
-        scenario=scenario,
-    )
+    Attributes
+    ----------
+    times : ndarray, shape (K+1,)
+        Check points [s].
+    velocity_change : ndarray, shape (K, 3)
+        ``v_ξ(t_{j+1}) − v_ξ(t_j)`` from the motion [m/s].
+    integral : ndarray, shape (K, 3)
+        ``∫ (f_ξ + G) dt`` over the same intervals [m/s].
+    max_residual : float
+        Largest ``|velocity_change − integral|`` [m/s].
+    scale : float
+        Largest ``|integral|`` [m/s] (to judge the residual).
+    """
+
+    times: np.ndarray
+    velocity_change: np.ndarray
+    integral: np.ndarray
+    max_residual: float
+    scale: float
+
+
+def specific_force_residual(scenario: Scenario, times=None, *, max_interval: float = 10.0) -> ResidualCheck:
+    """Check the truth model: the inertial velocity integrates the specific force plus gravitation.
+
+    The inertial position and velocity of the body come from
+    :func:`strapdown.analysis.multistage.earth.inertial_velocity` (geometry
+    only); the specific force is the model's, in body axes, rotated to ξ with
+    the true inertial attitude λ; the gravitation is
+    :func:`strapdown.analysis.multistage.earth.gravitation`.  Between check
+    points the integral is taken by 16-point Gauss–Legendre quadrature on
+    sub-intervals of at most ``max_interval`` that do not straddle an event.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    times : array_like, optional
+        Check points [s], increasing; default every 100 s and every event.
+    max_interval : float
+        Longest quadrature sub-interval [s].
+
+    Returns
+    -------
+    ResidualCheck
+        For the truth model "rotating-earth" ``max_residual`` is at round-off;
+        for "no-coriolis" it shows the missing Coriolis and centripetal terms.
+
+    Raises
+    ------
+    ValueError
+        If ``times`` does not increase or ``max_interval`` is not positive.
+    """
+    sc = scenario
+    if times is None:
+        times = np.union1d(np.arange(0.0, sc.duration + 1e-9, 100.0), np.array(sc.events))
+    times = np.asarray(times, dtype=float)
+    if times.ndim != 1 or times.size < 2 or np.any(np.diff(times) <= 0):
+        raise ValueError("Expected `times` to be at least two increasing check points")
+    max_interval = positive(max_interval, "max_interval")
+    x, w = _GL16
+    breaks = np.union1d(times, np.array([e for e in sc.events if times[0] < e < times[-1]]))
+    pieces = []
+    for a, b in zip(breaks[:-1], breaks[1:]):
+        n = max(1, int(np.ceil((b - a) / max_interval)))
+        pieces += list(np.linspace(a, b, n + 1)[:-1])
+    starts = np.array(pieces)
+    ends = np.append(starts[1:], breaks[-1])
+    nodes = starts[:, None] + (ends - starts)[:, None] * x
+    tr = truth(sc, nodes)
+    f_inertial = quat.rotate(tr.attitude_inertial, tr.specific_force)
+    position = earth.inertial_position(nodes, tr.latitude, np.zeros_like(tr.latitude), sc.earth_rate, sc.earth_radius)
+    total = f_inertial + earth.gravitation(position, sc.gravity, sc.earth_rate)
+    piece_integrals = np.einsum("pkj,k->pj", total, w) * (ends - starts)[:, None]
+    owner = np.searchsorted(times, starts, side="right") - 1
+    integral = np.zeros((times.size - 1, 3))
+    np.add.at(integral, owner, piece_integrals)
+    lat = sc.latitude_at(times)
+    ground = np.stack([sc.north_velocity(times), np.zeros_like(times), np.zeros_like(times)], axis=-1)
+    v = earth.inertial_velocity(times, lat, np.zeros_like(lat), ground, sc.earth_rate, sc.earth_radius)
+    dv = np.diff(v, axis=0)
+    return ResidualCheck(times, dv, integral, float(np.abs(dv - integral).max()), float(np.abs(integral).max()))

@@ -32,22 +32,57 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
+from typing import NamedTuple
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
 
 from ..reproducible import reproducible_sympy
 
-__all__ = ["LyapunovDerivation", "derive", "symbols", "perturbation_rhs", "strict_bound_matrices"]
+__all__ = ["LyapunovSymbols", "SYMBOLS", "LyapunovDerivation", "derive", "perturbation_rhs", "strict_bound_matrices"]
 
 
-def symbols():
-    """The symbols: gains k, l, components of z, y and of the body rate ω."""
-    k, l = sp.symbols("k l", positive=True)
-    z = sp.symbols("z0:4", real=True)
-    y = sp.symbols("y0:4", real=True)
-    w = sp.symbols("omega1:4", real=True)
-    return k, l, z, y, w
+class LyapunovSymbols(NamedTuple):
+    """Symbols of the Lyapunov analysis (:data:`SYMBOLS`).
+
+    Attributes
+    ----------
+    k, l : sympy.Symbol
+        Position and integral gains (positive).
+    z : tuple of sympy.Symbol
+        Components of the perturbation z.
+    y : tuple of sympy.Symbol
+        Components of the integral correction y.
+    omega : tuple of sympy.Symbol
+        Components of the body rate ω.
+    epsilon : sympy.Symbol
+        Weight ε of the cross term of the strict Lyapunov function.
+    varpi : sympy.Symbol
+        Bound ϖ on |ω|.
+    s : sympy.Symbol
+        Laplace variable.
+    """
+
+    k: sp.Symbol
+    l: sp.Symbol
+    z: tuple
+    y: tuple
+    omega: tuple
+    epsilon: sp.Symbol
+    varpi: sp.Symbol
+    s: sp.Symbol
+
+
+#: The symbols of the Lyapunov analysis.
+SYMBOLS = LyapunovSymbols(
+    *sp.symbols("k l", positive=True),
+    sp.symbols("z0:4", real=True),
+    sp.symbols("y0:4", real=True),
+    sp.symbols("omega1:4", real=True),
+    *sp.symbols("epsilon varpi", positive=True),
+    sp.Symbol("s"),
+)
 
 
 def _q(c):
@@ -59,7 +94,21 @@ def _comps(q):
 
 
 def perturbation_rhs(k, l, z, y, w):
-    """Right-hand sides ``(z', y')`` of (3.1) as lists of components."""
+    """Right-hand sides ``(z', y')`` of (3.1) as lists of components.
+
+    Parameters
+    ----------
+    k, l : sympy.Expr
+        Gains.
+    z, y : sequence of 4 sympy.Expr
+        Perturbation and integral correction.
+    w : sequence of 3 sympy.Expr
+        Body rate ω.
+
+    Returns
+    -------
+    zdot, ydot : list of sympy.Expr
+    """
     zq, yq, wq = _q(z), _q(y), Quaternion(0, *w)
     zdot = (zq * wq - k * zq - yq) * sp.Rational(1, 2)
     ydot = l * zq
@@ -76,6 +125,15 @@ def strict_bound_matrices(k, l, eps, wbar):
 
     With ``|ω| ≤ ϖ`` and Cauchy–Schwarz, ``−W' ≥ [a b] M [a b]ᵀ`` and
     ``[a b] P₋ [a b]ᵀ ≤ W ≤ [a b] P₊ [a b]ᵀ`` for ``a = |z|``, ``b = |y|``.
+
+    Parameters
+    ----------
+    k, l : sympy.Expr
+        Gains.
+    eps : sympy.Expr
+        Weight ε of the cross term.
+    wbar : sympy.Expr
+        Bound ϖ on |ω|.
 
     Returns
     -------
@@ -136,6 +194,7 @@ class LyapunovDerivation:
     rate_roots: list
 
 
+@lru_cache(maxsize=1)
 @reproducible_sympy
 def derive() -> LyapunovDerivation:
     """Derive V, V', the LaSalle step, the strict function W and the rest rates.
@@ -144,7 +203,7 @@ def derive() -> LyapunovDerivation:
     ----------
     Plotnikov (1999), eqs. (3.1)–(3.4).
     """
-    k, l, z, y, w = symbols()
+    k, l, z, y, w = SYMBOLS.k, SYMBOLS.l, SYMBOLS.z, SYMBOLS.y, SYMBOLS.omega
     zdot, ydot = perturbation_rhs(k, l, z, y, w)
     zq, yq = _q(z), _q(y)
     zz, yy = zq * zq.conjugate(), yq * yq.conjugate()
@@ -158,7 +217,7 @@ def derive() -> LyapunovDerivation:
     # LaSalle: on {V' = 0} = {z = 0}, z' = −y/2, so invariance forces y = 0.
     lasalle = [sp.simplify(c.subs({zi: 0 for zi in z})) for c in zdot]
 
-    eps, wbar = sp.symbols("epsilon varpi", positive=True)
+    eps, wbar = SYMBOLS.epsilon, SYMBOLS.varpi
     zy = sum(a * b for a, b in zip(z, y))
     W = V + eps * zy
     Wdot = _along(W, states, rates)
@@ -171,7 +230,7 @@ def derive() -> LyapunovDerivation:
     eps_max = sp.simplify(sp.solve(sp.Eq(m.det(), 0), eps)[-1])
 
     # Rates at rest (ω = 0): det(sI − A) for the 8-dimensional linear system.
-    s = sp.Symbol("s")
+    s = SYMBOLS.s
     zero_w = {wi: 0 for wi in w}
     jac = sp.Matrix(rates).subs(zero_w).jacobian(states)
     charpoly = sp.factor(jac.charpoly(s).as_expr())

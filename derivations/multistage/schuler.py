@@ -40,20 +40,81 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 import sympy as sp
 from sympy.algebras.quaternion import Quaternion
 
 from ..reproducible import reproducible_sympy
 
-__all__ = ["SchulerDerivation", "derive", "krylov_quaternion", "accel_to_tilt_tf", "t", "s"]
+__all__ = ["SchulerSymbols", "SYMBOLS", "SchulerDerivation", "derive", "krylov_quaternion", "accel_to_tilt_tf"]
 
-t = sp.Symbol("t", real=True)
-s = sp.Symbol("s")
+
+class SchulerSymbols(NamedTuple):
+    """Symbols of the linearisation (:data:`SYMBOLS`).
+
+    Attributes
+    ----------
+    k, l : sympy.Symbol
+        Position and integral gains.
+    g, R : sympy.Symbol
+        Gravity and Earth radius.
+    t, s : sympy.Symbol
+        Time and the Laplace variable.
+    alpha, beta, chi : sympy.Function
+        Small stage-1 error angles about the axes 1, 2, 3 of η (functions of t).
+    psi1, theta1, gamma1 : sympy.Function
+        Krylov angles of ν₁ (3.6).
+    omega1, omega3 : sympy.Function
+        Horizontal absolute rate of η.
+    y1, y3 : sympy.Function
+        Integral states of the components 1 and 3.
+    n1, n3 : sympy.Function
+        Horizontal load factors W/g in η.
+    """
+
+    k: sp.Symbol
+    l: sp.Symbol
+    g: sp.Symbol
+    R: sp.Symbol
+    t: sp.Symbol
+    s: sp.Symbol
+    alpha: sp.Expr
+    beta: sp.Expr
+    chi: sp.Expr
+    psi1: sp.Expr
+    theta1: sp.Expr
+    gamma1: sp.Expr
+    omega1: sp.Expr
+    omega3: sp.Expr
+    y1: sp.Expr
+    y3: sp.Expr
+    n1: sp.Expr
+    n3: sp.Expr
+
+
+def _make_symbols() -> SchulerSymbols:
+    t = sp.Symbol("t", real=True)
+    names = ["alpha", "beta", "chi", "psi1", "theta1", "gamma1", "omega1", "omega3", "y1", "y3", "n1", "n3"]
+    return SchulerSymbols(*sp.symbols("k l g R", positive=True), t, sp.Symbol("s"), *(sp.Function(n, real=True)(t) for n in names))
+
+
+#: The symbols of the linearisation.
+SYMBOLS = _make_symbols()
 
 
 def krylov_quaternion(psi, theta, gamma) -> Quaternion:
-    """``q₂(ψ)∘q₃(θ)∘q₁(γ)``: eq. (3.6) as a SymPy quaternion."""
+    """``q₂(ψ)∘q₃(θ)∘q₁(γ)``: eq. (3.6) as a SymPy quaternion.
+
+    Parameters
+    ----------
+    psi, theta, gamma : sympy.Expr
+        Yaw, pitch and roll.
+
+    Returns
+    -------
+    sympy.algebras.quaternion.Quaternion
+    """
     q2 = Quaternion(sp.cos(psi / 2), 0, sp.sin(psi / 2), 0)
     q3 = Quaternion(sp.cos(theta / 2), 0, 0, sp.sin(theta / 2))
     q1 = Quaternion(sp.cos(gamma / 2), sp.sin(gamma / 2), 0, 0)
@@ -88,8 +149,6 @@ class SchulerDerivation:
         ``tf_accel`` at k = 0, l = g/R, simplified (0 exactly).
     characteristic : sympy.Expr
         ``s² + k s + l``.
-    symbols : dict
-        Name → symbol (k, l, g, R, and the functions of t).
     """
 
     W1: list
@@ -101,7 +160,6 @@ class SchulerDerivation:
     tf_accel_roll: sp.Expr
     schuler_residual: sp.Expr
     characteristic: sp.Expr
-    symbols: dict
 
 
 @lru_cache(maxsize=1)
@@ -113,10 +171,11 @@ def derive() -> SchulerDerivation:
     ----------
     Plotnikov (1999), eqs. (3.5)–(3.12).
     """
-    k, l, g, R = sp.symbols("k l g R", positive=True)
+    sym = SYMBOLS
+    k, l, g, R, t, s = sym.k, sym.l, sym.g, sym.R, sym.t, sym.s
     eps = sp.Symbol("epsilon")
     names = ["alpha", "beta", "chi", "psi1", "theta1", "gamma1", "omega1", "omega3", "y1", "y3", "n1", "n3"]
-    f = {n: sp.Function(n, real=True)(t) for n in names}
+    f = {n: getattr(sym, n) for n in names}
     small = ["alpha", "beta", "chi", "psi1", "theta1", "gamma1", "omega1", "omega3", "y1", "y3"]
     sc = {n: eps * f[n] if n in small else f[n] for n in names}
 
@@ -202,7 +261,6 @@ def derive() -> SchulerDerivation:
         tf_accel_roll=tf_accel_roll,
         schuler_residual=residual_schuler,
         characteristic=s**2 + k * s + l,
-        symbols={"k": k, "l": l, "g": g, "R": R, **f},
     )
 
 
@@ -213,10 +271,10 @@ def accel_to_tilt_tf():
     Returns
     -------
     num, den : list of sympy.Expr
-        Functions of the symbols k, l, g, R of :func:`derive`.
+        Functions of the symbols k, l, g, R of :data:`SYMBOLS`.
     """
     d = derive()
     num, den = sp.fraction(sp.together(d.tf_accel))
-    num_p, den_p = sp.Poly(sp.expand(num), s), sp.Poly(sp.expand(den), s)
+    num_p, den_p = sp.Poly(sp.expand(num), SYMBOLS.s), sp.Poly(sp.expand(den), SYMBOLS.s)
     lead = den_p.LC()
     return [sp.simplify(c / lead) for c in num_p.all_coeffs()], [sp.simplify(c / lead) for c in den_p.all_coeffs()]

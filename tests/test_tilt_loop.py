@@ -4,7 +4,7 @@ import control
 import numpy as np
 import pytest
 
-from strapdown.analysis.multistage.stage_control import StageLoop, classify_poles, root_locus_k, root_locus_l
+from strapdown.analysis.multistage.tilt_loop import StageLoop, classify_poles, root_locus_k, root_locus_l
 
 
 def test_poles_damping_natural_frequency():
@@ -35,10 +35,10 @@ def test_complementary_filter():
 
 def test_root_loci_match_characteristic_roots():
     ks = np.array([0.0, 0.005, 0.02])
-    loci = root_locus_k(5e-5, ks)
+    loci = root_locus_k(5e-5, ks).loci
     for row, k in zip(loci, ks):
         np.testing.assert_allclose(np.sort_complex(row), np.sort_complex(np.roots([1, k, 5e-5])), atol=1e-12)
-    loci = root_locus_l(0.01, [1e-5, 1e-4])
+    loci = root_locus_l(0.01, [1e-5, 1e-4]).loci
     np.testing.assert_allclose(np.sort_complex(loci[1]), np.sort_complex(np.roots([1, 0.01, 1e-4])), atol=1e-12)
 
 
@@ -70,3 +70,32 @@ def test_bad_types_and_durations():
         StageLoop(0.01, 1e-5).peak_tilt_error(20.0, 0.0)
     with pytest.raises(ValueError, match="horizon"):
         StageLoop(0.01, 1e-5).peak_tilt_error(20.0, 20.0, horizon=10.0)
+
+
+@pytest.mark.parametrize("k,l", [(-0.01, 5e-5), (0.01, -1e-5), (0.0, 0.0)])
+def test_unstable_loop_has_no_peak(k, l):
+    loop = StageLoop(k, l)
+    assert loop.stability == "unstable"
+    with pytest.raises(ValueError, match="stable tilt loop"):
+        loop.peak_tilt_error(20.0, 20.0)
+    with pytest.raises(ValueError, match="stable tilt loop"):
+        loop.drift_response(1e-5, 100.0)
+
+
+def test_drift_response_peak_is_the_earth_rate_transient():
+    """A stage started with an empty integral takes up a constant rate: peak d·max|s/(s² + ks + l)| step response."""
+    loop = StageLoop(1.5e-2, 1.25e-4)
+    t, e = loop.drift_response(1e-4, 600.0)
+    wd = np.sqrt(1.25e-4 - (1.5e-2 / 2) ** 2)
+    closed = 1e-4 / wd * np.exp(-1.5e-2 / 2 * t) * np.sin(wd * t)  # inverse Laplace of d/(s² + ks + l)
+    np.testing.assert_allclose(e, closed, atol=1e-12)
+
+
+def test_typed_responses():
+    from strapdown.analysis.multistage.tilt_loop import complementary_filter, responses
+
+    loop = StageLoop(0.015, 1.25e-4)
+    r = responses(loop, np.linspace(0.0, 500.0, 101))
+    assert r.accel_step.shape == r.drift_step.shape == (101,) and r.accel_step[0] == 0.0
+    f = complementary_filter(loop, np.logspace(-5, 0, 40))
+    assert f.max_sum_error < 1e-12 and f.gyro_magnitude[0] < 1e-5 and f.accel_magnitude[-1] < 0.02

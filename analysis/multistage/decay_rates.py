@@ -15,17 +15,17 @@ The perturbation equations (3.1) of Plotnikov (1999), ``2z' = z∘ω − kz − 
 
 from __future__ import annotations
 
-from functools import lru_cache
+from dataclasses import dataclass
 
 import numpy as np
-import sympy as sp
 from scipy.linalg import eigh
 
 from ..core import quaternion as quat
+from ..core.cache import compiled
 from ..core.validation import as_float, as_vector, positive
 from .stages import Stage, run_stage
 
-__all__ = ["perturbation_matrix", "exact_rate", "rest_rate", "strict_rate_bound", "simulated_rate"]
+__all__ = ["perturbation_matrix", "exact_rate", "rest_rate", "strict_rate_bound", "simulated_rate", "RateCheck", "rate_checks"]
 
 
 def perturbation_matrix(k, l, omega=(0.0, 0.0, 0.0)) -> np.ndarray:
@@ -43,6 +43,10 @@ def perturbation_matrix(k, l, omega=(0.0, 0.0, 0.0)) -> np.ndarray:
     Returns
     -------
     ndarray, shape (8, 8)
+
+    References
+    ----------
+    Plotnikov (1999), eq. (3.1).
     """
     k, l = as_float(k, "k"), as_float(l, "l")
     w = quat.vector_to_quat(as_vector(omega, "omega"))
@@ -55,37 +59,64 @@ def perturbation_matrix(k, l, omega=(0.0, 0.0, 0.0)) -> np.ndarray:
 
 
 def exact_rate(k, l, omega=(0.0, 0.0, 0.0)) -> float:
-    """Exponential decay rate ``−max Re λ(A)`` [1/s] for a constant body rate."""
+    """Exponential decay rate ``−max Re λ(A)`` [1/s] for a constant body rate.
+
+    Parameters
+    ----------
+    k : float
+        Position gain [1/s].
+    l : float
+        Integral gain [1/s²].
+    omega : array_like, shape (3,)
+        Body rate ω [rad/s].
+
+    Returns
+    -------
+    float
+    """
     return float(-np.linalg.eigvals(perturbation_matrix(k, l, omega)).real.max())
 
 
-@lru_cache(maxsize=1)
-def _rest_roots():
-    from ...derivations.multistage.lyapunov_function import derive, symbols
+def _rest_roots_build():
+    from ...derivations.multistage.lyapunov_function import SYMBOLS, derive
 
-    k, l, *_ = symbols()
-    return sp.lambdify((k, l), derive().rate_roots, "numpy")
+    return (SYMBOLS.k, SYMBOLS.l), tuple(derive().rate_roots)
 
 
 def rest_rate(k, l) -> float:
     """Rate at rest from the roots of ``2s² + ks + l`` [1/s]: ``k/4`` if ``k² < 8l``.
 
+    The roots come from the symbolic derivation
+    (:func:`strapdown.analysis.core.cache.compiled`: derived once, then served
+    from the cache).
+
+    Parameters
+    ----------
+    k : float
+        Position gain [1/s].
+    l : float
+        Integral gain [1/s²].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
     >>> rest_rate(0.01, 5e-5)
     0.0025
     """
     k, l = as_float(k, "k"), as_float(l, "l")
-    roots = np.asarray(_rest_roots()(k + 0j, l + 0j), dtype=complex)
-    return float(-roots.real.max())
+    roots = compiled("multistage:lyapunov:rest-roots:v1", _rest_roots_build)(k + 0j, l + 0j)
+    return float(-np.asarray(roots, dtype=complex).real.max())
 
 
-@lru_cache(maxsize=1)
-def _strict_matrices():
-    from ...derivations.multistage.lyapunov_function import strict_bound_matrices, symbols
+def _strict_build():
+    from ...derivations.multistage.lyapunov_function import SYMBOLS, strict_bound_matrices
 
-    k, l, *_ = symbols()
-    eps, wbar = sp.symbols("epsilon varpi", positive=True)
-    m, p_plus, p_minus = strict_bound_matrices(k, l, eps, wbar)
-    return sp.lambdify((k, l, eps, wbar), (m, p_plus, p_minus), "numpy")
+    s = SYMBOLS
+    m, p_plus, p_minus = strict_bound_matrices(s.k, s.l, s.epsilon, s.varpi)
+    return (s.k, s.l, s.epsilon, s.varpi), tuple(m) + tuple(p_plus) + tuple(p_minus)
 
 
 def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
@@ -99,8 +130,10 @@ def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
 
     Parameters
     ----------
-    k, l : float
-        Gains [1/s], [1/s²], both > 0.
+    k : float
+        Position gain [1/s], > 0.
+    l : float
+        Integral gain [1/s²], > 0.
     omega_max : float
         Bound ϖ on |ω| [rad/s], >= 0.
     samples : int
@@ -117,11 +150,12 @@ def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
     wbar = as_float(omega_max, "omega_max")
     if wbar < 0:
         raise ValueError(f"Expected `omega_max` >= 0, got {wbar:g}")
-    f = _strict_matrices()
+    f = compiled("multistage:lyapunov:strict-bound-matrices:v1", _strict_build)
     eps_hi = min(8 * k * l / (8 * l + (k + wbar) ** 2), np.sqrt(2 * l), k)
     best = (0.0, 0.0)
     for eps in np.linspace(0.0, eps_hi, samples + 2)[1:-1]:
-        m, p_plus, p_minus = (np.array(x, dtype=float) for x in f(k, l, eps, wbar))
+        parts = np.array(f(k, l, eps, wbar), dtype=float)
+        m, p_plus, p_minus = parts[0:4].reshape(2, 2), parts[4:8].reshape(2, 2), parts[8:12].reshape(2, 2)
         if np.linalg.eigvalsh(p_minus).min() <= 0:
             continue
         gamma = float(eigh(m, p_plus, eigvals_only=True).min())
@@ -140,8 +174,10 @@ def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=
 
     Parameters
     ----------
-    k, l : float
-        Gains [1/s], [1/s²], > 0.
+    k : float
+        Position gain [1/s], > 0.
+    l : float
+        Integral gain [1/s²], > 0.
     omega : array_like, shape (3,)
         Body rate [rad/s].
     step : float
@@ -150,6 +186,10 @@ def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=
         Run length [s]; default ``14 / rest_rate``.
     z0 : array_like, shape (4,)
         Initial perturbation.
+
+    Returns
+    -------
+    float
     """
     k, l = positive(k, "k"), positive(l, "l")
     w = as_vector(omega, "omega")
@@ -166,3 +206,59 @@ def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=
     sel = t >= 0.5 * t[-1]
     slope = np.polyfit(t[sel], np.log(v[sel]), 1)[0]
     return float(-slope / 2.0)
+
+
+@dataclass(frozen=True)
+class RateCheck:
+    """The four rates of one case (:func:`rate_checks`) [1/s].
+
+    Attributes
+    ----------
+    k : float
+        Position gain [1/s].
+    l : float
+        Integral gain [1/s²].
+    omega : tuple
+        Body rate [rad/s].
+    rest : float
+        :func:`rest_rate`.
+    exact : float
+        :func:`exact_rate`.
+    simulated : float
+        :func:`simulated_rate`.
+    guaranteed : float
+        :func:`strict_rate_bound`.
+    """
+
+    k: float
+    l: float
+    omega: tuple
+    rest: float
+    exact: float
+    simulated: float
+    guaranteed: float
+
+
+def rate_checks(cases, *, step: float = 0.5, periods: float = 14.0) -> tuple:
+    """Rest, exact, simulated and guaranteed rates for each ``(k, l, omega)``.
+
+    Parameters
+    ----------
+    cases : sequence of (k, l, omega)
+        Gains [1/s], [1/s²] and body rate [rad/s].
+    step : float
+        Integration step of the simulation [s].
+    periods : float
+        Length of the simulation in units of ``1/exact rate``.
+
+    Returns
+    -------
+    tuple of RateCheck
+    """
+    out = []
+    for k, l, w in cases:
+        ex = exact_rate(k, l, w)
+        sim = simulated_rate(k, l, w, step=step, duration=periods / ex)
+        bound, _ = strict_rate_bound(k, l, float(np.linalg.norm(w)))
+        out.append(RateCheck(float(k), float(l), tuple(float(x) for x in w), rest_rate(k, l), ex, sim, bound))
+    return tuple(out)

@@ -1,0 +1,88 @@
+"""The stage recursion: compiled loop against the plain-Python reference, gain switches."""
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+
+from strapdown.analysis.core import quaternion as quat
+from strapdown.analysis.multistage.stage_recursion import correction_map
+from strapdown.analysis.multistage.stages import Stage, run_stage
+
+
+def _inputs(n=1500, seed=7):
+    rng = np.random.default_rng(seed)
+    dq = quat.rotvec_to_quat(rng.normal(0.0, 0.02, (n, 3)))
+    force = np.column_stack([rng.normal(0, 2.0, n), 9.81 + rng.normal(0, 0.5, n), rng.normal(0, 2.0, n)])
+    ref = quat.normalize(quat.rotvec_to_quat(np.cumsum(rng.normal(0, 0.01, (n + 1, 3)), axis=0)))
+    return dq, force, ref
+
+
+STAGES = [
+    Stage(((0.0, 0.3, 0.02), (60.0, 0.0, 1e-3)), "pure"),
+    Stage(((0.0, 0.3, 0.02), (60.0, 0.1, 1e-3), (200.0, 0.0, 2e-3)), "pure", switch="rescale"),
+    Stage(((0.0, 0.3, 0.02), (60.0, 0.0, 1e-3)), "pure", switch="bumpless", rho=0.0),
+    Stage(((0.0, 0.2, 0.01),), "tilt", components=(0, 1, 2, 3)),
+    Stage(((0.0, 0.2, 0.01), (100.0, 0.05, 0.002)), "tilt", c=2.0, switch="bumpless"),
+    Stage(((0.0, 0.5, 0.05),), "external", rho=0.5),
+]
+
+
+@pytest.mark.parametrize("stage", STAGES, ids=range(len(STAGES)))
+def test_compiled_matches_python_reference(stage):
+    dq, force, ref = _inputs()
+    kw = dict(reference=ref) if stage.reference == "external" else dict(force=force)
+    nu_c, y_c = run_stage(stage, 0.2, dq, initial=[0.99, 0.05, -0.1, 0.03], engine="compiled", **kw)
+    nu_p, y_p = run_stage(stage, 0.2, dq, initial=[0.99, 0.05, -0.1, 0.03], engine="python", **kw)
+    assert np.abs(nu_c).max() > 0.5
+    np.testing.assert_allclose(nu_c, nu_p, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(y_c, y_p, rtol=0, atol=1e-13 * max(1.0, np.abs(y_p).max()))
+
+
+def test_correction_map_is_the_exact_flow():
+    k, l, c, tau = 0.3, 0.02, 2.0, 0.7
+    a = np.array([[-0.5 * k * c, 0.5, 0.5 * k], [-l * c, 0.0, l], [0.0, 0.0, 0.0]])
+    e = correction_map(k, l, c, tau)
+    two = correction_map(k, l, c, 2 * tau)
+    m1 = np.array([[e[0], e[1], e[4]], [e[2], e[3], e[5]], [0, 0, 1]])
+    m2 = np.array([[two[0], two[1], two[4]], [two[2], two[3], two[5]], [0, 0, 1]])
+    np.testing.assert_allclose(m1 @ m1, m2, atol=1e-15)  # semigroup
+    d = 1e-6
+    ed = correction_map(k, l, c, tau + d)
+    md = np.array([[ed[0], ed[1], ed[4]], [ed[2], ed[3], ed[5]], [0, 0, 1]])
+    np.testing.assert_allclose((md - m1) / d, a @ m1, atol=1e-7)  # solves x' = A x
+    np.testing.assert_allclose(m1, expm(a * tau), atol=1e-15)
+
+
+@pytest.mark.parametrize("switch", ["carry", "rescale", "bumpless"])
+def test_integral_at_the_switch(switch):
+    """carry keeps y, rescale multiplies it by l_new/l_old, bumpless keeps k(m − cν) + y continuous."""
+    h, ts, k0, l0, l1 = 0.01, 100.0, 0.05, 1e-3, 2e-4
+    n = int(1.5 * ts / h)
+    dq = np.broadcast_to(quat.rotvec_to_quat([0.0, 0.0, 1e-3 * h]), (n, 4))
+    force = np.broadcast_to([0.3, 9.81, -0.2], (n, 3))
+    st = Stage(((0.0, k0, l0), (ts, 0.0, l1)), "pure", rho=0.0, switch=switch)
+    nu, y = run_stage(st, h, dq, force)
+    i = int(round(ts / h))
+    m = np.array([0.0, 0.2 / 9.81, 0.0, 0.3 / 9.81])
+    error = (m - st.c * nu[i])[[1, 3]]
+    before, after = y[i][[1, 3]], y[i + 1][[1, 3]]  # one step of h later: y moves by O(h l)
+    assert np.abs(before).max() > 1e-5 and np.abs(error).max() > 1e-4
+    expected = {"carry": before, "rescale": before * l1 / l0, "bumpless": before + k0 * error}[switch]
+    np.testing.assert_allclose(after, expected, rtol=1e-3)
+    # bumpless: the correction k(m − cν) + y is k0·error + y before and 0·error + y after
+
+
+def test_zero_gain_stage_is_pure_gyro_integration():
+    dq, force, _ = _inputs(500)
+    nu, y = run_stage(Stage.constant(0.0, 0.0, "tilt", rho=0.0, components=(0, 1, 2, 3)), 0.1, dq, force)
+    prod = np.array([1.0, 0.0, 0.0, 0.0])
+    for q in dq:
+        prod = quat.multiply(prod, q)
+    np.testing.assert_allclose(nu[-1], prod, atol=1e-13)
+    assert not y.any()
+
+
+def test_engine_is_checked():
+    dq, force, _ = _inputs(10)
+    with pytest.raises(ValueError, match="`engine`"):
+        run_stage(Stage.constant(0.1, 0.01), 0.1, dq, force, engine="fortran")
