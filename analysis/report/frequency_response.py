@@ -35,7 +35,7 @@ FINITE_ANGLE = 1.0 * DEG
 
 
 def _algorithms():
-    return [get(n) for n in names()] + [optimal_coning_algorithm(n, history=k) for n, k in OPTIMAL_CLASS]
+    return [get(n) for n in names(library=True)] + [optimal_coning_algorithm(n, history=k) for n, k in OPTIMAL_CLASS]
 
 
 def _fraction(c) -> str:
@@ -59,7 +59,7 @@ def build(ctx) -> None:
     algorithms = _algorithms()
     grid = np.geomspace(1e-2, math.pi / 2, 80 if ctx.quick else 200)
     response = coning_frequency_response(ctx.progress(algorithms, "coning drift"), grid, check_omega_h=CHECK_OMEGA_H)
-    published = {n for n in names()}
+    published = set(names(library=True))
     lines = [
         "# Error versus frequency: coning drift",
         "",
@@ -167,21 +167,38 @@ def build(ctx) -> None:
     ctx.write_text("frequency-response.md", "\n".join(lines))
 
 
+#: Panels of the figure: a title and the test that puts an algorithm in it (first match wins).
+PANELS = (
+    ("papers: Lebedev & Panov (1989), Budennyi et al.", lambda a: a.startswith(("lebedev-panov", "panov-4s"))),
+    ("cross-step: Savage 1 + 1, Ignagni (1996)", lambda a: a.startswith(("savage", "ignagni-1996")) or a.endswith("1+1")),
+    ("optimal class: compressed, derived", lambda a: a.startswith(("compressed", "optimal-coning"))),
+    ("within one step: Miller, Ignagni (1990), polynomial fits", lambda a: True),
+)
+
+
 def _figure(plt, response, published):
-    fig, ax = plt.subplots(figsize=(8.5, 6))
-    cmap = plt.get_cmap("tab20")
-    for k, r in enumerate(response.responses):
-        color = cmap(k % 20)
-        style = "-" if r.algorithm.name in published else "--"
-        ax.loglog(r.omega_h, np.abs(r.drift), style, color=color, lw=1.2, label=f"{r.algorithm.name} ({_fraction(r.coefficient)}·x^{r.order})")
-        sims = r.simulated_checks
-        if sims:
-            xs = [c.omega_h for c in sims]
-            ys = [abs(c.simulated) / (c.cone_angle**2 * c.nu) for c in sims]
-            ax.loglog(xs, ys, "o", color=color, ms=4, mfc="none")
-    ax.set_xlabel("ωh: coning rate × sample interval [rad]")
-    ax.set_ylabel("|D(ωh)| = |u| / (α² ω)")
-    ax.set_title("Coning drift against frequency (lines: closed form; circles: simulator)")
-    ax.set_ylim(1e-30, 1.0)
-    ax.legend(fontsize=6, loc="lower right", ncol=2)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), sharex=True, sharey=True, layout="constrained")
+    groups = [[] for _ in PANELS]
+    for r in response.responses:
+        groups[next(k for k, (_, test) in enumerate(PANELS) if test(r.algorithm.name))].append(r)
+    cmap = plt.get_cmap("tab10")
+    for ax, (title, _), rows in zip(axes.ravel(), PANELS, groups):
+        for k, r in enumerate(rows):
+            color = cmap(k % 10)
+            style = "-" if r.algorithm.name in published else "--"
+            ax.loglog(r.omega_h, np.abs(r.drift), style, color=color, lw=1.2, label=f"{r.algorithm.name} ({_fraction(r.coefficient)}·x^{r.order})")
+            sims = r.simulated_checks
+            if sims:
+                xs = [c.omega_h for c in sims]
+                ys = [abs(c.simulated) / (c.cone_angle**2 * c.nu) for c in sims]
+                ax.loglog(xs, ys, "o", color=color, ms=4, mfc="none")
+        ax.set_title(title, fontsize=10)
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=7, loc="lower right")
+    for ax in axes[-1]:
+        ax.set_xlabel("ωh: coning rate × sample interval [rad]")
+    for ax in axes[:, 0]:
+        ax.set_ylabel("|D(ωh)| = |u| / (α² ω)")
+    axes[0, 0].set_ylim(1e-30, 1.0)
+    fig.suptitle("Coning drift against frequency (lines: closed form, dashed: derived; circles: simulator)")
     return fig

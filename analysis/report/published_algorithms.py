@@ -1,4 +1,4 @@
-"""Report section ``published_algorithms.md``: the library of published algorithms and their error figures.
+"""Report section ``published-algorithms.md``: the library of published algorithms and their error figures.
 
 Formatting only: every number comes from
 :mod:`strapdown.analysis.coning.published_check` and the registry; printed
@@ -24,7 +24,7 @@ from ..coning.published_check import (
 from . import Erratum, Section
 
 SECTION = Section(
-    "published_algorithms",
+    "published-algorithms",
     "Published algorithms: the library, its error figures, sculling",
     order=22,
     summary="Savage's 1 + 1, Miller, Ignagni (1990, 1996), the compressed optimal and polynomial-fit algorithms; published coning coefficients reproduced; sculling error against ν h.",
@@ -200,7 +200,7 @@ def _sculling_figure(plt, curves, points):
 
 
 def build(ctx) -> None:
-    """Write ``published_algorithms.md`` and its figure.
+    """Write ``published-algorithms.md`` and its figure.
 
     Parameters
     ----------
@@ -226,7 +226,7 @@ def build(ctx) -> None:
     lines += _sculling_section(ctx.quick)
     curves, points = _sculling(ctx.quick)
     ctx.savefig(_sculling_figure(plt, curves, points), "figures/published-algorithms-sculling.png")
-    ctx.write_text("published_algorithms.md", "\n".join(lines))
+    ctx.write_text("published-algorithms.md", "\n".join(lines))
 
 
 def errata(ctx) -> list:
@@ -240,5 +240,5 @@ def errata(ctx) -> list:
     out = []
     for c in coefficient_checks():
         if not c.reproduced:
-            out.append(Erratum(c.source, f"{c.quantity} = {_frac(c.published)}", f"{c.quantity} = {_frac(c.ours)}", c.note, "published_algorithms"))
+            out.append(Erratum(c.source, f"{c.quantity} = {_frac(c.published)}", f"{c.quantity} = {_frac(c.ours)}", c.note, "published-algorithms", kind="misprint"))
     return out
