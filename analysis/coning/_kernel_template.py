@@ -234,10 +234,6 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
             stepped = k > k0
             if stepped:
                 # One algorithm step: the samples (k − 1) N … k N − 1.
-                for r in range(HISTORY):
-                    for c in range(3):
-                        win[r, c] = win[r + SAMPLES, c]
-                        wind[r, c] = wind[r + SAMPLES, c]
                 for j in range(SAMPLES):
                     s_idx = (k - 1) * SAMPLES + j
                     cs, ss, sca, ssa = phase(nu, h, 0.5, s_idx, tab_s, sca, ssa)
@@ -249,6 +245,10 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
                         wind[r, 1] = damp * cs - amp * ss * nud * tm
                         wind[r, 2] = dp3
                 x, y, z, dx, dy, dz = increment(win, wind)
+                for r in range(HISTORY):  # the next step's earlier samples
+                    for c in range(3):
+                        win[r, c] = win[r + SAMPLES, c]
+                        wind[r, c] = wind[r + SAMPLES, c]
                 q0, q1, q2, q3, e0, e1, e2, e3 = rotvec_quat(x, y, z, dx, dy, dz)
                 if DUAL:
                     m0, m1, m2, m3 = qmul(t0, t1, t2, t3, e0, e1, e2, e3)
