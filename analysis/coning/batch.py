@@ -119,9 +119,9 @@ def _run_compiled(algorithm, par, theta, n_steps, *, velocity: bool, series: boo
     last = int(n_steps.max())
     keep = None
     if series:
-        keep = tuple(np.zeros((par.shape[0], last + 1, 3)) for _ in range(3 if velocity else 1))
-        if not velocity:
-            keep = (keep[0], keep[0][:, :1], keep[0][:, :1])
+        # Unused series get one contiguous placeholder, so that the kernel's signature never changes.
+        unused = np.zeros((1, 1, 3))
+        keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
     chunk = kernels.chunk_steps(par.shape[0])
     bar = _progress(last * par.shape[0], progress)
     for k0 in range(0, last, chunk):

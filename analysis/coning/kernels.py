@@ -27,6 +27,7 @@ uses its numpy path (the reference the kernels are tested against).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib.util
 import inspect
@@ -280,6 +281,12 @@ def kernel_source(algorithm: Algorithm, *, velocity: bool) -> str:
         "@numba.njit(cache=True, nogil=True)",
         increment_source(algorithm, dual=velocity),
     ]
+    return "\n".join(parts) + _template_text()
+
+
+@functools.lru_cache(maxsize=1)
+def _template_text() -> str:
+    parts = []
     for name in _TEMPLATE_FUNCTIONS:
         parts += ["", "@numba.njit(cache=True, nogil=True)", inspect.getsource(getattr(template, name))]
     return "\n".join(parts)
