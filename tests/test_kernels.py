@@ -269,6 +269,19 @@ def test_simulate_batch_rejects_bad_input(kwargs, exc, fragment):
         simulate_batch(**args)
 
 
+@needs_numba
+def test_auto_engine_compiles_only_where_it_pays():
+    variant = Algorithm("variant", 2, (Term(Fraction(3, 5), (1, 2)),))
+    assert kernels.use_compiled("auto", algorithm=get("panov-4s-3"), work=10)
+    assert not kernels.use_compiled("auto", algorithm=variant, work=10)
+    assert kernels.use_compiled("auto", algorithm=variant, work=kernels.AUTO_MIN_WORK)
+    assert kernels.use_compiled("auto", algorithm=SAVAGE, work=10)  # cross-step: the numpy path has no history
+    assert not kernels.use_compiled("auto", supported=False, algorithm=get("panov-4s-3"))
+    assert not kernels.use_compiled("numpy", algorithm=get("panov-4s-3"))
+    with pytest.raises(ValueError, match="RegularPrecession"):
+        kernels.use_compiled("compiled", supported=False)
+
+
 # --------------------------------------------------------------------------- without numba
 def test_without_numba_the_package_imports_and_the_numpy_path_runs():
     code = (

@@ -224,7 +224,7 @@ def simulate_batch(
     series : bool, keyword-only
         Keep the full error series (all runs must then have the same number of steps).
     engine : {"auto", "numpy", "compiled"}, keyword-only
-        ``"auto"``: the compiled kernel when numba is available; ``"numpy"``:
+        ``"auto"``: the compiled kernel whenever numba is available; ``"numpy"``:
         a loop over points of the numpy simulator (the reference, slow).
     progress : bool, keyword-only
         Progress bar on stderr (only when it is a terminal).
@@ -257,7 +257,7 @@ def simulate_batch(
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
-    compiled = kernels.use_compiled(engine)
+    compiled = kernels.use_compiled(engine)  # the numpy path here is a slow per-point reference
     shape, p = _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual)
     size = int(np.prod(shape, dtype=np.int64))
     n = _step_counts(algorithm.samples, p["sample_interval"], duration, steps, shape)

@@ -46,7 +46,7 @@ from ..core.dual import Dual
 from . import _kernel_template as template
 from .streaming import N_SUMS
 
-__all__ = ["ENGINES", "available", "use_compiled", "increment_source", "kernel_source", "kernel", "parameter_rows", "advance", "chunk_steps"]
+__all__ = ["ENGINES", "AUTO_MIN_WORK", "available", "use_compiled", "increment_source", "kernel_source", "kernel", "parameter_rows", "advance", "chunk_steps"]
 
 #: Values of the ``engine`` argument of the simulators.
 ENGINES = ("auto", "numpy", "compiled")
@@ -72,17 +72,33 @@ def available() -> bool:
     return True
 
 
-def use_compiled(engine: str, *, supported: bool = True) -> bool:
+#: ``engine="auto"`` compiles a kernel for an algorithm outside the registry only for a run of at
+#: least this many point-steps, where the compile (seconds, once per algorithm and install) pays.
+AUTO_MIN_WORK = 1 << 21
+
+
+def use_compiled(engine: str, *, supported: bool = True, algorithm: Algorithm | None = None, work: int = 0) -> bool:
     """Whether a simulator call with ``engine`` runs the compiled kernel.
+
+    ``"auto"`` takes the kernel when numba is available, the motion is
+    supported, and either the algorithm is a registry entry (its kernel is
+    compiled once per install and reused), or the numpy path cannot run it
+    (cross-step terms), or the run is large enough (``work`` ≥
+    :data:`AUTO_MIN_WORK` point-steps) that compiling a new kernel pays.  The
+    choice depends only on the arguments, so a result never depends on what
+    happens to be cached.
 
     Parameters
     ----------
     engine : {"auto", "numpy", "compiled"}
-        ``"auto"``: compiled when numba is available and the motion is
-        supported; ``"numpy"``: the vectorised numpy reference; ``"compiled"``:
-        the kernel, or an error.
+        ``"auto"`` as above; ``"numpy"``: the vectorised numpy reference;
+        ``"compiled"``: the kernel, or an error.
     supported : bool, keyword-only
         Whether the kernels cover the motion (the regular precession (4.1)–(4.2)).
+    algorithm : Algorithm, keyword-only, optional
+        The algorithm to run (for ``"auto"``).
+    work : int, keyword-only
+        Points × steps of the call (for ``"auto"``).
 
     Returns
     -------
@@ -105,7 +121,13 @@ def use_compiled(engine: str, *, supported: bool = True) -> bool:
         if not available():
             raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
         return True
-    return supported and available()
+    if not (supported and available()):
+        return False
+    if algorithm is None or algorithm.history > 0 or work >= AUTO_MIN_WORK:
+        return True
+    from ...derivations.coning.registry import REGISTRY
+
+    return REGISTRY.get(algorithm.name) == algorithm
 
 
 # --------------------------------------------------------------------------- code generation

@@ -301,7 +301,8 @@ def simulate(
         ``"numpy"``: the vectorised path below (the reference);
         ``"compiled"``: the fused kernel of :mod:`strapdown.analysis.coning.kernels`
         (same results to round-off); ``"auto"``: compiled when numba is
-        available and the motion is a :class:`RegularPrecession`.
+        available, the motion is a :class:`RegularPrecession`, and the kernel
+        pays (:func:`strapdown.analysis.coning.kernels.use_compiled`).
 
     Returns
     -------
@@ -344,7 +345,8 @@ def simulate(
     step = n_samples * h
     time = np.arange(steps + 1) * step
     theta0 = initial_biquaternion(lam0, w0) if velocity else lam0
-    if kernels.use_compiled(engine, supported=all(type(m) is RegularPrecession for m in motions)):
+    supported = all(type(m) is RegularPrecession for m in motions)
+    if kernels.use_compiled(engine, supported=supported, algorithm=algorithm, work=len(motions) * steps):
         error, dw_body, dw_inertial = compiled_series(algorithm, motions, h, steps, lam0, w0, velocity=velocity)
         if not batched:
             error, dw_body, dw_inertial = (None if a is None else a[0] for a in (error, dw_body, dw_inertial))
