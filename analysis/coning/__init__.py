@@ -9,6 +9,12 @@ precession
     (Lebedev & Panov 1989, §4).
 simulator
     Parallel computation: an algorithm run beside the exact solution.
+kernels
+    Fused compiled simulator kernels generated from an algorithm's terms (numba).
+streaming
+    Drift fit and error statistics from running sums (memory independent of the run).
+batch
+    Batches over arrays of ε, ν, ϑ, h in one call.
 local_error
     One-step local error on a motion with no symmetry (tumbling motion).
 drift_theory

@@ -175,7 +175,6 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
     """
     win = np.zeros((WINDOW, 3))
     wind = np.zeros((WINDOW, 3))
-    part = np.zeros(N_SUMS)
     tab_s = np.zeros((REANCHOR, 2))
     tab_a = np.zeros((REANCHOR, 2))
     tab_b = np.zeros((REANCHOR, 2))
@@ -227,8 +226,9 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
         bca, bsa = anchor_of(rate_b, big_h, 0.0, k0)
         ca, sa, aca, asa = phase(rate_a, big_h, 0.0, k0, tab_a, aca, asa)
         cb, sb, bca, bsa = phase(rate_b, big_h, 0.0, k0, tab_b, bca, bsa)
-        for c in range(N_SUMS):
-            part[c] = 0.0
+        # Partial sums of the current block, in registers (module docstring of streaming).
+        a0 = a1 = a2 = a3 = a4 = 0.0
+        b14 = b15 = b16 = b17 = 0.0
         k = k0
         while True:
             stepped = k > k0
@@ -266,11 +266,11 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
             ex, ey, ez = error_rotvec(*qmul(t0, t1, t2, t3, l0, -l1, -l2, -l3))
             weight = k - half_n
             e2n = ex * ex + ey * ey + ez * ez
-            part[0] += weight * ex
-            part[1] += weight * ey
-            part[2] += weight * ez
-            part[3] += e2n
-            part[4] = max(part[4], e2n)
+            a0 += weight * ex
+            a1 += weight * ey
+            a2 += weight * ez
+            a3 += e2n
+            a4 = max(a4, e2n)
             if keep:
                 err[i, k, 0], err[i, k, 1], err[i, k, 2] = ex, ey, ez
             if k == n:
@@ -295,10 +295,10 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
                 ix, iy, iz = 2.0 * wi1 - 2.0 * vi1, 2.0 * wi2 - 2.0 * vi2, 2.0 * wi3 - 2.0 * vi3
                 b2n = bx * bx + by * by + bz * bz
                 i2n = ix * ix + iy * iy + iz * iz
-                part[14] = max(part[14], b2n)
-                part[15] = max(part[15], i2n)
-                part[16] += b2n
-                part[17] += i2n
+                b14 = max(b14, b2n)
+                b15 = max(b15, i2n)
+                b16 += b2n
+                b17 += i2n
                 if keep:
                     dwe[i, k, 0], dwe[i, k, 1], dwe[i, k, 2] = bx, by, bz
                     dwi[i, k, 0], dwi[i, k, 1], dwi[i, k, 2] = ix, iy, iz
@@ -306,7 +306,9 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
                     sums[i, 8], sums[i, 9], sums[i, 10] = bx, by, bz
                     sums[i, 11], sums[i, 12], sums[i, 13] = ix, iy, iz
             if k % BLOCK == 0 or k == last:
-                flush(sums, i, part)
+                flush(sums, i, a0, a1, a2, a3, a4, b14, b15, b16, b17)
+                a0 = a1 = a2 = a3 = a4 = 0.0
+                b14 = b15 = b16 = b17 = 0.0
             if k == last:
                 break
             k += 1
@@ -314,11 +316,14 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
         theta[i, 4], theta[i, 5], theta[i, 6], theta[i, 7] = d0, d1, d2, d3
 
 
-def flush(sums, i, part):
-    """Add the partial sums of one block into the totals of point ``i`` (maxima: keep the larger) and clear them."""
-    for c in (0, 1, 2, 3, 16, 17):
-        sums[i, c] += part[c]
-        part[c] = 0.0
-    for c in (4, 14, 15):
-        sums[i, c] = max(sums[i, c], part[c])
-        part[c] = 0.0
+def flush(sums, i, a0, a1, a2, a3, a4, b14, b15, b16, b17):
+    """Add the partial sums of one block into the totals of point ``i`` (maxima: keep the larger)."""
+    sums[i, 0] += a0
+    sums[i, 1] += a1
+    sums[i, 2] += a2
+    sums[i, 3] += a3
+    sums[i, 4] = max(sums[i, 4], a4)
+    sums[i, 14] = max(sums[i, 14], b14)
+    sums[i, 15] = max(sums[i, 15], b15)
+    sums[i, 16] += b16
+    sums[i, 17] += b17
