@@ -319,3 +319,13 @@ def test_auto_engine_falls_back_when_numba_cannot_be_imported(monkeypatch):
         kernels.use_compiled("compiled")
     m = RegularPrecession(-1.0, 2 * np.pi * 10, np.radians(1.0))
     assert simulate(get("panov-4s-1"), m, 0.0025, 0.1).steps == 10
+
+
+def test_simulate_rejects_an_unknown_engine():
+    with pytest.raises(ValueError, match="`engine` in 'auto', 'numpy', 'compiled'"):
+        simulate(get("panov-4s-1"), RegularPrecession(-1.0, 2 * np.pi, 0.1), 0.01, 1.0, engine="fortran")
+
+
+def test_accumulator_rejects_a_chunk_past_the_end():
+    with pytest.raises(ValueError, match="within every run"):
+        accumulate(empty_sums(1), 5, [6], np.zeros((1, 3, 3)))
