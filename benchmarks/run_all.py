@@ -4,7 +4,7 @@ Runs, each in its own child process pinned to CPU 0 (``taskset -c 0`` when
 available) with ``OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = MKL_NUM_THREADS = 1``:
 
 1. every ``benchmarks/bench_*.py`` script, in name order;
-2. the peer comparison ``benchmarks/peer_smsfusion.py``;
+2. the peer comparisons ``benchmarks/peer_*.py``;
 3. the full report, ``strapdown report --out <tmp>``, and ``--quick``.
 
 For each it measures the wall time and the peak resident memory of the child
@@ -93,7 +93,7 @@ def run(name: str, argv: list, *, timeout: float | None = None) -> Outcome:
 
 
 def benchmark_scripts(only=None) -> list:
-    scripts = sorted(HERE.glob("bench_*.py")) + [HERE / "peer_smsfusion.py"]
+    scripts = sorted(HERE.glob("bench_*.py")) + sorted(HERE.glob("peer_*.py"))
     scripts = [s for s in scripts if s.is_file()]
     if only:
         scripts = [s for s in scripts if s.stem in only or s.name in only]
@@ -190,7 +190,7 @@ def replace_block(text: str, tag: str, body: str) -> str:
 
 
 def _order(name: str) -> tuple:
-    return (name.startswith("report"), name == "peer_smsfusion", name)
+    return (name.startswith("report"), name.startswith("peer_"), name)
 
 
 def merge_summary(old: str, new: str) -> str:

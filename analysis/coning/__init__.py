@@ -17,6 +17,12 @@ algorithm_summary
     An algorithm at a glance: terms, window, second-order defect, order, source.
 published_check
     Published figures of the algorithm library beside our exact and simulated values.
+kernels
+    Fused compiled simulator kernels generated from an algorithm's terms (numba).
+streaming
+    Drift fit and error statistics from running sums (memory independent of the run).
+batch
+    Batches over arrays of ε, ν, ϑ, h in one call.
 local_error
     One-step local error on a motion with no symmetry (tumbling motion).
 drift_theory

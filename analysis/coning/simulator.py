@@ -40,6 +40,8 @@ from ...derivations.coning.algorithms import Algorithm
 from ..core import quaternion as quat
 from ..core.dual import Dual
 from ..core.validation import as_quaternion, as_vector, positive
+from . import kernels
+from .batch import compiled_series
 from .evaluation import increment
 from .precession import RegularPrecession, exact_state, initial_biquaternion
 from .sculling_motion import ScullingMotion
@@ -356,6 +358,7 @@ def simulate(
     attitude0=(1.0, 0.0, 0.0, 0.0),
     w_inertial0=(0.0, 0.0, 0.0),
     velocity: bool = False,
+    engine: str = "auto",
 ) -> SimulationResult:
     """Run ``algorithm`` against the exact solution of ``motion`` ("parallel computation").
 
@@ -386,6 +389,12 @@ def simulate(
         Initial apparent velocity W_I(0) [m/s] (velocity runs).
     velocity : bool, keyword-only
         Also integrate the apparent velocity (biquaternion run).
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        ``"numpy"``: the vectorised path below (the reference);
+        ``"compiled"``: the fused kernel of :mod:`strapdown.analysis.coning.kernels`
+        (same results to round-off); ``"auto"``: compiled when numba is
+        available, the motion is a :class:`RegularPrecession`, and the kernel
+        pays (:func:`strapdown.analysis.coning.kernels.use_compiled`).
 
     Returns
     -------
@@ -395,7 +404,9 @@ def simulate(
     ------
     ValueError
         Non-positive step or duration, a duration shorter than one step, a
-        non-unit ``attitude0``.
+        non-unit ``attitude0``, an unknown ``engine``.
+    ImportError
+        ``engine="compiled"`` without numba.
     TypeError
         If ``algorithm`` is not an :class:`Algorithm` or ``motion`` is not a
         :class:`RegularPrecession` or :class:`ScullingMotion` (or a sequence of them).
@@ -426,6 +437,12 @@ def simulate(
     step = n_samples * h
     time = np.arange(steps + 1) * step
     theta0 = initial_biquaternion(lam0, w0) if velocity else lam0
+    supported = all(type(m) is RegularPrecession for m in motions)
+    if kernels.use_compiled(engine, supported=supported, algorithm=algorithm, work=len(motions) * steps):
+        error, dw_body, dw_inertial = compiled_series(algorithm, motions, h, steps, lam0, w0, velocity=velocity)
+        if not batched:
+            error, dw_body, dw_inertial = (None if a is None else a[0] for a in (error, dw_body, dw_inertial))
+        return SimulationResult(algorithm, h, step, time, error, drift_rate(time, error), dw_body, dw_inertial)
 
     count = len(motions)
     error = np.empty((count, steps + 1, 3))

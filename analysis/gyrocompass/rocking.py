@@ -27,8 +27,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal
-from scipy.linalg import expm
 
 from ..core.validation import as_float, as_int, nonnegative, positive
 
@@ -213,6 +211,8 @@ class NarrowbandRocking:
 
     def discretisation(self, dt: float):
         """``(F, Qd)`` of the unit-variance state ``(ξ, ξ')`` sampled every ``dt`` [s]."""
+        from scipy.linalg import expm  # imported on use: scipy costs a command line call about a second
+
         dt = positive(dt, "dt")
         w0, z = self.omega0, self.damping
         Ac = np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]])
@@ -298,6 +298,8 @@ class NarrowbandRocking:
             z *= math.sqrt(s2)
         else:
             z = math.sqrt(s2) * z
+        from scipy import signal
+
         x[:, 2:], _ = signal.lfilter([1.0, theta], [1.0, -t, d], z, axis=-1, zi=zi)
         return x
 

@@ -1,0 +1,311 @@
+"""Batches over parameters: arrays of ε, ν, ϑ, h in one call, with no Python loop per point.
+
+:func:`simulate_batch` runs one algorithm against the exact solution of the
+regular precession (4.1) (or its dual analogue (4.2), with ν° and ϑ°) at every
+point of broadcast parameter arrays (Lebedev & Panov 1989, section 4), in the
+fused compiled kernel of :mod:`strapdown.analysis.coning.kernels`.  By default
+it keeps only the streaming statistics (:mod:`strapdown.analysis.coning.streaming`):
+memory is a few hundred bytes per point whatever the number of steps; the full
+error series are kept on request (``series=True``).
+
+:func:`compiled_series` is the same kernel behind
+:func:`strapdown.analysis.coning.simulator.simulate`'s compiled engine.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...derivations.coning.algorithms import Algorithm
+from ..core.validation import as_array, as_int, as_quaternion, as_vector
+from . import kernels
+from .streaming import ErrorStatistics, accumulate, empty_sums, statistics
+
+__all__ = ["BatchResult", "simulate_batch", "compiled_series"]
+
+
+@dataclass(frozen=True)
+class BatchResult:
+    """Outcome of :func:`simulate_batch` (leading axes: the broadcast parameter shape).
+
+    Attributes
+    ----------
+    algorithm : Algorithm
+        The algorithm run.
+    sample_interval : ndarray, shape (...)
+        Sample interval h of each point [s].
+    statistics : ErrorStatistics
+        Drift fit and error statistics of every point.
+    attitude_error : ndarray, shape (..., n + 1, 3), or None
+        ``δφ_I`` at every step end [rad] (``series=True`` only).
+    dw_body, dw_inertial : ndarray, shape (..., n + 1, 3), or None
+        ``ΔW_E``, ``ΔW_I`` at every step end [m/s] (``series=True`` velocity runs only).
+    """
+
+    algorithm: Algorithm
+    sample_interval: np.ndarray
+    statistics: ErrorStatistics
+    attitude_error: np.ndarray | None = None
+    dw_body: np.ndarray | None = None
+    dw_inertial: np.ndarray | None = None
+
+    @property
+    def drift_rate(self) -> np.ndarray:
+        """Constant drift rate ``|slope|`` [rad/s], shape ``(...)``."""
+        return self.statistics.drift_rate
+
+
+def _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual):
+    arrays = {
+        "eps": as_array(eps, "eps"),
+        "nu": as_array(nu, "nu"),
+        "nutation": as_array(nutation, "nutation"),
+        "sample_interval": as_array(sample_interval, "sample_interval"),
+        "nu_dual": as_array(nu_dual, "nu_dual"),
+        "nutation_dual": as_array(nutation_dual, "nutation_dual"),
+    }
+    if np.any(arrays["nu"] == 0.0):
+        raise ValueError("Expected `nu` (spin rate, rad/s) to be nonzero, got 0")
+    bad = arrays["nutation"][(arrays["nutation"] <= 0.0) | (arrays["nutation"] >= math.pi)]
+    if bad.size:
+        raise ValueError(f"Expected `nutation` in (0, π), got {float(bad.flat[0]):g}")
+    bad = arrays["sample_interval"][arrays["sample_interval"] <= 0.0]
+    if bad.size:
+        raise ValueError(f"Expected `sample_interval` > 0, got {float(bad.flat[0]):g}")
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{k} {a.shape}" for k, a in arrays.items())
+        raise ValueError(f"Expected the parameter arrays to broadcast together, got shapes {shapes}") from None
+    flat = {k: np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for k, a in arrays.items()}
+    return shape, flat
+
+
+def _step_counts(samples: int, h, duration, steps, shape):
+    if (duration is None) == (steps is None):
+        raise ValueError("Expected exactly one of `duration` and `steps`, got " + ("both" if steps is not None else "neither"))
+    if steps is not None:
+        return np.full(h.shape, as_int(steps, "steps", minimum=1), dtype=np.int64)
+    d = as_array(duration, "duration")
+    try:
+        d = np.broadcast_to(d, shape).ravel()
+    except ValueError:
+        raise ValueError(f"Expected `duration` to broadcast to the parameter shape {shape}, got shape {d.shape}") from None
+    if np.any(d <= 0):
+        raise ValueError(f"Expected `duration` > 0, got {float(d[d <= 0].flat[0]):g}")
+    n = np.floor(d / (samples * h) * (1.0 + 1e-12)).astype(np.int64)
+    if np.any(n < 1):
+        i = int(np.argmin(n))
+        raise ValueError(f"Expected `duration` >= one step H = {samples} × {h[i]:g} s = {samples * h[i]:g} s, got {d[i]:g}")
+    return n
+
+
+def _progress(total: int, enabled: bool):
+    if not enabled or not sys.stderr.isatty():
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, leave=False)
+
+
+def _run_compiled(algorithm, par, theta, n_steps, *, velocity: bool, series: bool, progress: bool = False):
+    """Advance every point to its end in time chunks; the accumulators and the series if asked."""
+    run = kernels.kernel(algorithm, velocity=velocity)
+    sums = empty_sums(par.shape[0])
+    last = int(n_steps.max())
+    keep = None
+    if series:
+        # Unused series get one contiguous placeholder, so that the kernel's signature never changes.
+        unused = np.zeros((1, 1, 3))
+        keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
+    chunk = kernels.chunk_steps(par.shape[0])
+    bar = _progress(last * par.shape[0], progress)
+    for k0 in range(0, last, chunk):
+        k1 = min(last, k0 + chunk)
+        kernels.advance(run, par, theta, n_steps, sums, k0, k1, keep)
+        if bar is not None:
+            bar.update((k1 - k0) * par.shape[0])
+    if bar is not None:
+        bar.close()
+    return sums, keep
+
+
+def compiled_series(algorithm: Algorithm, motions, sample_interval: float, steps: int, attitude0, w_inertial0, *, velocity: bool):
+    """Error series of a batch of regular precessions from the compiled kernel.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    motions : sequence of RegularPrecession
+        The parameter points.
+    sample_interval : float
+        Sample interval h [s].
+    steps : int
+        Steps n of every run.
+    attitude0 : ndarray, shape (4,)
+        Λ(0), unit quaternion.
+    w_inertial0 : ndarray, shape (3,)
+        W_I(0) [m/s].
+    velocity : bool, keyword-only
+        Biquaternion run.
+
+    Returns
+    -------
+    error : ndarray, shape (len(motions), steps + 1, 3)
+        Attitude error ``δφ_I`` [rad].
+    dw_body, dw_inertial : ndarray, shape (len(motions), steps + 1, 3), or None
+        ``ΔW_E``, ``ΔW_I`` [m/s] (velocity runs).
+    """
+    count = len(motions)
+    columns = [np.array([getattr(m, k) for m in motions], dtype=float) for k in ("eps", "nu", "nutation", "nu_dual", "nutation_dual")]
+    par, theta = kernels.parameter_rows(*columns, np.full(count, float(sample_interval)), attitude0, w_inertial0, velocity=velocity)
+    _, keep = _run_compiled(algorithm, par, theta, np.full(count, steps, dtype=np.int64), velocity=velocity, series=True)
+    return (keep[0], keep[1], keep[2]) if velocity else (keep[0], None, None)
+
+
+def simulate_batch(
+    algorithm: Algorithm,
+    eps,
+    nu,
+    nutation,
+    sample_interval,
+    duration=None,
+    *,
+    steps=None,
+    nu_dual=0.0,
+    nutation_dual=0.0,
+    attitude0=(1.0, 0.0, 0.0, 0.0),
+    w_inertial0=(0.0, 0.0, 0.0),
+    velocity: bool = False,
+    series: bool = False,
+    engine: str = "auto",
+    progress: bool = False,
+) -> BatchResult:
+    """Run ``algorithm`` at every point of broadcast arrays of ε, ν, ϑ, h (and ν°, ϑ°).
+
+    Each point is the parallel computation of
+    :func:`strapdown.analysis.coning.simulator.simulate` for the motion
+    ``RegularPrecession(ε, ν, ϑ, ν°, ϑ°)`` sampled every h: the algorithm's
+    attitude (and, with ``velocity``, apparent velocity) against the exact
+    solution (1.5), (4.4)–(4.5).  All points start from the same ``attitude0``
+    and ``w_inertial0``.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The rotation-vector algorithm (its dual extension for velocity).
+    eps : array_like
+        ε = μ/ν [-] (−1 is coning), eq. (4.1).
+    nu : array_like
+        Spin rate ν [rad/s], nonzero.
+    nutation : array_like
+        Nutation ϑ [rad], in (0, π).
+    sample_interval : array_like
+        Sample interval h [s], > 0.
+    duration : float or array_like, optional
+        Length of each run [s]; a run covers ``floor(duration / (N h))`` whole steps.
+    steps : int, keyword-only, optional
+        Steps n of every run (instead of ``duration``).
+    nu_dual : array_like, keyword-only
+        Dual part ν° of the spin rate [m/s²], eq. (4.2).
+    nutation_dual : array_like, keyword-only
+        Dual part ϑ° of the nutation [m/s].
+    attitude0 : array_like, shape (4,), keyword-only
+        Initial attitude Λ(0), unit quaternion (E → I).
+    w_inertial0 : array_like, shape (3,), keyword-only
+        Initial apparent velocity W_I(0) [m/s] (velocity runs).
+    velocity : bool, keyword-only
+        Also integrate the apparent velocity (biquaternion run).
+    series : bool, keyword-only
+        Keep the full error series (all runs must then have the same number of steps).
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        ``"auto"``: the compiled kernel whenever numba is available; ``"numpy"``:
+        a loop over points of the numpy simulator (the reference, slow).
+    progress : bool, keyword-only
+        Progress bar on stderr (only when it is a terminal).
+
+    Returns
+    -------
+    BatchResult
+
+    Raises
+    ------
+    ValueError
+        Bad parameters (named), arrays that do not broadcast, both or neither
+        of ``duration`` and ``steps``, a run shorter than one step, or
+        ``series`` with runs of different lengths.
+    TypeError
+        If ``algorithm`` is not an :class:`Algorithm`.
+    ImportError
+        ``engine="compiled"`` without numba.
+
+    References
+    ----------
+    Lebedev & Panov (1989), eqs. (1.3), (1.5), (1.12), (2.1)–(2.6), (4.1)–(4.5).
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> r = simulate_batch(get("panov-4s-1"), -1.0, 2 * np.pi * 10, np.radians([0.5, 1.0]), 0.0025, 1.0)
+    >>> from strapdown.analysis.core.units import deg_per_h
+    >>> np.round(deg_per_h(r.drift_rate), 2)
+    array([0.62, 2.47])
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    compiled = kernels.use_compiled(engine)  # the numpy path here is a slow per-point reference
+    shape, p = _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual)
+    size = int(np.prod(shape, dtype=np.int64))
+    n = _step_counts(algorithm.samples, p["sample_interval"], duration, steps, shape)
+    if series and size and np.any(n != n[0]):
+        raise ValueError(f"Expected runs of equal length for `series=True`, got {int(n.min())} to {int(n.max())} steps (pass `steps` instead of `duration`)")
+    lam0 = as_quaternion(attitude0, "attitude0", unit=True)
+    w0 = as_vector(w_inertial0, "w_inertial0")
+    if lam0.shape != (4,) or w0.shape != (3,):
+        raise ValueError(f"Expected `attitude0` of shape (4,) and `w_inertial0` of shape (3,), got {lam0.shape} and {w0.shape}")
+    big_h = algorithm.samples * p["sample_interval"]
+    if compiled:
+        par, theta = kernels.parameter_rows(p["eps"], p["nu"], p["nutation"], p["nu_dual"], p["nutation_dual"], p["sample_interval"], lam0, w0, velocity=velocity)
+        sums, keep = _run_compiled(algorithm, par, theta, n, velocity=velocity, series=series, progress=progress)
+    else:
+        sums, keep = _run_numpy(algorithm, p, n, lam0, w0, velocity=velocity, series=series)
+    stats = statistics(sums, n, big_h, velocity=velocity, shape=shape)
+    out = {"algorithm": algorithm, "sample_interval": np.reshape(p["sample_interval"], shape), "statistics": stats}
+    if series:
+        rows = int(n[0]) + 1 if size else 1
+        out["attitude_error"] = np.reshape(keep[0], shape + (rows, 3))
+        if velocity:
+            out["dw_body"] = np.reshape(keep[1], shape + (rows, 3))
+            out["dw_inertial"] = np.reshape(keep[2], shape + (rows, 3))
+    return BatchResult(**out)
+
+
+def _run_numpy(algorithm, p, n, lam0, w0, *, velocity: bool, series: bool):
+    """The reference: the numpy simulator point by point (each point's series is held while it runs)."""
+    from .precession import RegularPrecession
+    from .simulator import simulate
+
+    size = n.shape[0]
+    sums = empty_sums(size)
+    keep = [[], [], []]
+    for i in range(size):
+        motion = RegularPrecession(p["eps"][i], p["nu"][i], p["nutation"][i], p["nu_dual"][i], p["nutation_dual"][i])
+        h = float(p["sample_interval"][i])
+        r = simulate(algorithm, motion, h, int(n[i]) * algorithm.samples * h, attitude0=lam0, w_inertial0=w0, velocity=velocity, engine="numpy")
+        row = slice(i, i + 1)
+        dwe = None if r.dw_body is None else r.dw_body[None]
+        dwi = None if r.dw_inertial is None else r.dw_inertial[None]
+        accumulate(sums[row], 0, n[row], r.attitude_error[None], dwe, dwi)
+        if series:
+            keep[0].append(r.attitude_error)
+            keep[1].append(r.dw_body)
+            keep[2].append(r.dw_inertial)
+    if not series:
+        return sums, None
+    stack = [np.stack(k) if k and k[0] is not None else None for k in keep]
+    return sums, tuple(stack)

@@ -1,0 +1,469 @@
+"""Fused compiled simulator kernels, generated from an algorithm's terms (numba).
+
+For every algorithm and run kind (attitude, or biquaternion for the apparent
+velocity) this module writes the algorithm's increment ``Δφ`` (or
+``ΔΦ = Δφ + s Δφ°``, Lebedev & Panov 1989, eq. (2.5)) as straight-line scalar
+code, term by term from the :class:`~strapdown.derivations.coning.algorithms.Algorithm`
+data, in the same order of operations as
+:func:`strapdown.analysis.coning.evaluation.increment`: the sum ``P``, the
+pairwise terms folded by their left factor, then the nested and dot-weighted
+terms.  Dual arithmetic is expanded into real and dual parts by the generator,
+so a sculling run is a fused loop too.  Below it come the functions of
+:mod:`strapdown.analysis.coning._kernel_template` (exact increments by a
+angle addition from anchors computed directly every few samples, the step biquaternion (1.12), the
+product, the exact solution (1.5), (4.4)–(4.5), the error and its running
+statistics), and the whole module is compiled with ``numba.njit(cache=True)``.
+
+Generated modules are stored under ``<cache base>/kernels/``, named by the
+SHA-256 of their own text, next to numba's cache of their machine code: the
+first run of an algorithm compiles it (a few seconds), later runs in any
+process load it.  A stale kernel cannot be served, because a changed
+generator or template gives a different text and so a different file.
+
+numba is optional at run time: :func:`available` says whether it can be
+imported, and without it :func:`strapdown.analysis.coning.simulator.simulate`
+uses its numpy path (the reference the kernels are tested against).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib.util
+import inspect
+import os
+import sys
+import tempfile
+import threading
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+
+from ...derivations.coning.algorithms import Algorithm
+from ..core import quaternion as quat
+from ..core.dual import Dual
+from . import _kernel_template as template
+from .streaming import N_SUMS
+
+__all__ = ["ENGINES", "AUTO_MIN_WORK", "available", "use_compiled", "increment_source", "kernel_source", "kernel", "parameter_rows", "advance", "chunk_steps"]
+
+#: Values of the ``engine`` argument of the simulators.
+ENGINES = ("auto", "numpy", "compiled")
+
+#: Template functions copied into every generated module, in this order.
+_TEMPLATE_FUNCTIONS = ("qmul", "rotvec_quat", "error_rotvec", "fill_table", "phase", "anchor_of", "flush", "run")
+
+_lock = threading.Lock()
+_loaded: dict = {}
+
+
+def available() -> bool:
+    """True when numba can be imported (the compiled engine can run).
+
+    Returns
+    -------
+    bool
+    """
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+#: ``engine="auto"`` compiles a kernel for an algorithm outside the registry only for a run of at
+#: least this many point-steps, where the compile (seconds, once per algorithm and install) pays.
+AUTO_MIN_WORK = 1 << 21
+
+
+def use_compiled(engine: str, *, supported: bool = True, algorithm: Algorithm | None = None, work: int = 0) -> bool:
+    """Whether a simulator call with ``engine`` runs the compiled kernel.
+
+    ``"auto"`` takes the kernel when numba is available, the motion is
+    supported, and either the algorithm is a registry entry (its kernel is
+    compiled once per install and reused), or the numpy path cannot run it
+    (cross-step terms), or the run is large enough (``work`` ≥
+    :data:`AUTO_MIN_WORK` point-steps) that compiling a new kernel pays.  The
+    choice depends only on the arguments, so a result never depends on what
+    happens to be cached.
+
+    Parameters
+    ----------
+    engine : {"auto", "numpy", "compiled"}
+        ``"auto"`` as above; ``"numpy"``: the vectorised numpy reference;
+        ``"compiled"``: the kernel, or an error.
+    supported : bool, keyword-only
+        Whether the kernels cover the motion (the regular precession (4.1)–(4.2)).
+    algorithm : Algorithm, keyword-only, optional
+        The algorithm to run (for ``"auto"``).
+    work : int, keyword-only
+        Points × steps of the call (for ``"auto"``).
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        Unknown ``engine``, or ``"compiled"`` for a motion the kernels do not cover.
+    ImportError
+        ``"compiled"`` without numba.
+    """
+    if engine not in ENGINES:
+        raise ValueError(f"Expected `engine` in {', '.join(repr(e) for e in ENGINES)}, got {engine!r}")
+    if engine == "numpy":
+        return False
+    if engine == "compiled":
+        if not supported:
+            raise ValueError("Expected a RegularPrecession motion for engine='compiled' (the kernels cover the regular precession only), got another motion")
+        if not available():
+            raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
+        return True
+    if not (supported and available()):
+        return False
+    if algorithm is None or algorithm.history > 0 or work >= AUTO_MIN_WORK:
+        return True
+    from ...derivations.coning.registry import REGISTRY
+
+    return REGISTRY.get(algorithm.name) == algorithm
+
+
+# --------------------------------------------------------------------------- code generation
+class _Code:
+    """Straight-line scalar code over (real, dual) parts; dual parts are dropped for a real run."""
+
+    def __init__(self, dual: bool):
+        self.dual = dual
+        self.lines: list = []
+        self._count = 0
+
+    def let(self, value):
+        """Bind a (re, du) pair of expressions to fresh names."""
+        name = f"v{self._count}"
+        self._count += 1
+        self.lines.append(f"{name} = {value[0]}")
+        if self.dual:
+            self.lines.append(f"{name}d = {value[1]}")
+            return (name, f"{name}d")
+        return (name, None)
+
+    def add(self, a, b):
+        return self.let((f"{a[0]} + {b[0]}", f"{a[1]} + {b[1]}" if self.dual else None))
+
+    def mul(self, a, b):
+        return self.let((f"{a[0]} * {b[0]}", f"{a[0]} * {b[1]} + {a[1]} * {b[0]}" if self.dual else None))
+
+    def scale(self, c: float, a):
+        return self.let((f"{c!r} * {a[0]}", f"{c!r} * {a[1]}" if self.dual else None))
+
+    def sub_products(self, a, b, c, d):
+        """``a b − c d``."""
+        re = f"{a[0]} * {b[0]} - {c[0]} * {d[0]}"
+        du = f"{a[0]} * {b[1]} + {a[1]} * {b[0]} - ({c[0]} * {d[1]} + {c[1]} * {d[0]})" if self.dual else None
+        return self.let((re, du))
+
+    def cross(self, a, b):
+        return (
+            self.sub_products(a[1], b[2], a[2], b[1]),
+            self.sub_products(a[2], b[0], a[0], b[2]),
+            self.sub_products(a[0], b[1], a[1], b[0]),
+        )
+
+    def dot(self, a, b):
+        total = self.mul(a[0], b[0])
+        for k in (1, 2):
+            total = self.add(total, self.mul(a[k], b[k]))
+        return total
+
+
+def increment_source(algorithm: Algorithm, *, dual: bool) -> str:
+    """Source of ``increment(w, wd)``: the algorithm's ``Δφ`` (and ``Δφ°``) from one increment window.
+
+    ``w[r, c]`` and ``wd[r, c]`` hold the real and dual parts of ``p_j``,
+    ``j = 1 − history … N`` (row ``r = j − 1 + history``); the function
+    returns ``(Δφ_x, Δφ_y, Δφ_z, Δφ°_x, Δφ°_y, Δφ°_z)`` (dual parts zero for a
+    real run).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    dual : bool, keyword-only
+        Generate the dual (velocity) extension, eq. (2.5) of Lebedev & Panov (1989).
+
+    Returns
+    -------
+    str
+        Python source of the function (numba-compatible).
+
+    Raises
+    ------
+    TypeError
+        If ``algorithm`` is not an :class:`Algorithm`.
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    code = _Code(dual)
+    history = algorithm.history
+
+    def sample(j):
+        r = j - 1 + history
+        return tuple((f"w[{r}, {c}]", f"wd[{r}, {c}]") for c in range(3))
+
+    comps = {j: None for j in range(algorithm.first_index, algorithm.samples + 1)}
+    for j in comps:
+        comps[j] = tuple(code.let(part) for part in sample(j))
+
+    def expr(e):
+        if isinstance(e, int):
+            return comps[e]
+        a, b = e
+        return code.cross(expr(a), expr(b))
+
+    total = list(comps[1])
+    for j in range(2, algorithm.samples + 1):
+        total = [code.add(total[c], comps[j][c]) for c in range(3)]
+    by_left: dict = {}
+    for (i, j), c in algorithm.pairwise.items():
+        by_left.setdefault(i, []).append((j, float(c)))
+    for i, row in by_left.items():
+        right = []
+        for c in range(3):
+            acc = None
+            for j, coefficient in row:
+                term = code.scale(coefficient, comps[j][c])
+                acc = term if acc is None else code.add(acc, term)
+            right.append(acc)
+        term = code.cross(comps[i], right)
+        total = [code.add(total[c], term[c]) for c in range(3)]
+    for t in algorithm.terms:
+        plain_pair = not t.dots and isinstance(t.cross[0], int) and isinstance(t.cross[1], int)
+        if plain_pair:
+            continue
+        value = expr(t.cross)
+        factor = None
+        for i, j in t.dots:
+            d = code.dot(comps[i], comps[j])
+            factor = code.scale(float(t.coefficient), d) if factor is None else code.mul(factor, d)
+        if factor is None:
+            term = [code.scale(float(t.coefficient), value[c]) for c in range(3)]
+        else:
+            term = [code.mul(factor, value[c]) for c in range(3)]
+        total = [code.add(total[c], term[c]) for c in range(3)]
+    re = ", ".join(part[0] for part in total)
+    du = ", ".join(part[1] for part in total) if dual else "0.0, 0.0, 0.0"
+    body = "\n".join(f"    {line}" for line in code.lines)
+    title = f"{algorithm.name}: " + " + ".join(str(t) for t in algorithm.terms) if algorithm.terms else algorithm.name
+    return f'def increment(w, wd):\n    """Δφ{" + s Δφ°" if dual else ""} of {title}."""\n{body}\n    return ({re}, {du})\n'
+
+
+def _algorithm_text(algorithm: Algorithm) -> str:
+    terms = "; ".join(f"{Fraction(t.coefficient)} {t.cross} {t.dots}" for t in algorithm.terms)
+    return f"N={algorithm.samples}; {terms}"
+
+
+def kernel_source(algorithm: Algorithm, *, velocity: bool) -> str:
+    """Full source of the generated kernel module of ``algorithm``.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    velocity : bool, keyword-only
+        Biquaternion run (attitude and apparent velocity) instead of attitude only.
+
+    Returns
+    -------
+    str
+        Module source: numba import, the algorithm's constants, the generated
+        :func:`increment_source`, and the template functions, each decorated
+        with ``numba.njit(cache=True)``.
+    """
+    parts = [
+        "# Generated by strapdown.analysis.coning.kernels from the algorithm's terms; do not edit.",
+        f"# algorithm: {algorithm.name}: {_algorithm_text(algorithm)}",
+        f"# run: {'biquaternion (attitude and apparent velocity)' if velocity else 'attitude'}",
+        "import math",
+        "",
+        "import numba",
+        "import numpy as np",
+        "",
+        f"SAMPLES = {algorithm.samples}",
+        f"HISTORY = {algorithm.history}",
+        f"WINDOW = {algorithm.window}",
+        f"DUAL = {bool(velocity)}",
+        f"REANCHOR = {template.REANCHOR}",
+        f"BLOCK = {template.BLOCK}",
+        f"N_PARAMETERS = {template.N_PARAMETERS}",
+        f"N_SUMS = {N_SUMS}",
+        "",
+        "",
+        "@numba.njit(cache=True, nogil=True)",
+        increment_source(algorithm, dual=velocity),
+    ]
+    return "\n".join(parts) + _template_text()
+
+
+@functools.lru_cache(maxsize=1)
+def _template_text() -> str:
+    parts = []
+    for name in _TEMPLATE_FUNCTIONS:
+        parts += ["", "@numba.njit(cache=True, nogil=True)", inspect.getsource(getattr(template, name))]
+    return "\n".join(parts)
+
+
+# --------------------------------------------------------------------------- loading
+def _kernel_directory() -> Path:
+    from ..core.cache import cache_directory
+
+    return cache_directory().parent / "kernels"
+
+
+def _write_once(path: Path, text: str) -> Path:
+    if path.is_file() and path.read_text(encoding="utf-8") == text:
+        return path
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".py")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _module_path(text: str, name: str) -> Path:
+    try:
+        return _write_once(_kernel_directory() / name, text)
+    except OSError:  # unwritable cache: compile from a private directory, without reuse across runs
+        return _write_once(Path(tempfile.mkdtemp(prefix="strapdown-kernels-")) / name, text)
+
+
+def kernel(algorithm: Algorithm, *, velocity: bool):
+    """The compiled ``run`` function of ``algorithm`` (generated, written and compiled on first use).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    velocity : bool, keyword-only
+        Biquaternion run instead of attitude only.
+
+    Returns
+    -------
+    numba dispatcher
+        ``run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep)`` of
+        :mod:`strapdown.analysis.coning._kernel_template`.
+
+    Raises
+    ------
+    ImportError
+        If numba is not installed.
+    TypeError
+        If ``algorithm`` is not an :class:`Algorithm`.
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    if not available():
+        raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
+    text = kernel_source(algorithm, velocity=velocity)
+    digest = hashlib.sha256(text.encode()).hexdigest()[:24]
+    with _lock:
+        if digest in _loaded:
+            return _loaded[digest]
+        name = f"strapdown_kernel_{digest}"
+        path = _module_path(text, f"{name}.py")
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+        _loaded[digest] = module.run
+        return module.run
+
+
+# --------------------------------------------------------------------------- running
+def parameter_rows(eps, nu, nutation, nu_dual, nutation_dual, sample_interval, attitude0, w_inertial0, *, velocity: bool):
+    """Parameter rows and initial (bi)quaternions of a batch of regular precessions.
+
+    Parameters
+    ----------
+    eps, nu, nutation, nu_dual, nutation_dual, sample_interval : ndarray, shape (P,)
+        ε [-], ν [rad/s], ϑ [rad], ν° [m/s²], ϑ° [m/s], h [s] of each point
+        (Lebedev & Panov 1989, eqs. (4.1)–(4.2)).
+    attitude0 : ndarray, shape (4,)
+        Λ(0), unit quaternion.
+    w_inertial0 : ndarray, shape (3,)
+        W_I(0) [m/s].
+    velocity : bool, keyword-only
+        Biquaternion run: θ(0) = Λ(0) + s M(0) (:func:`~strapdown.analysis.coning.precession.initial_biquaternion`).
+
+    Returns
+    -------
+    par : ndarray, shape (P, 14)
+        ε, ν, ϑ, ν°, ϑ°, h, then the constant ``C = θ(0) ∘ P̄(0)`` of the exact
+        solution (1.5) (real part, dual part).
+    theta0 : ndarray, shape (P, 8)
+        θ(0) (real part, dual part; the dual part zero for an attitude run).
+    """
+    from .precession import initial_biquaternion
+
+    count = eps.shape[0]
+    theta0 = initial_biquaternion(attitude0, w_inertial0) if velocity else Dual(np.asarray(attitude0, dtype=float), np.zeros(4))
+    half_nut = Dual(nutation, nutation_dual if velocity else np.zeros(count)) * 0.5
+    zero = np.zeros(count)
+    # P(0) = (cos(ϑ/2), sin(ϑ/2), 0, 0), eq. (4.4) at t = 0 with dual ϑ for (4.5).
+    p0 = Dual(np.stack([np.cos(half_nut.re), np.sin(half_nut.re), zero, zero], axis=-1), np.stack([-np.sin(half_nut.re) * half_nut.du, np.cos(half_nut.re) * half_nut.du, zero, zero], axis=-1))
+    const = quat.multiply(Dual(np.broadcast_to(theta0.re, (count, 4)), np.broadcast_to(theta0.du, (count, 4))), quat.conjugate(p0))
+    par = np.stack([eps, nu, nutation, nu_dual, nutation_dual, sample_interval], axis=-1)
+    par = np.concatenate([par, const.re, const.du], axis=-1)
+    theta = np.concatenate([np.broadcast_to(theta0.re, (count, 4)), np.broadcast_to(theta0.du, (count, 4))], axis=-1)
+    return np.ascontiguousarray(par), np.ascontiguousarray(theta)
+
+
+def chunk_steps(points: int, *, budget: int = 1 << 20) -> int:
+    """Steps per call of the kernel for ``points`` runs: about ``budget`` point-steps, a multiple of the block.
+
+    Parameters
+    ----------
+    points : int
+        Number of parameter points advanced together.
+    budget : int, keyword-only
+        Point-steps per call (sets how often control returns to Python).
+
+    Returns
+    -------
+    int
+    """
+    block = template.BLOCK
+    return max(block, (budget // max(points, 1)) // block * block)
+
+
+def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> None:
+    """Advance all points from step ``k0`` to ``k1`` with a compiled ``run``, in place.
+
+    Parameters
+    ----------
+    run : numba dispatcher
+        From :func:`kernel`.
+    par : ndarray, shape (P, 14)
+        From :func:`parameter_rows`.
+    theta : ndarray, shape (P, 8)
+        (Bi)quaternion after step ``k0``; updated to the one after ``k1``.
+    n_steps : ndarray of int64, shape (P,)
+        Steps of each run (a point stops at its own end).
+    sums : ndarray, shape (P, 18)
+        Accumulators (:mod:`strapdown.analysis.coning.streaming`), updated.
+    k0, k1 : int
+        First and last step index of the span.
+    series : tuple of three ndarray, shape (P, n + 1, 3), optional
+        Error, ΔW_E and ΔW_I series, written at every step of the span.
+    """
+    if series is None:
+        dummy = np.zeros((1, 1, 3))
+        run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False)
+    else:
+        run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True)
