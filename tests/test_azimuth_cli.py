@@ -74,5 +74,5 @@ def test_design_amplitude_meets_budget_at_first_order():
     """At the first-order admissible amplitude the first-order alignment rms equals the budget."""
     budget, lat, T = math.radians(0.05), math.radians(50), 30.0
     d = admissible_amplitude(budget, lat, T, [0.1], rocking="narrowband")
-    a = d["amplitude_first_order"][0]
-    assert math.tan(lat) * a / math.sqrt(2) * math.sqrt(d["variance_factor"][0]) == pytest.approx(budget, rel=1e-12)
+    a = d.amplitude_first_order[0]
+    assert math.tan(lat) * a / math.sqrt(2) * math.sqrt(d.variance_factor[0]) == pytest.approx(budget, rel=1e-12)
