@@ -19,6 +19,10 @@ __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
     "DEG_PER_H_TO_RAD_PER_S",
     "SECONDS_PER_HOUR",
+    "ARCSEC",
+    "PPM",
+    "DEG_PER_RT_H_TO_RAD_PER_RT_S",
+    "M_S_PER_RT_H_TO_M_S_PER_RT_S",
     "deg",
     "rad",
     "deg_per_h",
@@ -34,6 +38,14 @@ DEG_PER_RAD = 180.0 / math.pi
 RAD_PER_S_TO_DEG_PER_H = DEG_PER_RAD * SECONDS_PER_HOUR
 #: Factor from deg/h to rad/s.
 DEG_PER_H_TO_RAD_PER_S = 1.0 / RAD_PER_S_TO_DEG_PER_H
+#: One arc-second [rad].
+ARCSEC = DEG / 3600.0
+#: One part per million [1].
+PPM = 1e-6
+#: Factor from deg/√h (angle random walk) to rad/√s.
+DEG_PER_RT_H_TO_RAD_PER_RT_S = DEG / math.sqrt(SECONDS_PER_HOUR)
+#: Factor from m/s/√h (velocity random walk) to m/s/√s.
+M_S_PER_RT_H_TO_M_S_PER_RT_S = 1.0 / math.sqrt(SECONDS_PER_HOUR)
 
 
 def deg(x):

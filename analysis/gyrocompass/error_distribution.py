@@ -84,8 +84,8 @@ def _phase_values(c: np.ndarray) -> np.ndarray:
     return total
 
 
-def abs_error_quantile(sine_amplitudes, gaussian_sigma: float, level: float) -> ErrorQuantile:
-    """Percentile of ``|Σ c_i sin θ_i + w|``, θ_i uniform and independent, ``w ~ N(0, s²)``.
+def abs_error_quantile(sine_amplitudes, gaussian_sigma: float, level: float, *, mean: float = 0.0) -> ErrorQuantile:
+    """Percentile of ``|μ + Σ c_i sin θ_i + w|``, θ_i uniform and independent, ``w ~ N(0, s²)``.
 
     Parameters
     ----------
@@ -95,10 +95,13 @@ def abs_error_quantile(sine_amplitudes, gaussian_sigma: float, level: float) -> 
         Standard deviation ``s`` of the Gaussian part [error units].
     level : float
         Probability in (0, 1), e.g. 0.95.
+    mean : float
+        Deterministic part μ (a bias) [error units].
 
     Returns
     -------
     ErrorQuantile
+        With ``rms = √(μ² + Σ c_i²/2 + s²)``.
 
     Raises
     ------
@@ -121,10 +124,11 @@ def abs_error_quantile(sine_amplitudes, gaussian_sigma: float, level: float) -> 
     c = np.abs(as_array(sine_amplitudes, "sine_amplitudes").ravel())
     s = nonnegative(gaussian_sigma, "gaussian_sigma")
     p = in_open_interval(level, "level", 0.0, 1.0)
-    rms = rms_of(c, s)
+    mu = as_float(mean, "mean")
+    rms = math.hypot(rms_of(c, s), mu)
     if rms == 0.0:
         return ErrorQuantile(p, 0.0, 0.0)
-    m = _phase_values(c)
+    m = _phase_values(c) + mu
     if s == 0.0:
         return ErrorQuantile(p, float(np.quantile(np.abs(m), p)), rms)
     from scipy.optimize import brentq
