@@ -20,11 +20,10 @@ sample mean keeps the variance ``v(f, T) Dξ``:
   ``a D_n sin(θ')`` with the Dirichlet factor
   ``D_n = sin(nωh/2) / (n sin(ωh/2))``, which vanishes when T holds a whole
   number of periods.  That is an artefact of choosing T to the period: the
-  designer knows neither exactly.  The chart uses the envelope over the
-  phase ``nωh/2 mod π`` (the phase the rocking has advanced over the window,
-  modulo a half period), ``E_n = min(1, 1/(n |sin(ωh/2)|))``, the worst case
-  over alignment times within half a period of T.  ``envelope=False`` gives
-  the exact ``D_n``.
+  designer knows neither exactly.  The chart uses the envelope over the phase
+  the rocking advances over the window, ``E_n = max_{m ∈ [n, n + 1/(fh)]} |D_m|``:
+  the worst case over alignment times at least T (about ``1/(n sin(ωh/2))``
+  once the window holds half a period).  ``envelope=False`` gives the exact ``D_n``.
 
 Criteria.  The rms of Δ (second-order theory of
 :mod:`strapdown.derivations.gyrocompass.azimuth_error`, with ``Dξ → v Dξ``;
@@ -51,6 +50,10 @@ __all__ = ["AdmissibleRocking", "admissible_amplitude", "sine_mean_factor"]
 def sine_mean_factor(frequency, n_samples: int, dt: float, *, envelope: bool = True):
     """Amplitude factor of the mean of ``n`` samples of a unit sinusoid: ``|D_n|`` or its envelope.
 
+    ``D_n = sin(nπfh) / (n sin(πfh))``.  The envelope is the largest ``|D_m|``
+    over ``m`` from n to one rocking period more: the worst case over alignment
+    times at least T (beyond a period the peaks only decrease).
+
     Parameters
     ----------
     frequency : array_like
@@ -60,8 +63,7 @@ def sine_mean_factor(frequency, n_samples: int, dt: float, *, envelope: bool = T
     dt : float
         Sample interval [s].
     envelope : bool
-        Return the envelope ``min(1, 1/(n |sin(π f dt)|))`` instead of
-        ``|sin(n π f dt) / (n sin(π f dt))|``.
+        Return the envelope instead of ``|D_n|``.
 
     Returns
     -------
@@ -70,17 +72,31 @@ def sine_mean_factor(frequency, n_samples: int, dt: float, *, envelope: bool = T
 
     >>> float(sine_mean_factor(0.1, 100, 0.1, envelope=False)) < 1e-12
     True
-    >>> round(float(sine_mean_factor(0.1, 100, 0.1)), 4)  # 1/(n sin(π f dt)) ≈ 1/π
-    0.3184
+    >>> round(float(sine_mean_factor(0.1, 100, 0.1)), 4)  # about 1/(1.5 π): the next peak, half a period later
+    0.2173
     """
-    f = as_array(frequency, "frequency")
+    f = np.atleast_1d(as_array(frequency, "frequency")).astype(float)
     x = np.pi * f * positive(dt, "dt")
     n = int(n_samples)
-    den = n * np.abs(np.sin(x))
-    if envelope:
-        return np.minimum(1.0, 1.0 / den)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(den > 0, np.abs(np.sin(n * x)) / np.where(den > 0, den, 1.0), 1.0)
+
+    def dirichlet(m):
+        den = m * np.abs(np.sin(x))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(den > 0, np.abs(np.sin(m * x)) / np.where(den > 0, den, 1.0), 1.0)
+
+    if not envelope:
+        out = dirichlet(n)
+    else:
+        per_period = np.ceil(1.0 / (f * dt)).astype(int)
+        out = np.array([np.max(_dirichlet_one(n, xi, int(p))) for xi, p in zip(x, per_period)])
+    return out.reshape(np.shape(frequency)) if np.ndim(frequency) else out[0]
+
+
+def _dirichlet_one(n: int, x: float, span: int) -> np.ndarray:
+    """``|D_m|`` for ``m = n, ..., n + span`` at one ``x = π f h``."""
+    m = np.arange(n, n + span + 1, dtype=float)
+    s = abs(math.sin(x))
+    return np.abs(np.sin(m * x)) / (m * s) if s > 0 else np.ones_like(m)
 
 
 @dataclass(frozen=True)

@@ -363,7 +363,7 @@ def _design_lines(curves, check, freqs) -> list:
         "`analysis/gyrocompass/admissible_rocking.py`): by the rms (second-order theory with the variance factor of the mean,",
         "solid) and by the 95th percentile of |Δ| (first order, dashed). For the sine the mean over the window keeps",
         "the Dirichlet factor $\\sin(n\\omega h/2)/(n\\sin(\\omega h/2))$, which vanishes where T holds a whole number of periods; the chart",
-        "uses its envelope over that phase (the worst case over alignment times within half a period; the exact, jagged",
+        "uses its envelope over that phase (the worst case over alignment times of at least T; the exact, jagged",
         "curve is drawn thin). The sine's residue is bounded, so its 95th percentile is below $1.96\\,$rms; the narrow-band",
         "residue is Gaussian. The whole system — rocking in the gyros, sensor errors, three alignment methods — is in",
         "[alignment](alignment.md).",
