@@ -334,7 +334,7 @@ def _analytic_percentile(th, budget, level, cap, rocking):
         return 0.0
     if q(cap) <= 0:
         return cap
-    return brentq(q, 0.0, cap, xtol=1e-9 * cap)
+    return brentq(q, 0.0, cap, xtol=1e-6 * cap)
 
 
 @dataclass(frozen=True)

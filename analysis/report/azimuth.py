@@ -1,9 +1,10 @@
-"""Report section ``azimuth.md``: gyrocompass azimuth error under random rocking (tilt channel).
+"""Report section ``azimuth.md``: gyrocompass azimuth error under random rocking.
 
 Formatting only: every number and curve comes from
 :mod:`strapdown.analysis.gyrocompass` and :mod:`strapdown.derivations.gyrocompass`.
-The whole-system alignment (rocking in the gyros, sensor errors, three
-methods) is the ``alignment`` section.
+Parts 1–6 are the tilt channel of Hrechka & Koroliov; part 7, the whole-system
+self-alignment (rocking in the gyros, sensor errors, three methods), is
+formatted by :mod:`strapdown.analysis.report.alignment`.
 """
 
 from __future__ import annotations
@@ -18,7 +19,11 @@ SECTION = Section(
     "azimuth",
     "Gyrocompass azimuth error under random rocking",
     order=50,
-    summary="Bounds (14), (15) of Hrechka & Koroliov derived and checked by Monte Carlo; second-order theory; estimators (16) vs Kalman filter; admissible rocking in the tilt channel.",
+    summary=(
+        "Bounds (14), (15) of Hrechka & Koroliov derived and checked by Monte Carlo; second-order theory; estimators (16) vs Kalman filter; "
+        "admissible rocking in the tilt channel; self-alignment of the whole system (rocking in the gyros, sensor errors, analytic, "
+        "inertial-frame and Kalman methods with NEES/NIS) and the admissible rocking of each method."
+    ),
 )
 
 
@@ -365,8 +370,7 @@ def _design_lines(curves, check, freqs) -> list:
         "the Dirichlet factor $\\sin(n\\omega h/2)/(n\\sin(\\omega h/2))$, which vanishes where T holds a whole number of periods; the chart",
         "uses its envelope over that phase (the worst case over alignment times of at least T; the exact, jagged",
         "curve is drawn thin). The sine's residue is bounded, so its 95th percentile is below $1.96\\,$rms; the narrow-band",
-        "residue is Gaussian. The whole system — rocking in the gyros, sensor errors, three alignment methods — is in",
-        "[alignment](alignment.md).",
+        "residue is Gaussian. The whole system — rocking in the gyros, sensor errors, three alignment methods — is part 7.",
         "",
         "![design chart](figures/azimuth-design.png)",
         "",
@@ -431,6 +435,9 @@ def build(ctx) -> None:
     curves, exact_sine, check, freqs = _design(ctx)
     _design_figure(ctx, curves, exact_sine, check, freqs)
     lines += _design_lines(curves, check, freqs)
+    from .alignment import alignment_lines
+
+    lines += alignment_lines(ctx, 7)
     lines.append(f"Mode: {'quick' if ctx.quick else 'full'}; root seed {ctx.seed}.")
     ctx.write_text("azimuth.md", "\n".join(lines))
 
@@ -487,4 +494,6 @@ def errata(ctx) -> list:
             "azimuth",
         )
     )
-    return out
+    from .alignment import alignment_errata
+
+    return out + alignment_errata(ctx)
