@@ -53,20 +53,22 @@ def cli_timings() -> None:
             for label in ("cold", "warm", "warm"):
                 wall, cpu = _child_time(argv, env)
                 print(f"{name:<44} {label:>6} {wall:>9.2f} {cpu:>8.2f}")
-    import contextlib
-    import io
-
-    from strapdown.analysis.cli import build_parser, main
-
-    t = time.perf_counter()
-    build_parser()
-    parser = time.perf_counter() - t
-    with contextlib.redirect_stdout(io.StringIO()):
-        main(AZIMUTH)  # warm the in-process caches
-        t = time.perf_counter()
-        main(AZIMUTH)
-    command = time.perf_counter() - t - parser
-    print(f"in process: parser of every command {parser:.2f} s; the azimuth command itself {max(command, 0.0):.3f} s (warm)")
+    code = "\n".join(
+        [
+            "import contextlib, io, sys, time",
+            "t = time.perf_counter()",
+            "from strapdown.analysis.cli import build_parser, main",
+            "build_parser()",
+            "t1 = time.perf_counter()",
+            "with contextlib.redirect_stdout(io.StringIO()):",
+            f"    main({AZIMUTH!r})",
+            "t2 = time.perf_counter()",
+            "print(f'{t1 - t:.2f} {t2 - t1:.2f} {\"sympy\" in sys.modules}')",
+        ]
+    )
+    for _ in range(2):  # the first run may fill the code cache of a changed source tree
+        out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    print(f"warm, one process: importing every command module and building the parser {out[0]} s; the azimuth command itself {out[1]} s; SymPy imported: {out[2]}")
 
 
 def main() -> None:

@@ -27,6 +27,7 @@ def main() -> None:
     args = parser.parse_args()
     lat, s = math.radians(60.0), math.radians(1.0)
     second_order_theory(lat, 0.0, 0.0, s, s)  # generated code loaded once, outside the timings
+    montecarlo.run(AzimuthErrorKernel(lat, 0.0, 0.0, NarrowbandRocking(s, s, 8.0, 0.1), n_steps=64, dt=0.1), 2, rng=0)  # lazy scipy imports
     print(f"{'case':<34} {'samples':>12} {'seconds':>8} {'Msamples/s':>11} {'peak traced MB':>15}")
     cases = [
         ("normal, independent instants", lambda n: azimuth_monte_carlo(lat, 0.0, 0.0, GaussianRocking(s, s), n, rng=1)),

@@ -81,12 +81,12 @@ def test_fft_evaluation_equals_the_sum_of_sinusoids():
 
 def test_rocking_statistics():
     m = NarrowbandMotion([0.01, 0.02, 0.03], 8.0, 0.1)
-    a, _, _ = m.draw(2, 1000, 3, 0.1).evaluate(1)
+    (a,) = m.draw(2, 1000, 3, 0.1).evaluate(1, derivatives=0)
     # Gaussian coefficients: the value at an instant is N(0, σ²); SE of a std from 1000 draws ≈ 2.2 %
     np.testing.assert_allclose(m.spectrum(3, 0.1).sigma, m.sigma, rtol=1e-12)
     np.testing.assert_allclose(a[:, 0].std(axis=0), m.sigma, rtol=0.08)
     w = WhiteMotion(0.01)
-    x = w.draw(3, 200, 400, 0.01).evaluate(400)[0][:, :, 1]
+    x = w.draw(3, 200, 400, 0.01).evaluate(400, derivatives=0)[0][:, :, 1]
     assert abs(np.mean(x[:, :-1] * x[:, 1:]) / np.mean(x * x)) < 0.02  # white at the sample rate
     s = SineMotion([0.01, 0.02, 0.03], 5.0).draw(4, 64, 100, 0.1).evaluate(100)[0]
     np.testing.assert_allclose(np.abs(s).max(axis=(0, 1)), [0.01, 0.02, 0.03], rtol=2e-3)
@@ -270,3 +270,26 @@ def test_alignment_statistics_do_not_depend_on_chunking():
     a = montecarlo.run(kernel, 40, rng=3, trials_per_block=8, blocks_per_chunk=1)
     b = montecarlo.run(kernel, 40, rng=3, trials_per_block=8, blocks_per_chunk=5)
     assert (a.mean, a.mse, a.rms_ci) == (b.mean, b.mse, b.rms_ci)
+
+
+# ---------------------------------------------------------------- the designer's answer
+def test_admissible_rocking_meets_the_budget():
+    """Analytic: the first-order rms at the admissible amplitude is the budget; inertial: the root search's own
+    Monte Carlo at its root is within the budget and one bracket step above it is not."""
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass.alignment_design import admissible_rocking
+
+    sc = Scenario(R(60.0), heading=R(30.0), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=60.0)
+    e = SensorErrors(gyro_noise=R(0.002) / 60.0)
+    budget = R(0.2)
+    d = admissible_rocking("analytic", budget, sc, [0.1], e, rocking="narrowband")
+    th = analytic_theory(replace(sc, motion=NarrowbandMotion(d.amplitude[0] * d.pattern, 10.0, 0.1)), e)
+    assert th.rms == pytest.approx(budget, rel=1e-9)
+    assert d.amplitude_percentile[0] < d.amplitude[0]  # 95 % of a Gaussian error needs 1.96 rms
+    env = admissible_rocking("analytic", budget, sc, [0.1, 0.15], e, rocking="sine")
+    exact = admissible_rocking("analytic", budget, sc, [0.1, 0.15], e, rocking="sine", envelope=False)
+    assert np.all(env.amplitude <= exact.amplitude * (1 + 1e-12))  # the envelope is the worst case
+    mc = admissible_rocking("inertial", budget, sc, [0.1], e, rocking="sine", n_trials=16, rtol=0.2, rng=5)
+    assert 0.0 < mc.amplitude[0] < mc.max_amplitude
+    assert mc.amplitude_ci[0, 0] <= mc.amplitude[0] <= mc.amplitude_ci[0, 1]

@@ -128,7 +128,7 @@ class MotionRealisation:
         """Trials."""
         return self.coefficients.shape[0]
 
-    def evaluate(self, n_samples: int, offset: float = 0.0):
+    def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
         """Angles, rates and angular accelerations at ``t_k = offset + k dt``, ``k < n_samples``.
 
         Parameters
@@ -137,25 +137,31 @@ class MotionRealisation:
             Time points.
         offset : float
             Time of the first point [s], in [0, dt].
+        derivatives : int
+            Highest derivative returned, 0 to 2 (the accelerations cost an FFT more).
 
         Returns
         -------
-        angles, rates, accelerations : ndarray
-            Each ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
+        tuple of ndarray
+            ``angles, rates, accelerations`` (up to ``derivatives``), each
+            ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
         """
         n = as_int(n_samples, "n_samples", minimum=1)
+        k = as_int(derivatives, "derivatives", minimum=0)
+        if k > 2:
+            raise ValueError(f"Expected `derivatives` in 0..2, got {k}")
         shape = (self.n_trials, n, 3)
         if self.coefficients.shape[-1] == 0:
-            return np.zeros(shape), np.zeros(shape), np.zeros(shape)
+            return tuple(np.zeros(shape) for _ in range(k + 1))
         w = self.spectrum.omega
         c = self.coefficients * np.exp(1j * w * offset)
         if self.spectrum.n_fft is not None:
-            return tuple(self._fft(c * (1j * w) ** d, n) for d in range(3))
+            return tuple(self._fft(c * (1j * w) ** d, n) for d in range(k + 1))
         t = np.arange(n) * self.dt
-        out = [np.zeros((self.n_trials, 3, n)) for _ in range(3)]
+        out = [np.zeros((self.n_trials, 3, n)) for _ in range(k + 1)]
         for m in range(w.size):  # a few sinusoids
             e = np.exp(1j * w[m] * t)
-            for d in range(3):
+            for d in range(k + 1):
                 out[d] += np.real(((1j * w[m]) ** d * c[:, :, m])[:, :, None] * e)
         return tuple(np.ascontiguousarray(np.swapaxes(x, 1, 2)) for x in out)
 

@@ -211,7 +211,7 @@ class ImuRecord:
         return self.dtheta.shape[0]
 
 
-def _ideal_rates(scenario: Scenario, angles_r, rates_r, accels_r):
+def _ideal_rates(scenario: Scenario, angles_r, rates_r, accels_r=None):
     """Ideal gyro rate and specific force at the points of one quadrature node."""
     lat = scenario.latitude
     W, g = earth_rate_ned(lat), gravity_ned(lat)
@@ -288,15 +288,16 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     motion = scenario.motion.draw(g, n, N + 1, dt)
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
+    order = 2 if np.any(scenario.lever_arm) else 1
     for node in _GAUSS:
-        gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt))
+        gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
         dtheta += (0.5 * dt) * gyro
         dv += (0.5 * dt) * f
     # truth at the sample instants k·stride
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:
         idx = np.append(idx, N)
-    ang, rate, _ = motion.evaluate(N + 1, 0.0)
+    ang, rate = motion.evaluate(N + 1, 0.0, derivatives=1)
     ang, rate = ang[:, idx], rate[:, idx]
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)

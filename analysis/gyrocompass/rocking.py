@@ -23,6 +23,7 @@ the amplitude of :class:`SineRocking` is ``σ √2``.  ξ and η are independent
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -315,15 +316,8 @@ class NarrowbandRocking:
         F, Qd : ndarray
             Transition and process-noise covariance (``scipy.linalg.expm``).
         """
-        from scipy.linalg import expm
-
-        dt = positive(dt, "dt")
-        w0, z = self.omega0, self.damping
-        Ac = np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]])
-        F = expm(Ac * dt)
-        P = np.diag([1.0, w0 * w0])
-        Q = P - F @ P @ F.T
-        return F, 0.5 * (Q + Q.T)
+        F, Q = _discretise(self.omega0, self.damping, positive(dt, "dt"))
+        return F.copy(), Q.copy()
 
     def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
         """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s].
@@ -445,6 +439,18 @@ class NarrowbandRocking:
             z = math.sqrt(s2) * z
         x[:, 2:], _ = signal.lfilter([1.0, theta], [1.0, -t, d], z, axis=-1, zi=zi)
         return x
+
+
+@functools.lru_cache(maxsize=64)
+def _discretise(w0: float, z: float, dt: float):
+    """``(F, Qd)`` of the unit-variance shaping-filter state, cached (a Monte Carlo asks for it per block)."""
+    from scipy.linalg import expm
+
+    Ac = np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]])
+    F = expm(Ac * dt)
+    P = np.diag([1.0, w0 * w0])
+    Q = P - F @ P @ F.T
+    return F, 0.5 * (Q + Q.T)
 
 
 MODELS = {"normal": GaussianRocking, "sine": SineRocking, "narrowband": NarrowbandRocking}
