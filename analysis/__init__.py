@@ -44,6 +44,12 @@ Dual numbers
 Apparent velocity
     ``W_E = 2 vect(Λ̄ ∘ M)``, ``W_I = 2 vect(M ∘ Λ̄)``
     (Lebedev & Panov 1989, eq. (1.3)).
+Local errors
+    Exact minus algorithm: the local error of a step is
+    ``δφ = Δφ_exact − Δφ_algorithm``, on the symbolic side (series) and the
+    numeric side alike, and drift rates derived from it carry the same sign
+    (the error rotation ``Λ_true ∘ Λ̄_computed``).  ``h`` is the sample interval,
+    ``H = N h`` the step of an N-sample algorithm.
 Units
     SI throughout; angles in radians inside the code.  Degrees and deg/h appear
     only at the edges (CLI and reports).

@@ -1,13 +1,15 @@
 """Benchmark: symbolic series to h⁷ for every registry algorithm, the drift functions, and the report.
 
 Targets: series + drift functions < 30 s on one core; ``reports/derivations.md`` < 2 min.
-Each stage runs in a fresh interpreter so that no cache is shared.
+Each stage runs in a fresh interpreter so that no cache is shared (the cache of generated
+code is a fresh directory per stage).  Higher weights: ``bench_series.py``.
 
     python benchmarks/bench_derivations.py
 """
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import tempfile
@@ -25,7 +27,7 @@ STAGES = {
         "    a = get(n); S.local_error(a); S.error_coefficients(a); D.drift_coefficients(a); D.structure_functions(a)\n"
         "for N in (2, 3, 4): D.coning_constant(N)"
     ),
-    "lambdified u_a, all registry": (
+    "compiled u_a, all registry": (
         "from strapdown.analysis.coning.drift_theory import asymptotic_drift; from strapdown.derivations.coning.registry import get, names\n"
         "for n in names(): asymptotic_drift(get(n), eps=-1.0, nu=62.8, nutation=0.1, step=0.01)"
     ),
@@ -33,9 +35,10 @@ STAGES = {
 
 
 def _time(code: str) -> float:
-    t = time.perf_counter()
-    subprocess.run([sys.executable, "-c", code], check=True)
-    return time.perf_counter() - t
+    with tempfile.TemporaryDirectory() as cache:
+        t = time.perf_counter()
+        subprocess.run([sys.executable, "-c", code], check=True, env=dict(os.environ, STRAPDOWN_CACHE_DIR=cache))
+        return time.perf_counter() - t
 
 
 def main() -> None:

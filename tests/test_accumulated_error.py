@@ -8,29 +8,18 @@ import pytest
 from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_velocity_error
 from strapdown.analysis.coning.precession import RegularPrecession, exact_state
 from strapdown.analysis.coning.simulator import simulate
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning.registry import get
 
-NU, NUTATION, H_SAMPLE, DURATION = 2 * np.pi, np.radians(10.0), 0.01, 100.0
+_C = P.LEBEDEV_PANOV_CONDITIONS
+NU, NUTATION, H_SAMPLE, DURATION = 2 * np.pi * _C.spin_freq_hz, np.radians(_C.nutation_deg), _C.sample_interval, _C.duration
 _HALF = NUTATION / 2
 _TILTED = (np.cos(_HALF), np.sin(_HALF), 0.0, 0.0)
 #: Lebedev & Panov (1989), section 6: variants 1–3 (ν° [m/s²], ϑ° [m/s], W_I(0) [m/s], Λ(0)).
-VARIANTS = {
-    1: (0.5, 10.0, (10.0, 0.0, 0.0), _TILTED),
-    2: (10.0, 100.0, (100.0, 0.0, 0.0), _TILTED),
-    3: (10.0, 100.0, (20.0, 35.0, 40.0), (1.0, 0.0, 0.0, 0.0)),
-}
+VARIANTS = {v.number: (v.nu_dual, v.nutation_dual, v.w_inertial0, _TILTED if v.tilted_start else (1.0, 0.0, 0.0, 0.0)) for v in _C.variants}
 #: Lebedev & Panov (1989), section 6, table: |ΔW_I| [m/s] at t = 100 s, (ρ, ε, variant, printed).
 #: The ρ = 6 cells are errata (reports/errata.md): the theory below and the simulation agree, the print does not.
-PRINTED_DW_I = [
-    (4, -1.0, 1, 8.648e-3, False),
-    (4, -1.0, 2, 8.755e-2, False),
-    (4, 0.5, 1, 4.629e-3, False),
-    (4, 0.5, 2, 4.688e-2, False),
-    (6, -1.0, 1, 5.978e-6, True),
-    (6, -1.0, 2, 6.207e-5, True),
-    (6, 0.5, 1, 8.687e-5, True),
-    (6, 0.5, 2, 1.232e-3, True),
-]
+PRINTED_DW_I = [(c.order, c.eps, c.variants[0], c.value, c.order == 6) for c in P.LEBEDEV_PANOV_TABLE if c.quantity == "dW_I"]
 #: Relative agreement of theory and simulation: through weight 7 the ρ = 4 estimate misses
 #: terms of relative size (νH)^4 ≈ 4e-3 times small coefficients (observed < 1e-4); the ρ = 6
 #: estimate keeps only its leading weight 7 and misses relative (νH)^2 terms (observed < 3e-3).
@@ -90,7 +79,7 @@ def test_dual_part_is_the_directional_derivative():
 def test_attitude_error_grows_at_the_drift_rate():
     # Secular part: |δφ(t)| / t tends to the simulated constant drift (least-squares slope over 100 s).
     alg, eps = get("lebedev-panov-6"), -1.0
-    simulated = float(simulate(alg, RegularPrecession(eps, NU, NUTATION), H_SAMPLE, DURATION).drift_deg_per_h)
+    simulated = float(simulate(alg, RegularPrecession(eps, NU, NUTATION), H_SAMPLE, DURATION).drift_rate) * RAD_PER_S_TO_DEG_PER_H
     theory = np.linalg.norm(asymptotic_attitude_error(alg, 1e4, eps=eps, nu=NU, nutation=NUTATION, step=4 * H_SAMPLE)) / 1e4
     assert theory * RAD_PER_S_TO_DEG_PER_H == pytest.approx(simulated, rel=5e-3)
 

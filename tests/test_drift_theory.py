@@ -2,31 +2,27 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 import sympy as sp
 
-from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_drift, asymptotic_order, drift_series
+from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_drift, asymptotic_order, drift_series, drift_terms
 from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.precession import RegularPrecession
+from strapdown.analysis.coning.simulator import prefix_product
 from strapdown.analysis.core import quaternion as quat
 from strapdown.derivations.coning import drift as D
+from strapdown.derivations.coning import published as P
+from strapdown.derivations.coning.algorithms import Algorithm, Term
 from strapdown.derivations.coning.registry import get
 
 e, c, s, td = D.EPS, D.COS, D.SIN, D.THETA_DUAL
 
 # Lebedev & Panov (1989), section 5, printed structure functions (ρ = 2 and 4,
 # algorithm (2.2) truncated to that order).
-PRINTED_STRUCTURE = [
-    ("lebedev-panov-2", "f", -e),
-    ("lebedev-panov-2", "g", 1 + e * c),
-    ("lebedev-panov-2", "f_dual", sp.Integer(0)),
-    ("lebedev-panov-2", "g_dual", -e * td * s),
-    ("lebedev-panov-4", "f", -e * (4 * e**2 + 24 * e * c + 23)),
-    ("lebedev-panov-4", "g", 4 * e**3 * c + 8 * e**2 * (3 * c**2 - 1) + 19 * e * c + 7),
-    ("lebedev-panov-4", "f_dual", 24 * e**2 * td * s),
-    ("lebedev-panov-4", "g_dual", -e * td * s * (4 * e**2 + 48 * e * c + 19)),
-]
+PRINTED_STRUCTURE = [(f"lebedev-panov-{rho}", which, expr) for rho, functions in P.STRUCTURE_FUNCTIONS.items() for which, expr in functions.items()]
 
 
 @pytest.mark.parametrize("name, which, printed", PRINTED_STRUCTURE)
@@ -42,18 +38,7 @@ def test_structure_function_normalisation():
 
 # Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3: ϑ = 1°, f = 10 Hz, H = 0.01 s,
 # drift in deg/h: (algorithm, ε, ρ, u*, u_a).  u_a of algorithm 5 at ε = 0.5 is not printed.
-TABLE_3 = [
-    (1, -1.0, 4, 2.47, 2.51),
-    (2, -1.0, 4, 1.42, 1.44),
-    (3, -1.0, 6, 3.95e-4, 3.76e-4),
-    (4, -1.0, 4, 9.60e-2, 9.92e-2),
-    (5, -1.0, 6, 5.98e-4, 6.45e-4),
-    (1, 0.5, 4, 6.72e-2, 5.35e-2),
-    (2, 0.5, 4, 1.31e-1, 1.20e-1),
-    (3, 0.5, 4, 6.45e-1, 6.41e-1),
-    (4, 0.5, 4, 5.95e-1, 5.91e-1),
-    (5, 0.5, 4, 6.45e-1, None),
-]
+TABLE_3 = [(r.algorithm, r.eps, r.order, r.u_star, r.u_a) for r in P.BUDENNYI_TABLE_3]
 # ρ = 6 rows: the printed u_a omits the transport of the weight-5 error (see
 # reports/derivations.md); the derived u_a agrees with the simulated u* instead.
 TABLE_3_ERRATA = {(3, -1.0), (5, -1.0)}
@@ -167,3 +152,81 @@ def test_asymptotic_drift_broadcasts():
     u = asymptotic_drift(get("panov-4s-1"), eps=np.array([-1.0, 0.5]), nu=NU, nutation=NUT, step=np.array([[0.01], [0.005]]))
     assert u.shape == (2, 2)
     assert u[0, 0] / u[1, 0] == pytest.approx(16)
+
+
+# ------------------------------------------------------------------ cross-step algorithms
+#: Savage's 1 + 1 (Savage 1998): Δφ = p_1 + (1/12) p_0 × p_1, p_0 the last sample of the previous step.
+SAVAGE = Algorithm("savage-1+1", 1, (Term(Fraction(1, 12), (0, 1)),), "Savage 1 + 1", "Savage (1998)")
+
+
+def _one_step_drift_window(alg, eps, nu, nutation, step):
+    """As :func:`_one_step_drift`, with the samples of earlier steps in the window (oldest first)."""
+    motion = RegularPrecession(eps, nu, nutation)
+    N, h = alg.samples, step / alg.samples
+    t = np.arange(alg.first_index - 1, N + 1) * h
+    p = motion.angle_increments(t[:-1], t[1:])
+    dphi = increment(alg, p)
+    lam_a, lam_b = motion.attitude(0.0), motion.attitude(step)
+    computed = quat.multiply(lam_a, quat.rotvec_to_quat(dphi))
+    err = quat.quat_to_rotvec(quat.multiply(computed, quat.conjugate(lam_b)))
+    return err[2] / step
+
+
+@pytest.mark.parametrize("eps, nut_deg", [(-1.0, 5.0), (0.5, 5.0), (0.5, 30.0)])
+def test_cross_step_drift_series_matches_one_step_oracle(eps, nut_deg):
+    """Savage 1 + 1 under regular precession: the drift series through h^9 against one exact step."""
+    nut, nu = np.radians(nut_deg), 2 * np.pi * 10.0
+    steps = np.array([0.004, 0.002])
+    oracle = np.array([_one_step_drift_window(SAVAGE, eps, nu, nut, h) for h in steps])
+    vals, _ = drift_terms(SAVAGE, eps, nut, max_weight=9)
+    w = np.arange(10)
+    series = np.array([np.sum(vals * nu**w * h ** np.maximum(w - 1, 0)) for h in steps])
+    # the oracle is computed minus exact along the precession axis, the series exact minus computed
+    np.testing.assert_allclose(series, -oracle, rtol=2e-4)
+    dev = np.abs(series / -oracle - 1)
+    assert dev[1] <= dev[0] + 1e-9  # the remainder (weight ≥ 10) shrinks with the step
+
+
+def test_cross_step_asymptotic_drift_and_order():
+    """u_a of Savage 1 + 1 tends to the oracle with the predicted order ρ."""
+    eps, nut, nu = 0.5, np.radians(10.0), 2 * np.pi * 10.0
+    rho = int(asymptotic_order(SAVAGE, eps, nut))
+    assert rho == 4  # its h⁴ error x02 is transverse on the precession: the drift starts one weight up
+    ratios = [abs(_one_step_drift_window(SAVAGE, eps, nu, nut, h)) / float(asymptotic_drift(SAVAGE, eps=eps, nu=nu, nutation=nut, step=h)) for h in (0.004, 0.002, 0.001)]
+    assert abs(ratios[-1] - 1) < 0.01
+    vals, mags = drift_terms(SAVAGE, eps, nut, max_weight=9)
+    nonzero = [w for w in range(10) if abs(vals[w]) > 1e-11 * mags[w]]
+    assert nonzero[0] == rho + 1
+    # the deviation of u/u_a from 1 shrinks as H^(next nonzero weight − leading weight)
+    assert abs(ratios[1] - 1) / abs(ratios[2] - 1) == pytest.approx(2 ** (nonzero[1] - nonzero[0]), rel=0.1)
+
+
+def test_savage_structure_functions_explain_the_transverse_leading_error():
+    with pytest.raises(ValueError, match="transverse"):
+        D.structure_functions(SAVAGE)
+
+
+def _simulate_cross_step(alg, motion, h, steps):
+    """A small parallel computation that feeds each step the window p_{1−history} … p_N (test-side oracle)."""
+    N, hist = alg.samples, alg.history
+    t = np.arange(-hist, steps * N + 1) * h
+    p = motion.angle_increments(t[:-1], t[1:])
+    windows = np.stack([p[k * N : k * N + N + hist] for k in range(steps)])
+    q = quat.rotvec_to_quat(increment(alg, windows))
+    lam0 = motion.attitude(0.0)
+    lam = quat.multiply(lam0, prefix_product(q))
+    exact = motion.attitude(np.arange(1, steps + 1) * N * h)
+    return quat.quat_to_rotvec(quat.multiply(exact, quat.conjugate(lam)))  # exact minus computed, frame I
+
+
+def test_cross_step_accumulated_error_matches_a_parallel_computation():
+    """Accumulated attitude error (5.1)–(5.2) of Savage 1 + 1 against a direct run with the previous samples."""
+    eps, nu, nut, h, steps = 0.5, 2 * np.pi, np.radians(10.0), 0.01, 2000
+    motion = RegularPrecession(eps, nu, nut)
+    err_I = _simulate_cross_step(SAVAGE, motion, h, steps)
+    t = np.arange(1, steps + 1) * h
+    body = asymptotic_attitude_error(SAVAGE, t, eps=eps, nu=nu, nutation=nut, step=h, max_weight=9)
+    theory_I = quat.rotate(motion.attitude(t), body)  # α = Λ δφ Λ̄ (exact = computed ∘ exp δφ)
+    scale = np.linalg.norm(err_I, axis=-1).max()
+    assert scale > 1e-9
+    np.testing.assert_allclose(theory_I, err_I, atol=2e-3 * scale)

@@ -152,13 +152,13 @@ def test_printed_4_5_and_4_6(motion):
 
 def test_printed_4_7_needs_nu_dual_in_last_row():
     """(4.7) holds with ν° in its last row; the printed 'Λ°' is a misprint (errata)."""
-    from strapdown.analysis.report.errata import core_checks
+    from strapdown.analysis.coning.biquaternion_checks import printed_formula_checks
 
-    checks = core_checks()
-    assert checks["u_inertial_error"] < 1e-10
-    assert checks["unit_condition_plus"] < 1e-14
-    assert checks["unit_condition_printed"] > 0.1
-    assert checks["mu_vec_error_fixed"] < 1e-14 < 0.1 < checks["mu_vec_error_printed"]
+    checks = printed_formula_checks(0)
+    assert checks.u_inertial_error < 1e-10
+    assert checks.unit_condition_plus < 1e-14
+    assert checks.unit_condition_printed > 0.1
+    assert checks.mu_vec_error_fixed < 1e-14 < 0.1 < checks.mu_vec_error_printed
 
 
 @pytest.mark.parametrize(

@@ -10,6 +10,7 @@ from scipy.integrate import solve_ivp
 
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.core.dual import Dual
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning import series as S
 from strapdown.derivations.coning.algorithms import Algorithm, Term
 from strapdown.derivations.coning.registry import get, names
@@ -61,7 +62,7 @@ def test_exact_series_matches_integration_to_ninth_order():
     # truncation at weight 7; the midpoint expansion has no even weights, so the
     # remainder is O(H^9): halving H divides the error by ~512
     assert errors[0] / errors[1] == pytest.approx(512, rel=0.1)
-    assert all(not any(S._weight_part(S.exact_increment(), w)) for w in (2, 4, 6))
+    assert all(not any(S.weight_part(S.exact_increment(), w)) for w in (2, 4, 6))
 
 
 def test_half_step_series_consistent_with_full_step():
@@ -104,14 +105,8 @@ def test_orders(name, order):
 # Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2: δ4 and k03, k12, k002, k110, k0001,
 # convention exact − algorithm, coefficient of h^5.  Entries marked "erratum" are
 # contradicted by the derivation (evidence in reports/derivations.md).
-TABLE_2 = [
-    # algorithm, δ4, (k03, k12, k002, k110, k0001), erratum
-    (1, Fraction(4, 45), (-1, 46, 16, 48, -16), None),
-    (2, Fraction(1, 45), (16, 124, 64, 192, -64), None),
-    (3, Fraction(1, 45), (0, 0, 64, 192, -64), None),
-    (4, Fraction(1, 315), (52, 0, 488, 1344, -488), {2: 448, 4: -448}),
-    (5, Fraction(1, 45), (0, 0, 64, 192, -64), None),
-]
+_TABLE_2_ERRATA = {4: {2: 448, 4: -448}}
+TABLE_2 = [(c.algorithm, c.delta, c.k, _TABLE_2_ERRATA.get(c.algorithm)) for c in P.BUDENNYI_TABLE_2]
 
 
 @pytest.mark.parametrize("number, delta, printed, erratum", TABLE_2)
@@ -143,11 +138,7 @@ def test_table_1_row_2_as_printed_contradicts_table_2():
 
 # ------------------------------------------------------------------ eq. (2.4)
 # Lebedev & Panov (1989), eq. (2.4): δφ = 8/945 h^7 (Σ c x), exact − algorithm.
-EQ_2_4 = {
-    "23": 92, "05": 1, "14": 6, "004": 6, "013": 42, "103": 24, "112": -66, "202": -116, "301": -30,
-    "0003": -34, "0012": -28, "0102": 128, "0201": -340, "1101": 246, "2001": 28, "00002": -64,
-    "01001": -64, "10001": 256, "000001": 64, "1002": -176,
-}  # fmt: skip
+EQ_2_4 = P.EQ_2_4
 
 
 def _eq_2_4():
@@ -157,13 +148,13 @@ def _eq_2_4():
 def test_eq_2_4_equals_derived_series_exactly():
     err = S.local_error(get("lebedev-panov-6"))
     assert all(not any(err.parts[w]) for w in range(7))
-    derived = S._scale(err.part(7, unit="h"), S.QQ(-1))
+    derived = err.part(7, unit="h")
     assert all(a == b for a, b in zip(derived, _eq_2_4()))
 
 
 def test_eq_2_4_by_value_on_random_derivatives():
     rng = np.random.default_rng(24)
-    derived = S._scale(S.local_error(get("lebedev-panov-6")).part(7, unit="h"), S.QQ(-1))
+    derived = S.local_error(get("lebedev-panov-6")).part(7, unit="h")
     printed = _eq_2_4()
     for _ in range(5):
         d = rng.normal(size=(7, 3))
@@ -172,7 +163,7 @@ def test_eq_2_4_by_value_on_random_derivatives():
 
 def test_eq_2_4_detects_a_changed_coefficient():
     """A one-unit change of any printed coefficient is caught (the comparison can fail)."""
-    derived = S._scale(S.local_error(get("lebedev-panov-6")).part(7, unit="h"), S.QQ(-1))
+    derived = S.local_error(get("lebedev-panov-6")).part(7, unit="h")
     wrong = dict(EQ_2_4, **{"1101": 245})
     vec = S.lie_vector([(tuple(int(ch) for ch in k), Fraction(8, 945) * v) for k, v in wrong.items()])
     assert any(a != b for a, b in zip(derived, vec))
@@ -218,3 +209,167 @@ def test_dual_words_is_the_transfer_principle():
             v = quat.cross(w_du[w[pos]] if pos == i else w_re[w[pos]], v)
         total += float(c) * v
     np.testing.assert_allclose(dual.du, total, atol=1e-12)
+
+
+# ------------------------------------------------------------------ any weight
+#: Savage's "1 + 1" algorithm: one sample per step and the last sample of the previous step,
+#: Δφ = p_1 + (1/12) p_0 × p_1 (Savage 1998).  Defined here: the registry of this module's
+#: branch does not carry it.
+SAVAGE = Algorithm("savage-1+1", 1, (Term(Fraction(1, 12), (0, 1)),), "Savage 1 + 1", "Savage (1998)")
+
+
+def _polynomial_motion(derivs):
+    """ω(t) = Σ_k derivs[k] t^k / k! about t = 0, its exact increments and the DOP853 rotation vector."""
+    from math import factorial
+
+    K = len(derivs)
+
+    def integral(a, b):
+        return sum(derivs[k] * (b ** (k + 1) - a ** (k + 1)) / factorial(k + 1) for k in range(K))
+
+    def rotvec(a, b):
+        def rhs(t, q):
+            w = sum(derivs[k] * t**k / factorial(k) for k in range(K))
+            return 0.5 * quat.multiply(q, np.concatenate([[0.0], w]))
+
+        sol = solve_ivp(rhs, (a, b), [1.0, 0, 0, 0], method="DOP853", rtol=1e-13, atol=1e-16)
+        return quat.quat_to_rotvec(sol.y[:, -1])
+
+    return integral, rotvec
+
+
+def _eval_many(vec, derivs):
+    flat = np.zeros(3 * S.WEIGHT_LIMIT)
+    flat[: derivs.size] = np.asarray(derivs, dtype=float).reshape(-1)
+    return _eval(vec, flat.reshape(-1, 3))
+
+
+def test_exact_increment_to_weight_13_matches_integration():
+    """Through h^13 the series leaves O(H^15) (no even weights): halving H divides the error by ~2^15."""
+    rng = np.random.default_rng(13)
+    derivs = rng.normal(size=(13, 3))
+    errors = []
+    for H in (0.5, 0.25):
+        _, rotvec = _polynomial_motion(derivs)
+        scaled = derivs * np.array([H ** (k + 1) for k in range(13)])[:, None]
+        errors.append(np.linalg.norm(_eval_many(S.exact_increment(max_weight=13), scaled) - rotvec(-H / 2, H / 2)))
+    assert errors[0] / errors[1] == pytest.approx(2**15, rel=0.15)
+    assert all(not any(S.weight_part(S.exact_increment(max_weight=13), w)) for w in (2, 4, 6, 8, 10, 12))
+
+
+def test_series_of_higher_weight_extends_the_lower_one():
+    """Asking for h^9 after h^7 keeps the parts of weight ≤ 7 (they are built once, by weight)."""
+    alg = get("panov-4s-5")
+    low, high = S.local_error(alg, 7), S.local_error(alg, 9)
+    assert high.parts[:8] == low.parts and high.max_weight == 9
+    assert S.exact_increment_series().part(7) is S.exact_increment_series().part(7)
+    assert all(a == b for a, b in zip(S.exact_increment(max_weight=9), tuple(x + y for x, y in zip(S.exact_increment(), S.weight_part(S.exact_increment(max_weight=9), 9)))))
+
+
+@pytest.mark.parametrize("bad, exc", [(0, ValueError), (S.WEIGHT_LIMIT + 1, ValueError), (7.0, TypeError), (True, TypeError)])
+def test_max_weight_is_validated(bad, exc):
+    with pytest.raises(exc, match="max_weight"):
+        S.local_error(get("two-sample"), bad)
+
+
+#: A made-up algorithm with pairs and a triple product reaching two samples back.
+TWO_PLUS_TWO = Algorithm("two-plus-two", 2, (Term(Fraction(32, 45), (1, 2)), Term(Fraction(-1, 180), (-1, 1)), Term(Fraction(-1, 90), (0, 2)), Term(Fraction(1, 7), (0, (1, -1)))))
+
+
+@pytest.mark.parametrize("alg", [SAVAGE, TWO_PLUS_TWO])
+def test_cross_step_series_matches_direct_computation(alg):
+    """Indices ≤ 0: the series through h^9 equals Δφ_exact − Δφ_alg computed from exact increments and DOP853.
+
+    ω(t) is a polynomial about the middle of the current step; the increments of
+    the earlier samples are its exact integrals over the intervals before the step.
+    """
+    from strapdown.analysis.coning.evaluation import increment
+
+    rng = np.random.default_rng(9)
+    derivs = rng.normal(size=(9, 3))
+    integral, rotvec = _polynomial_motion(derivs)
+    N, residuals = alg.samples, []
+    for H in (0.4, 0.2):
+        h = H / N
+        window = np.array([integral(-H / 2 + (j - 1) * h, -H / 2 + j * h) for j in range(alg.first_index, N + 1)])
+        direct = rotvec(-H / 2, H / 2) - increment(alg, window)
+        scaled = derivs * np.array([H ** (k + 1) for k in range(9)])[:, None]
+        series = sum(_eval_many(part, scaled) for part in S.local_error(alg, 9).parts)
+        residuals.append(np.linalg.norm(series - direct))
+    # the remainder starts at weight 10: the residual falls by 2^10 per halving of H
+    assert residuals[0] / residuals[1] == pytest.approx(2**10, rel=0.2)
+    assert residuals[1] < 1e-9
+
+
+def _chebyshev_derivatives(motion, t, count, radius=0.05):
+    """ω and its derivatives at t of a TumblingMotion, from a Chebyshev fit (test-side oracle)."""
+    nodes = t + radius * np.cos(np.pi * (np.arange(61) + 0.5) / 61)
+    w = motion.omega(nodes)
+    out = np.empty((count, 3))
+    for c in range(3):
+        fit = np.polynomial.Chebyshev.fit(nodes, w[:, c], 30, domain=[t - radius, t + radius])
+        for k in range(count):
+            out[k, c] = fit.deriv(k)(t) if k else fit(t)
+    return out
+
+
+def test_savage_local_error_on_a_tumbling_motion():
+    """Savage 1 + 1 on a closed-form tumbling motion, with the sample of the previous step.
+
+    Independent of the series: the exact rotation comes from the closed-form
+    attitude and the increments from Gauss–Legendre quadrature.  The local error is
+    O(h⁴) (order 3), and its h⁴ coefficient equals the series' ``(1/24) ω × ω''``.
+    """
+    from strapdown.analysis.coning.evaluation import increment
+    from strapdown.analysis.coning.local_error import TumblingMotion
+
+    motion = TumblingMotion()
+    t_mid = 0.7
+    lead = S.local_error(SAVAGE).part(4, unit="h")
+    derivs = _chebyshev_derivatives(motion, t_mid, 3)
+    predicted = _eval_many(lead, derivs)
+    errors = []
+    for h in (0.02, 0.01, 0.005):
+        t0 = t_mid - h / 2
+        window = motion.increments(t0 - h, h, 2)  # p_0 (previous step) and p_1
+        exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + h)))
+        errors.append((exact - increment(SAVAGE, window)) / h**4)
+    errors = np.array(errors)
+    # (δφ/h⁴) → the h⁴ coefficient, with an O(h) remainder
+    dev = np.linalg.norm(errors - predicted, axis=-1)
+    assert dev[-1] < 0.02 * np.linalg.norm(predicted)
+    assert dev[1] / dev[2] == pytest.approx(2, rel=0.2)
+    assert S.local_error(SAVAGE).order == 3
+    c = S.error_coefficients(SAVAGE)
+    assert (c.order, c.delta, c.coefficients[(0, 2)]) == (3, Fraction(1, 24), 1)
+
+
+def test_optimal_six_sample_to_weight_13():
+    """The compressed optimal 6-sample algorithm: order 3 for general motion, its series runs to h^13."""
+    from strapdown.derivations.coning.drift import optimal_coning_algorithm
+
+    err = S.local_error(optimal_coning_algorithm(6), 13)
+    assert err.order == 3 and err.max_weight == 13
+    assert [w for w, p in enumerate(err.parts) if any(p)] == list(range(4, 14))
+
+
+# ------------------------------------------------------------------ graded series
+def test_rotation_quaternion_and_vector_are_inverse():
+    """log(exp(v)) = v weight by weight, and exp(v) is a unit quaternion (the one-step error rests on both)."""
+    from strapdown.derivations.coning import graded as G
+
+    v = S.exact_increment_series()
+    q = G.rotation_quaternion(v)
+    back = G.rotation_vector(q)
+    for w in range(1, 10):
+        assert back.part(w) == v.part(w)
+    norm = G.combine([(1, G.dot(G.components(q, (0, 1, 2)), G.components(q, (0, 1, 2)))), (1, G.times(G.components(q, (3,)), G.components(q, (3,))))])
+    assert norm.part(0)[0] == 1 and all(not norm.part(w)[0] for w in range(1, 10))
+
+
+def test_graded_power_series_rejects_a_weight_zero_argument():
+    from strapdown.derivations.coning import graded as G
+
+    one = G.Graded.from_parts(S.RING, 1, {0: (S.RING.one,)})
+    with pytest.raises(ValueError, match="weight 1"):
+        G.power_series(one, lambda k: 1)

@@ -14,6 +14,8 @@ from strapdown.analysis.coning.precession import RegularPrecession, exact_state,
 from strapdown.analysis.coning.simulator import drift_rate, prefix_product, sample_increments, simulate, step_count
 from strapdown.analysis.core import quaternion as quat
 from strapdown.analysis.core.dual import Dual
+from strapdown.analysis.core.units import deg_per_h
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning.registry import get
 
 
@@ -123,7 +125,7 @@ def test_convergence_order_attitude_and_velocity(order, eps):
     drift, dwi = [], []
     for h in hs:
         r = simulate(get(f"lebedev-panov-{order}"), m, h, 20.0, w_inertial0=(20.0, 35.0, 40.0), velocity=True)
-        drift.append(float(r.drift_deg_per_h))
+        drift.append(float(deg_per_h(r.drift_rate)))
         dwi.append(float(r.final_dw_inertial))
     for values in (drift, dwi):
         slope = np.polyfit(np.log(hs), np.log(values), 1)[0]
@@ -133,71 +135,45 @@ def test_convergence_order_attitude_and_velocity(order, eps):
 # --------------------------------------------------------------------------- published tables
 # Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, column u* (parallel computation):
 # constant drift rate [deg/h] at ϑ = 1°, f = 10 Hz, H = 4h = 0.01 s.  Printed to 3 digits.
-TABLE_3_U_STAR = [
-    (1, -1.0, 2.47),
-    (2, -1.0, 1.42),
-    (3, -1.0, 3.95e-4),
-    (4, -1.0, 9.60e-2),
-    (5, -1.0, 5.98e-4),
-    (1, 0.5, 6.72e-2),
-    (2, 0.5, 1.31e-1),
-    (3, 0.5, 6.45e-1),
-    (4, 0.5, 5.95e-1),
-    (5, 0.5, 6.45e-1),
-]
+TABLE_3_U_STAR = [(r.algorithm, r.eps, r.u_star) for r in P.BUDENNYI_TABLE_3]
 
 
 @pytest.mark.parametrize("number, eps, printed", TABLE_3_U_STAR)
 def test_budennyi_table_3_u_star(number, eps, printed):
     m = RegularPrecession(eps, 2 * np.pi * 10.0, np.radians(1.0))
     r = simulate(get(f"panov-4s-{number}"), m, 0.0025, 100.0)
-    assert float(r.drift_deg_per_h) == pytest.approx(printed, rel=0.02)
+    assert float(deg_per_h(r.drift_rate)) == pytest.approx(printed, rel=0.02)
 
 
 def test_budennyi_table_1_column_2_as_printed_does_not_reproduce_table_3():
     """Erratum evidence: 4/3 (p1×p3 + p2×p4) (printed column 2) misses both Table 3 cells by far."""
-    from strapdown.analysis.report.algorithms import BUDENNYI_TABLE_1_PRINTED_2, panov_algorithm, table3_drift
+    from strapdown.analysis.coning.budennyi_table3 import simulated_drift
+    from strapdown.analysis.coning.formula_one import printed_column_2
+    from strapdown.analysis.core.units import deg_per_h
 
-    drift = table3_drift(panov_algorithm(BUDENNYI_TABLE_1_PRINTED_2), duration=20.0)
-    assert drift[-1.0] < 0.2 * 1.42 and drift[0.5] > 3 * 0.131
+    drift = simulated_drift(printed_column_2(), duration=20.0)
+    printed = {r.eps: r.u_star for r in P.BUDENNYI_TABLE_3 if r.algorithm == 2}
+    assert deg_per_h(drift.coning) < 0.2 * printed[-1.0] and deg_per_h(drift.precession) > 3 * printed[0.5]
 
 
-_NUT = np.radians(10.0)
+_NUT = np.radians(P.LEBEDEV_PANOV_CONDITIONS.nutation_deg)
 _TILTED = (np.cos(_NUT / 2), np.sin(_NUT / 2), 0.0, 0.0)
 # Lebedev & Panov (1989), section 6: variants (ν° [m/s²], ϑ° [m/s], W_I(0) [m/s], Λ(0)).
-VARIANTS = {
-    1: (0.5, 10.0, (10.0, 0.0, 0.0), _TILTED),
-    2: (10.0, 100.0, (100.0, 0.0, 0.0), _TILTED),
-    3: (10.0, 100.0, (20.0, 35.0, 40.0), (1.0, 0.0, 0.0, 0.0)),
-}
+VARIANTS = {v.number: (v.nu_dual, v.nutation_dual, v.w_inertial0, _TILTED if v.tilted_start else (1.0, 0.0, 0.0, 0.0)) for v in P.LEBEDEV_PANOV_CONDITIONS.variants}
 
 
 def _lp(order, eps, variant, h=0.01):
     nd, td, w0, lam0 = VARIANTS[variant]
     m = RegularPrecession(eps, 2 * np.pi, _NUT, nd, td)
     r = simulate(get(f"lebedev-panov-{order}"), m, h, 100.0, attitude0=lam0, w_inertial0=w0, velocity=True)
-    return {"drift": float(r.drift_deg_per_h), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
+    return {"drift": float(deg_per_h(r.drift_rate)), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
 
 
 # Lebedev & Panov (1989), section 6, table (t = 100 s, ν = 2π s⁻¹, ϑ = 10°, h = 0.01 s):
-# the drift row [deg/h] (variants 1–3) and the ρ = 4 rows of |ΔW_E|, |ΔW_I| [m/s].
-LP_TABLE_REPRODUCED = [
-    ("drift", 4, -1.0, 1, 1.590e-1),
-    ("drift", 4, 0.5, 2, 8.216e-2),
-    ("drift", 6, -1.0, 3, 3.476e-4),
-    ("drift", 6, 0.5, 1, 8.372e-4),
-    ("dW_E", 4, -1.0, 1, 8.648e-3),
-    ("dW_E", 4, -1.0, 2, 8.619e-2),
-    ("dW_E", 4, -1.0, 3, 8.644e-2),
-    ("dW_E", 4, 0.5, 1, 4.597e-3),
-    ("dW_E", 4, 0.5, 2, 4.619e-2),
-    ("dW_E", 4, 0.5, 3, 4.644e-2),
-    ("dW_I", 4, -1.0, 1, 8.648e-3),
-    ("dW_I", 4, -1.0, 2, 8.755e-2),
-    ("dW_I", 4, -1.0, 3, 8.755e-2),
-    ("dW_I", 4, 0.5, 1, 4.629e-3),
-    ("dW_I", 4, 0.5, 2, 4.688e-2),
-    ("dW_I", 4, 0.5, 3, 4.688e-2),
+# the drift row [deg/h] (one variant each) and the ρ = 4 rows of |ΔW_E|, |ΔW_I| [m/s] (every variant).
+_DRIFT_VARIANT = {(4, -1.0): 1, (4, 0.5): 2, (6, -1.0): 3, (6, 0.5): 1}
+LP_TABLE_REPRODUCED = [(c.quantity, c.order, c.eps, _DRIFT_VARIANT[(c.order, c.eps)], c.value) for c in P.LEBEDEV_PANOV_TABLE if c.quantity == "drift"] + [
+    (c.quantity, c.order, c.eps, v, c.value) for c in P.LEBEDEV_PANOV_TABLE if c.quantity != "drift" and c.order == 4 for v in c.variants
 ]
 
 
@@ -210,12 +186,9 @@ def test_lebedev_panov_table(quantity, order, eps, variant, printed):
 # reports/algorithms.md).  For these cells we assert what the convergence study establishes:
 # our value at h = 0.01 s is in the asymptotic regime of a sixth-order method (halving h divides
 # it by 2⁶ within 2%), and it differs from the printed value by more than the 2% tolerance.
+_ERRATA_CELLS = {("dW_E", -1.0, 1), ("dW_E", 0.5, 3), ("dW_I", -1.0, 2), ("dW_I", 0.5, 1), ("dW_I", 0.5, 2)}
 LP_TABLE_ERRATA = [
-    ("dW_E", -1.0, 1, 5.794e-6),
-    ("dW_E", 0.5, 3, 6.406e-4),
-    ("dW_I", -1.0, 2, 6.207e-5),
-    ("dW_I", 0.5, 1, 8.687e-5),
-    ("dW_I", 0.5, 2, 1.232e-3),
+    (c.quantity, c.eps, v, c.value) for c in P.LEBEDEV_PANOV_TABLE if c.order == 6 and c.quantity != "drift" for v in c.variants if (c.quantity, c.eps, v) in _ERRATA_CELLS
 ]
 
 

@@ -1,10 +1,18 @@
-"""``strapdown drift``: constant drift rate of an algorithm under regular precession."""
+"""``strapdown drift``: constant drift rate of an algorithm under regular precession.
+
+Any registry algorithm or TOML file runs, cross-step ones too (indices ≤ 0:
+the samples before the first step come from the exact motion).  The asymptotic
+rate u_a of the symbolic drift theory (Lebedev & Panov 1989, section 5) is
+printed for algorithms within one step; for cross-step algorithms it is not
+available and the JSON value is null.
+"""
 
 from __future__ import annotations
 
 from ..coning.drift_theory import asymptotic_drift
 from ..coning.precession import RegularPrecession
-from ..coning.simulator import RAD_PER_S_TO_DEG_PER_H, simulate
+from ..coning.simulator import simulate
+from ..core.units import deg_per_h
 from . import Result
 from ._options import add_algorithm, add_motion, algorithm_from, motion_parameters, run_summary
 
@@ -15,24 +23,36 @@ def _run(args) -> Result:
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
     r = simulate(alg, motion, args.sample_interval, args.duration)
     data, header = run_summary(alg, r)
+    asymptotic = None
+    if alg.history == 0:
+        u_a = asymptotic_drift(alg, eps=params["eps"], nu=abs(params["nu"]), nutation=params["nutation"], step=r.step)
+        asymptotic = float(deg_per_h(float(u_a)))
     data |= {
         "eps": params["eps"],
         "nutation_deg": args.nutation_deg,
         "freq_hz": args.freq_hz,
-        "simulated_drift_deg_per_h": float(r.drift_deg_per_h),
-        "drift_vector_deg_per_h": (r.drift * RAD_PER_S_TO_DEG_PER_H).tolist(),
-        "asymptotic_drift_deg_per_h": float(asymptotic_drift(alg, eps=params["eps"], nu=abs(params["nu"]), nutation=params["nutation"], step=r.step)) * RAD_PER_S_TO_DEG_PER_H,
+        "simulated_drift_deg_per_h": float(deg_per_h(r.drift_rate)),
+        "drift_vector_deg_per_h": deg_per_h(r.drift).tolist(),
+        "asymptotic_drift_deg_per_h": asymptotic,
         "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
     }
+    u_a_text = f"{asymptotic:.6g} deg/h" if asymptotic is not None else "not available for cross-step algorithms"
     text = (
         f"{header}\n"
         f"constant drift rate (frame I): {data['simulated_drift_deg_per_h']:.6g} deg/h\n"
-        f"asymptotic drift rate u_a: {data['asymptotic_drift_deg_per_h']:.6g} deg/h"
+        f"asymptotic drift rate u_a: {u_a_text}"
     )
     return Result(data, text)
 
 
 def register(commands) -> None:
+    """Add the ``drift`` command.
+
+    Parameters
+    ----------
+    commands : Commands
+        The command registry of :mod:`strapdown.analysis.cli`.
+    """
     p = commands.add(
         "drift",
         _run,

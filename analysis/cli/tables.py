@@ -2,21 +2,39 @@
 
 from __future__ import annotations
 
+from ..coning.budennyi_table3 import reproduce_u_star
+from ..coning.lebedev_panov_table import reproduce_table
+from ..core.units import deg_per_h
 from . import Result
 
+#: Relative difference accepted as reproduced.
+TOLERANCE = 0.02
 
-def _run(args) -> Result:
-    from ..report import algorithms as rep
 
+def tables_command(args) -> Result:
+    """Run ``strapdown reproduce tables``: Table 3 (u*) of Budennyi et al. and the Lebedev & Panov (1989) table.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (only ``--json``).
+
+    Returns
+    -------
+    Result
+        Every printed cell with ours and the relative difference (drift in deg/h, ΔW in m/s).
+    """
     t3 = [
-        {"algorithm": f"panov-4s-{r['algorithm']}", "eps": r["eps"], "ours": r["ours"], "printed": r["printed_u_star"], "rel_diff": r["rel_diff"]}
-        for r in rep.budennyi_table3_rows()
+        {"algorithm": f"panov-4s-{c.printed.algorithm}", "eps": c.printed.eps, "ours": deg_per_h(c.simulated), "printed": c.printed.u_star, "rel_diff": c.relative_difference}
+        for c in reproduce_u_star()
     ]
     lp = []
-    for r in rep.lebedev_panov_rows():
-        for v, ours in zip(r["variants"], r["ours"]):
-            lp.append({"quantity": r["quantity"], "order": r["order"], "eps": r["eps"], "variant": v, "ours": ours, "printed": r["printed"], "rel_diff": ours / r["printed"] - 1.0})
-    data = {"budennyi_table3_u_star": t3, "lebedev_panov_1989": lp, "tolerance": rep.TOLERANCE}
+    for c in reproduce_table(tolerance=TOLERANCE).cells:
+        p = c.printed
+        for v, ours, rel in zip(p.variants, c.ours, c.relative_differences):
+            shown = deg_per_h(ours) if p.quantity == "drift" else ours
+            lp.append({"quantity": p.quantity, "order": p.order, "eps": p.eps, "variant": v, "ours": shown, "printed": p.value, "rel_diff": rel})
+    data = {"budennyi_table3_u_star": t3, "lebedev_panov_1989": lp, "tolerance": TOLERANCE}
     lines = ["Budennyi, Kalinovsky, Panov et al., Table 3, u* [deg/h]", f"{'algorithm':<12} {'eps':>5} {'ours':>11} {'printed':>11} {'diff':>9}"]
     lines += [f"{r['algorithm']:<12} {r['eps']:>5g} {r['ours']:>11.4g} {r['printed']:>11.4g} {100 * r['rel_diff']:>8.2f}%" for r in t3]
     lines += ["", "Lebedev & Panov (1989), section 6 (drift deg/h, ΔW m/s at t = 100 s)", f"{'quantity':<8} {'rho':>3} {'eps':>5} {'var':>3} {'ours':>11} {'printed':>11} {'diff':>9}"]
@@ -25,4 +43,11 @@ def _run(args) -> Result:
 
 
 def register(commands) -> None:
-    commands.add("tables", _run, "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values", group="reproduce")
+    """Add ``strapdown reproduce tables`` to the command line.
+
+    Parameters
+    ----------
+    commands : strapdown.analysis.cli.Commands
+        The command registry.
+    """
+    commands.add("tables", tables_command, "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values", group="reproduce")

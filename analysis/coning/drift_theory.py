@@ -1,25 +1,37 @@
-"""Asymptotic drift rate of an algorithm under regular precession (numeric side).
+"""Drift rate and accumulated error of an algorithm from the symbolic one-step series (numeric side).
+
+Sign convention: errors are exact minus algorithm (package docstring, "Local errors").
 
 The symbolic drift coefficients ``d_w(ε, ϑ)`` of
-:func:`strapdown.derivations.coning.drift.drift_coefficients` are lambdified once per
-algorithm (cached) and evaluated on arrays.  The constant drift rate of the
-attitude along the precession axis is
+:func:`strapdown.derivations.coning.drift.drift_coefficients` are compiled once
+per algorithm and weight (:func:`strapdown.analysis.core.cache.compiled`, keyed by
+the algorithm's exact terms) and evaluated on arrays.  The constant drift rate of
+the attitude error along the precession axis is
 
-    u = Σ_w d_w(ε, ϑ) ν^w H^(w−1)          [rad/s],   w ≤ 7,
+    u = Σ_w d_w(ε, ϑ) ν^w H^(w−1)          [rad/s],   w ≤ max_weight (default 7),
 
 and the *asymptotic* drift u_a keeps only its leading nonvanishing term, of
 weight ``ρ + 1``: ``u_a = |d_{ρ+1}| ν^{ρ+1} H^ρ`` (Budennyi, Kalinovsky,
 Panov et al., eq. (3); Lebedev & Panov 1989, eq. (5.3)).  For the algorithms
 whose fourth-order drift cancels under coning (ε = −1), ρ = 6 there.
 
+Under classical coning (ε = −1, half-cone angle α, rate ω) the drift is also
+known in closed form in ``ωh`` for any algorithm
+(:func:`strapdown.derivations.coning.drift.coning_drift`):
+:func:`coning_drift_function` compiles ``D(x)`` and :func:`coning_drift_rate`
+gives ``u = α² ω D(ωh)``.
+
 The accumulated attitude and apparent-velocity errors at a time t
 (:func:`asymptotic_attitude_error`, :func:`asymptotic_velocity_error`) follow
 the route of Lebedev & Panov (1989), eqs. (5.1)–(5.6), closed in the body
-axes: the one-step error of the series (:func:`strapdown.derivations.coning.drift.mapped_error`)
+axes: the one-step error of the series (:func:`strapdown.derivations.coning.drift.one_step_error`)
 drives (5.1), the integral (5.2) is taken in closed form, and the dual
 (velocity) error is the dual extension of the attitude error in ν and ϑ
 (transfer principle, (5.4)).  It uses neither the simulator nor
 biquaternions, so it is an independent check of the parallel computation.
+
+Cross-step algorithms (sample indices ≤ 0) are handled throughout: the series
+expand every sample about the middle of the current step.
 
 References
 ----------
@@ -31,49 +43,88 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cache
 
 import numpy as np
 import sympy as sp
 
 from ...derivations.coning import drift as sym
 from ...derivations.coning.algorithms import Algorithm
+from ...derivations.coning.series import DEFAULT_MAX_WEIGHT, check_max_weight
 from ..core import quaternion as quat
+from ..core.cache import compiled
 from ..core.dual import Dual
+from ..core.units import RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import as_array, as_float, in_open_interval, positive
 
 __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
     "ZERO_TOLERANCE",
+    "algorithm_key",
     "drift_terms",
     "asymptotic_drift",
     "asymptotic_order",
     "drift_series",
+    "coning_drift_function",
+    "coning_drift_rate",
     "AccumulatedError",
     "asymptotic_attitude_error",
     "asymptotic_velocity_error",
 ]
-
-#: Factor from rad/s to deg/h.
-RAD_PER_S_TO_DEG_PER_H = 180.0 / math.pi * 3600.0
 
 #: A drift coefficient counts as zero at (ε, ϑ) when it is below this fraction of
 #: the sum of the magnitudes of its terms (exact cancellation, e.g. ε = −1).
 ZERO_TOLERANCE = 1e-11
 
 
-@cache
-def _lambdified(algorithm: Algorithm):
-    coeffs = sym.drift_coefficients(algorithm)
-    e, s, c = sp.symbols("e s c")
-    funcs, majorants = [], []
-    for d in coeffs:
-        expr = sp.expand(d).subs({sym.SIN: s, sym.COS: c, sym.EPS: e})
-        poly = sp.Poly(expr, e, s, c)
-        funcs.append(sp.lambdify((e, s, c), poly.as_expr(), "numpy"))
-        maj = sum((abs(coef) * sp.Abs(e) ** i * sp.Abs(s) ** j * sp.Abs(c) ** k for (i, j, k), coef in poly.terms()), sp.Integer(0))
-        majorants.append(sp.lambdify((e, s, c), maj, "numpy"))
-    return tuple(funcs), tuple(majorants)
+def algorithm_key(algorithm: Algorithm) -> str:
+    """The exact content of an algorithm as a string: samples and terms (not its name).
+
+    Two algorithms with the same key have the same series and drift, so the key
+    names their compiled functions in :func:`strapdown.analysis.core.cache.compiled`;
+    algorithms read from TOML files get theirs too.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    TypeError
+        If ``algorithm`` is not an Algorithm.
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> algorithm_key(get("two-sample"))
+    'N=2;2/3|(1, 2)|()'
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    terms = sorted(f"{t.coefficient}|{t.cross}|{t.dots}" for t in algorithm.terms)
+    return ";".join([f"N={algorithm.samples}"] + terms)
+
+
+_E, _S, _C = sp.symbols("e s c")
+
+
+def _drift_functions(algorithm: Algorithm, max_weight: int):
+    """Compiled ``(d_0 … d_K, |d_0| … |d_K|)`` as functions of (ε, sin ϑ, cos ϑ)."""
+
+    def build():
+        values, majorants = [], []
+        for d in sym.drift_coefficients(algorithm, max_weight):
+            expr = sp.expand(d).subs({sym.SIN: _S, sym.COS: _C, sym.EPS: _E})
+            poly = sp.Poly(expr, _E, _S, _C)
+            values.append(poly.as_expr())
+            majorants.append(sum((abs(coef) * sp.Abs(_E) ** i * sp.Abs(_S) ** j * sp.Abs(_C) ** k for (i, j, k), coef in poly.terms()), sp.Integer(0)))
+        return (_E, _S, _C), tuple(values) + tuple(majorants)
+
+    return compiled(f"coning:drift-coefficients:v2:K={max_weight}:{algorithm_key(algorithm)}", build)
 
 
 def _check_params(eps, nutation):
@@ -92,38 +143,58 @@ def _check_positive(x, name):
     return arr
 
 
-def drift_terms(algorithm: Algorithm, eps, nutation):
-    """Drift coefficients ``d_w(ε, ϑ)``, w = 0 … 7 (ν = 1, H = 1).
+def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT):
+    """Drift coefficients ``d_w(ε, ϑ)``, w = 0 … max_weight (ν = 1, H = 1; exact minus algorithm).
 
     Parameters
     ----------
     algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
     eps : array_like
         ε = μ/ν [-].
     nutation : array_like
         Nutation angle ϑ [rad], in (0, π).
+    max_weight : int, keyword-only
+        Highest weight of the series (default 7).
 
     Returns
     -------
-    values, majorants : ndarray, shape (..., 8)
+    values, majorants : ndarray, shape (..., max_weight + 1)
         Signed coefficients and the sums of the magnitudes of their terms.
+
+    Raises
+    ------
+    ValueError, TypeError
+        For ϑ outside (0, π), non-finite input or a bad ``max_weight``.
     """
+    check_max_weight(max_weight)
     eps, nutation = _check_params(eps, nutation)
     eps, nutation = np.broadcast_arrays(eps, nutation)
     s, c = np.sin(nutation), np.cos(nutation)
-    funcs, majs = _lambdified(algorithm)
-    vals = np.stack([np.broadcast_to(np.asarray(f(eps, s, c), dtype=float), eps.shape) for f in funcs], axis=-1)
-    mags = np.stack([np.broadcast_to(np.asarray(m(eps, s, c), dtype=float), eps.shape) for m in majs], axis=-1)
-    return vals, mags
+    out = _drift_functions(algorithm, max_weight)(eps, s, c)
+    columns = [np.broadcast_to(np.asarray(v, dtype=float), eps.shape) for v in out]
+    n = max_weight + 1
+    return np.stack(columns[:n], axis=-1), np.stack(columns[n:], axis=-1)
 
 
-def asymptotic_order(algorithm: Algorithm, eps, nutation):
+def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT):
     """Order ρ of the drift at (ε, ϑ): the leading nonvanishing weight minus one.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    eps : array_like
+        ε = μ/ν [-].
+    nutation : array_like
+        Nutation angle ϑ [rad], in (0, π).
+    max_weight : int, keyword-only
+        Highest weight of the series (default 7).
 
     Returns
     -------
     ndarray of int
-        ρ, or −1 where every coefficient through weight 7 vanishes.
+        ρ, or −1 where every coefficient through ``max_weight`` vanishes.
 
     Examples
     --------
@@ -133,18 +204,19 @@ def asymptotic_order(algorithm: Algorithm, eps, nutation):
     >>> int(asymptotic_order(get("panov-4s-3"), 0.5, np.radians(1.0)))
     4
     """
-    vals, mags = drift_terms(algorithm, eps, nutation)
+    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
     nonzero = np.abs(vals) > ZERO_TOLERANCE * np.maximum(mags, np.finfo(float).tiny)
     first = np.argmax(nonzero, axis=-1)
     return np.where(nonzero.any(axis=-1), first - 1, -1)
 
 
-def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step):
+def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):
     """Asymptotic constant drift rate u_a of the attitude [rad/s].
 
     Parameters
     ----------
     algorithm : Algorithm
+        The algorithm.
     eps : array_like
         ε = μ/ν [-]; ε = −1 is coning.
     nu : array_like
@@ -153,11 +225,13 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step):
         Nutation angle ϑ [rad], in (0, π).
     step : array_like
         Algorithm step H = N h [s], > 0.
+    max_weight : int, keyword-only
+        Highest weight of the series searched for the leading term (default 7).
 
     Returns
     -------
     ndarray
-        ``|d_{ρ+1}(ε, ϑ)| ν^{ρ+1} H^ρ`` [rad/s]; NaN where the drift vanishes through weight 7.
+        ``|d_{ρ+1}(ε, ϑ)| ν^{ρ+1} H^ρ`` [rad/s]; NaN where the drift vanishes through ``max_weight``.
 
     Raises
     ------
@@ -173,8 +247,8 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step):
     """
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
-    vals, mags = drift_terms(algorithm, eps, nutation)
-    rho = asymptotic_order(algorithm, eps, nutation)
+    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
+    rho = asymptotic_order(algorithm, eps, nutation, max_weight=max_weight)
     vals, rho, nu, step = np.broadcast_arrays(vals, rho[..., None], nu[..., None], step[..., None])
     w = rho[..., 0] + 1
     lead = np.take_along_axis(vals, np.clip(w, 0, vals.shape[-1] - 1)[..., None], axis=-1)[..., 0]
@@ -182,23 +256,134 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step):
     return np.where(rho[..., 0] >= 0, out, np.nan)
 
 
-def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step):
-    """Drift rate through weight 7, ``|Σ_w d_w ν^w H^(w−1)|`` [rad/s] (same parameters as :func:`asymptotic_drift`)."""
+def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):
+    """Drift rate through ``max_weight``, ``|Σ_w d_w ν^w H^(w−1)|`` [rad/s].
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    eps : array_like
+        ε = μ/ν [-].
+    nu : array_like
+        Spin rate ν [rad/s], > 0.
+    nutation : array_like
+        Nutation angle ϑ [rad], in (0, π).
+    step : array_like
+        Algorithm step H = N h [s], > 0.
+    max_weight : int, keyword-only
+        Highest weight kept (default 7).
+
+    Returns
+    -------
+    ndarray
+        [rad/s]
+
+    Raises
+    ------
+    ValueError
+        As :func:`asymptotic_drift`.
+    """
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
-    vals, _ = drift_terms(algorithm, eps, nutation)
+    vals, _ = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
     w = np.arange(vals.shape[-1])
     total = np.sum(vals * nu[..., None] ** w * step[..., None] ** np.maximum(w - 1, 0), axis=-1)
     return np.abs(total)
 
 
 # ---------------------------------------------------------------------------
+# Classical coning in closed form
+# ---------------------------------------------------------------------------
+def coning_drift_function(algorithm: Algorithm):
+    """``D(x)``, x = ωh, of the coning drift ``u = α² ω D(ωh)`` as a compiled numpy function.
+
+    The closed form of :func:`strapdown.derivations.coning.drift.coning_drift`
+    (exact in x at order α²), evaluated by its Taylor polynomial where the
+    closed form would lose accuracy to cancellation (small x) and by the closed
+    form above.  Derived once per algorithm content (:func:`algorithm_key`) and
+    cached on disk (:func:`strapdown.analysis.core.cache.compiled`).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
+
+    Returns
+    -------
+    callable
+        ``D(x)`` for ``x > 0`` [rad] (array in, array out); positive: the
+        computed attitude lags the coning rotation.
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> D = coning_drift_function(get("two-sample"))
+    >>> round(float(D(1e-2) / 1e-8), 5)        # (1/60) x^4 at small x
+    0.01667
+    """
+    key = f"coning:coning-drift:v1:{algorithm_key(algorithm)}"
+    return compiled(key, lambda: ((sym.X,), sym.coning_drift(algorithm).stable_expression()))
+
+
+def coning_drift_rate(algorithm: Algorithm, *, cone_angle, nu, sample_interval):
+    """Constant coning drift rate ``u = α² ω D(ωh)`` [rad/s], to leading order in the half-cone angle.
+
+    Classical coning is the regular precession (4.1) with ε = −1, ϑ = α; the
+    drift is along the cone axis (the direction of the mean inertial angular
+    velocity), exact minus algorithm: ``u > 0`` when the computed attitude lags
+    the coning rotation.  The relative error of the α² approximation is O(α²).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    cone_angle : array_like
+        Half-cone angle α [rad], in (0, π/2).
+    nu : array_like
+        Coning rate ω = ν [rad/s], > 0.
+    sample_interval : array_like
+        Sample interval h [s], > 0 (the step is H = N h).
+
+    Returns
+    -------
+    ndarray
+        u [rad/s], signed.
+
+    Raises
+    ------
+    ValueError
+        For α outside (0, π/2), ν or h not positive, or non-finite input.
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> u = coning_drift_rate(get("panov-4s-1"), cone_angle=np.radians(1.0), nu=2 * np.pi * 10, sample_interval=0.0025)
+    >>> round(float(u) * RAD_PER_S_TO_DEG_PER_H, 2)    # all orders in ωh (the leading term alone: 2.51)
+    2.47
+    """
+    alpha = as_array(cone_angle, "cone_angle")
+    if np.any((alpha <= 0) | (alpha >= np.pi / 2)):
+        bad = alpha[(alpha <= 0) | (alpha >= np.pi / 2)].ravel()[0]
+        raise ValueError(f"Expected `cone_angle` in (0, π/2), got {bad:g}")
+    nu = _check_positive(nu, "nu")
+    h = _check_positive(sample_interval, "sample_interval")
+    x = nu * h
+    return alpha**2 * nu * np.asarray(coning_drift_function(algorithm)(x), dtype=float)
+
+
+# ---------------------------------------------------------------------------
 # Accumulated attitude and apparent-velocity error at time t, (5.1)–(5.6)
 # ---------------------------------------------------------------------------
-@cache
-def _step_error_functions(algorithm: Algorithm) -> tuple:
-    """((w, (f_x, f_y, f_z)), …): weight-w parts of the one-step error on (4.1), functions of (ε, ϑ)."""
-    return tuple((w, tuple(sp.lambdify((sym.EPS, sym.THETA), c, "numpy") for c in comps)) for w, comps in sym.step_error_values(algorithm))
+def _step_error_functions(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT):
+    """Weights and a compiled function of (ε, ϑ) returning the one-step error parts on (4.1)."""
+    values = sym.step_error_values(algorithm, max_weight)
+    weights = tuple(w for w, _ in values)
+
+    def build():
+        return (sym.EPS, sym.THETA), tuple(c for _, comps in values for c in comps)
+
+    return weights, compiled(f"coning:step-error:v2:K={max_weight}:{algorithm_key(algorithm)}", build)
 
 
 def _rotate(axis, v, angle):
@@ -207,12 +392,15 @@ def _rotate(axis, v, angle):
     return v * c + quat.cross(axis, v) * s + axis * (quat.dot(axis, v)[..., None] * (1.0 - c))
 
 
-def _body_error(algorithm, t, eps, nu, nutation, step):
+def _body_error(algorithm, t, eps, nu, nutation, step, max_weight=DEFAULT_MAX_WEIGHT):
     """Accumulated error δφ(t) in the body axes; ``nu`` and ``nutation`` may be :class:`Dual`."""
     zero = 0.0 * nutation
     step_error = 0.0
-    for w, funcs in _step_error_functions(algorithm):
-        step_error = step_error + np.stack([f(eps, nutation) + zero for f in funcs], axis=-1) * (nu * step) ** w
+    weights, function = _step_error_functions(algorithm, max_weight)
+    parts = function(eps, nutation)
+    for k, w in enumerate(weights):
+        comps = [parts[3 * k + i] + zero for i in range(3)]
+        step_error = step_error + np.stack(comps, axis=-1) * (nu * step) ** w
     axis = np.stack([zero, np.sin(nutation), np.cos(nutation)], axis=-1)  # precession axis n(0) in E
     along = quat.dot(step_error, axis)
     across = step_error - axis * along
@@ -239,12 +427,12 @@ def _check_error_params(t, eps, nu, nutation, step):
     return t, eps, nu, nutation, step
 
 
-def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, step):
+def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):
     """Accumulated attitude error δφ(t) of ``algorithm`` under regular precession, body axes [rad].
 
-    The one-step error ``X(t_m)`` of the algorithm (algorithm minus exact,
-    resolved in the body axes at the middle of the step, through weight 7 of
-    the series) turns with the motion: ``X(t) = R_z(−νt) X(0)``.  Driving the
+    The one-step error ``X(t_m)`` of the algorithm (exact minus algorithm,
+    resolved in the body axes at the middle of the step, through ``max_weight``
+    of the series) turns with the motion: ``X(t) = R_z(−νt) X(0)``.  Driving the
     error equation (5.1), ``α̇ + ω × α = X/H``, it accumulates in frame I
     (Λ(0) = 1) as the closed form of (5.2),
 
@@ -253,7 +441,7 @@ def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, ste
     with the precession axis ``n = (0, sin ϑ, cos ϑ)`` and ``μ = εν``; the
     secular part along ``n`` is the constant drift of (5.3).  The result is
     ``α`` resolved in the body axes at t, ``δφ = Λ̄(t) ∘ α ∘ Λ(t)``, which does
-    not depend on Λ(0) (computed = exact ∘ exp δφ).
+    not depend on Λ(0) (exact = computed ∘ exp δφ).
 
     Parameters
     ----------
@@ -269,6 +457,8 @@ def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, ste
         Nutation angle ϑ [rad], in (0, π).
     step : float, keyword-only
         Algorithm step H = N h [s], > 0.
+    max_weight : int, keyword-only
+        Highest weight of the one-step error series (default 7).
 
     Returns
     -------
@@ -292,7 +482,7 @@ def asymptotic_attitude_error(algorithm: Algorithm, t, *, eps, nu, nutation, ste
     0.159
     """
     t, eps, nu, nutation, step = _check_error_params(t, eps, nu, nutation, step)
-    return _body_error(algorithm, t, eps, nu, nutation, step)
+    return _body_error(algorithm, t, eps, nu, nutation, step, check_max_weight(max_weight))
 
 
 @dataclass(frozen=True)
@@ -302,7 +492,7 @@ class AccumulatedError:
     Attributes
     ----------
     attitude : ndarray, shape (..., 3)
-        δφ(t) [rad]: computed = exact ∘ exp δφ.
+        δφ(t) [rad]: exact = computed ∘ exp δφ (exact minus algorithm).
     velocity : ndarray, shape (..., 3)
         δφ°(t) [m/s]: the dual part of the same error (Lebedev & Panov 1989, (3.4)).
     """
@@ -316,12 +506,23 @@ class AccumulatedError:
         return np.linalg.norm(self.velocity, axis=-1)
 
     def dw_body(self, w_body) -> np.ndarray:
-        """``ΔW_E = δφ° + W_E × δφ`` [m/s] (3.5), given the exact W_E(t) [m/s], shape (..., 3)."""
+        """``ΔW_E = δφ° + W_E × δφ`` [m/s] (3.5), exact minus computed, given the exact W_E(t).
+
+        Parameters
+        ----------
+        w_body : array_like, shape (..., 3)
+            Exact apparent velocity W_E(t) in the body axes [m/s].
+
+        Returns
+        -------
+        ndarray, shape (..., 3)
+            ΔW_E [m/s].
+        """
         w_body = as_array(w_body, "w_body", last=3)
         return self.velocity + quat.cross(w_body, self.attitude)
 
 
-def asymptotic_velocity_error(algorithm: Algorithm, t, *, eps, nu, nutation, nu_dual, nutation_dual, step) -> AccumulatedError:
+def asymptotic_velocity_error(algorithm: Algorithm, t, *, eps, nu, nutation, nu_dual, nutation_dual, step, max_weight: int = DEFAULT_MAX_WEIGHT) -> AccumulatedError:
     """Accumulated attitude and apparent-velocity error of the dual extension of ``algorithm``.
 
     The velocity algorithm (2.5) is the dual extension of the attitude
@@ -334,7 +535,7 @@ def asymptotic_velocity_error(algorithm: Algorithm, t, *, eps, nu, nutation, nu_
 
     Parameters
     ----------
-    algorithm, t, eps, nu, nutation, step
+    algorithm, t, eps, nu, nutation, step, max_weight
         As in :func:`asymptotic_attitude_error`.
     nu_dual : float, keyword-only
         ν° [m/s²].
@@ -366,5 +567,5 @@ def asymptotic_velocity_error(algorithm: Algorithm, t, *, eps, nu, nutation, nu_
     t, eps, nu, nutation, step = _check_error_params(t, eps, nu, nutation, step)
     nu_dual = as_float(nu_dual, "nu_dual")
     nutation_dual = as_float(nutation_dual, "nutation_dual")
-    err = _body_error(algorithm, t, eps, Dual(nu, nu_dual), Dual(nutation, nutation_dual), step)
+    err = _body_error(algorithm, t, eps, Dual(nu, nu_dual), Dual(nutation, nutation_dual), step, check_max_weight(max_weight))
     return AccumulatedError(attitude=err.re, velocity=err.du)

@@ -104,24 +104,54 @@ class RegularPrecession:
 
     # ----------------------------------------------------------- public API
     def omega(self, t):
-        """Body rate ω(t) in E [rad/s], eq. (4.1); shape ``t.shape + (3,)``."""
+        """Body rate ω(t) in E [rad/s], eq. (4.1); shape ``t.shape + (3,)``.
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+        """
         return self._rate(_time(t), self.nu, self.nutation)
 
     def dual_rate(self, t) -> Dual:
-        """Dual rate ``Ω = ω + s a`` (4.2); the dual part is (4.3) [m/s²]."""
+        """Dual rate ``Ω = ω + s a`` (4.2); the dual part is (4.3) [m/s²].
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+        """
         nu, nut = self._dual_params()
         return self._rate(_time(t), nu, nut)
 
     def accel(self, t):
-        """Apparent acceleration a(t) in E [m/s²], eq. (4.3)."""
+        """Apparent acceleration a(t) in E [m/s²], eq. (4.3).
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+        """
         return self.dual_rate(t).du
 
     def attitude(self, t):
-        """Particular solution Q(t) of ``2Q' = Q ∘ ω`` with Q(0) as printed in (4.4)."""
+        """Particular solution Q(t) of ``2Q' = Q ∘ ω`` with Q(0) as printed in (4.4).
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+        """
         return self._attitude(_time(t), self.nu, self.nutation)
 
     def biquaternion(self, t) -> Dual:
-        """Particular solution ``P = Q + s R`` of ``2P' = P ∘ (ω + s a)``, eqs. (4.4)–(4.5)."""
+        """Particular solution ``P = Q + s R`` of ``2P' = P ∘ (ω + s a)``, eqs. (4.4)–(4.5).
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+        """
         nu, nut = self._dual_params()
         return self._attitude(_time(t), nu, nut)
 
@@ -143,7 +173,13 @@ class RegularPrecession:
         return self._integral(t0, t1, nu, nut)
 
     def angle_increments(self, t0, t1):
-        """Real part of :meth:`increments`, computed without dual arithmetic [rad]."""
+        """Real part of :meth:`increments`, computed without dual arithmetic [rad].
+
+        Parameters
+        ----------
+        t0, t1 : array_like
+            Interval ends [s], broadcast together.
+        """
         t0, t1 = np.broadcast_arrays(_time(t0), _time(t1))
         return self._integral(t0, t1, self.nu, self.nutation)
 

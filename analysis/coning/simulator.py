@@ -3,14 +3,17 @@
 The simulator drives a rotation-vector algorithm (and, through its dual
 extension, the matching apparent-velocity algorithm) with the exact
 increments (2.1) of the regular precession (4.1) or its dual analogue
-(4.2)–(4.3), and compares the computed attitude Λ and apparent velocity
-W_E, W_I with the closed-form solution (1.5), (4.4)–(4.5) of Lebedev & Panov
-(1989).  This is the "method of parallel computation" behind Table 3 of
-Budennyi, Kalinovsky, Panov et al. and the table of Lebedev & Panov (1989).
+(4.2)–(4.3) — or of the classical sculling motion
+(:class:`~strapdown.analysis.coning.sculling_motion.ScullingMotion`) — and
+compares the computed attitude Λ and apparent velocity W_E, W_I with the
+closed-form solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989).  This is the
+"method of parallel computation" behind Table 3 of Budennyi, Kalinovsky, Panov
+et al. and the table of Lebedev & Panov (1989).
 
-Everything is vectorised: the increments of all steps come at once from
-:meth:`RegularPrecession.increments`, the algorithm is evaluated on a
-``(..., steps, N, 3)`` array, and the attitude (or biquaternion) after every
+Everything is vectorised: the increments of all steps come at once from the
+motion's ``grid_increments``, cut into step windows by :func:`step_windows`
+(one index array, :func:`window_index`), the algorithm is evaluated on a
+``(..., steps, W, 3)`` array, and the attitude (or biquaternion) after every
 step is an associative prefix product of the step quaternions
 (:func:`prefix_product`), of depth ``log2(steps)``.  Leading axes batch over
 parameter points.
@@ -18,6 +21,11 @@ parameter points.
 The attitude error is the rotation vector ``δφ_I = rotvec(Λ_alg ∘ Λ̄)`` in
 frame I; the constant drift rate is the norm of its least-squares slope over
 the run.
+
+Cross-step algorithms (indices ≤ 0, :attr:`Algorithm.history` > 0) read
+``history`` samples before each step; the windows of consecutive steps
+overlap by that many rows.  For the first step those samples are the exact
+increments before t = 0 of the same motion, so the run starts in steady state.
 """
 
 from __future__ import annotations
@@ -34,20 +42,19 @@ from ..core.dual import Dual
 from ..core.validation import as_quaternion, as_vector, positive
 from .evaluation import increment
 from .precession import RegularPrecession, exact_state, initial_biquaternion
+from .sculling_motion import ScullingMotion
 
 __all__ = [
-    "RAD_PER_S_TO_DEG_PER_H",
     "SimulationResult",
     "step_count",
+    "window_index",
+    "step_windows",
     "sample_increments",
     "prefix_product",
     "drift_rate",
+    "MOTIONS",
     "simulate",
 ]
-
-#: Factor from rad/s to deg/h.
-RAD_PER_S_TO_DEG_PER_H = 180.0 / math.pi * 3600.0
-
 
 @dataclass(frozen=True)
 class SimulationResult:
@@ -86,9 +93,20 @@ class SimulationResult:
         return self.time.shape[0] - 1
 
     @property
-    def drift_deg_per_h(self) -> np.ndarray:
-        """Constant drift rate ``|slope|`` [deg/h], shape ``(...)``."""
-        return np.linalg.norm(self.drift, axis=-1) * RAD_PER_S_TO_DEG_PER_H
+    def drift_rate(self) -> np.ndarray:
+        """Constant drift rate ``|slope|`` of the attitude error [rad/s], shape ``(...)``."""
+        return np.linalg.norm(self.drift, axis=-1)
+
+    @property
+    def velocity_error_rate(self) -> np.ndarray:
+        """Least-squares slope of ``dw_inertial`` against time [m/s²], shape ``(..., 3)``.
+
+        Under a periodic motion this is the rectification error of the velocity
+        algorithm: the constant rate at which the apparent-velocity error grows.
+        """
+        if self.dw_inertial is None:
+            raise ValueError("Expected a velocity run for `velocity_error_rate`, got an attitude-only run (pass velocity=True)")
+        return drift_rate(self.time, self.dw_inertial)
 
     @property
     def final_dw_body(self) -> np.ndarray:
@@ -139,13 +157,78 @@ def step_count(sample_interval, duration, samples: int) -> int:
     return n
 
 
-def sample_increments(motion: RegularPrecession, sample_interval: float, steps: int, samples: int, *, first_step: int = 0, dual: bool = False):
-    """Exact increments (2.1) of every sample of ``steps`` consecutive steps.
+def window_index(steps: int, samples: int, history: int = 0) -> np.ndarray:
+    """Rows of the step windows in a flat sequence of sample increments.
+
+    Row ``r`` of the flat sequence is sample ``r − history`` counted from the
+    first step's first sample (so rows ``0 … history − 1`` precede the first
+    step).  Window k, the input of step k, is ``p_{1−history} … p_N`` of that
+    step: rows ``k N … k N + history + N − 1``.  Consecutive windows overlap by
+    ``history`` rows.  This one index array is the whole construction, shared
+    by every evaluator (numpy here, compiled kernels elsewhere).
 
     Parameters
     ----------
-    motion : RegularPrecession
-        The motion.
+    steps : int
+        Number of algorithm steps.
+    samples : int
+        Samples N per step.
+    history : int
+        Samples before the step that the algorithm reads (:attr:`Algorithm.history`).
+
+    Returns
+    -------
+    ndarray of int, shape (steps, history + samples)
+
+    Examples
+    --------
+    >>> window_index(3, 2, 1)
+    array([[0, 1, 2],
+           [2, 3, 4],
+           [4, 5, 6]])
+    """
+    return np.arange(steps)[:, None] * samples + np.arange(history + samples)[None, :]
+
+
+def step_windows(sequence, samples: int, history: int = 0):
+    """Cut a flat sequence of increments into the overlapping windows of consecutive steps.
+
+    Parameters
+    ----------
+    sequence : ndarray or Dual, shape (..., history + steps·N, 3)
+        Sample increments, oldest first, beginning ``history`` samples before
+        the first step.
+    samples : int
+        Samples N per step.
+    history : int
+        Samples before a step that the algorithm reads.
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., steps, history + N, 3)
+        The windows :func:`strapdown.analysis.coning.evaluation.increment` takes.
+
+    Raises
+    ------
+    ValueError
+        If the sequence length is not ``history`` plus a positive multiple of N.
+    """
+    count = sequence.shape[-2] - history
+    if count < samples or count % samples:
+        raise ValueError(f"Expected `sequence` of history + k·N = {history} + k·{samples} rows (k >= 1), got {sequence.shape[-2]}")
+    steps = count // samples
+    if history == 0:
+        return np.reshape(sequence, sequence.shape[:-2] + (steps, samples, 3))
+    return sequence[..., window_index(steps, samples, history), :]
+
+
+def sample_increments(motion, sample_interval: float, steps: int, samples: int, *, first_step: int = 0, dual: bool = False, history: int = 0):
+    """Exact increments of every sample of ``steps`` consecutive steps, in step windows.
+
+    Parameters
+    ----------
+    motion : RegularPrecession or ScullingMotion
+        The motion (anything with ``grid_increments``).
     sample_interval : float
         Sample interval h [s].
     steps : int
@@ -156,15 +239,19 @@ def sample_increments(motion: RegularPrecession, sample_interval: float, steps: 
         Index of the first step (it starts at ``first_step · N h``).
     dual : bool, keyword-only
         Return ``q = p + s b`` (``b`` in m/s) instead of ``p`` alone.
+    history : int, keyword-only
+        Samples before each step that the window also holds (cross-step
+        algorithms).  Before t = 0 they come from the exact motion, so a run
+        starts in steady state.
 
     Returns
     -------
-    ndarray or Dual, shape (steps, samples, 3)
-        ``p_j`` [rad] (or ``q_j``) of sample j of step k, over
-        ``[((k N + j − 1) h, (k N + j) h]``.
+    ndarray or Dual, shape (steps, history + samples, 3)
+        Row ``history + j − 1`` of window k is ``p_j`` (or ``q_j``) of step k, over
+        ``[((k N + j − 1) h, (k N + j) h]``, j = 1 − history … N.
     """
-    inc = motion.grid_increments(sample_interval, first_step * samples, steps * samples, dual=dual)
-    return np.reshape(inc, (steps, samples, 3))
+    inc = motion.grid_increments(sample_interval, first_step * samples - history, steps * samples + history, dual=dual)
+    return step_windows(inc, samples, history)
 
 
 _qmul = quat.multiply_parts
@@ -239,12 +326,16 @@ def drift_rate(time, error):
     return np.einsum("k,...kj->...j", tc, error) / np.dot(tc, tc)
 
 
+#: Motions with a closed-form solution that the simulator can drive.
+MOTIONS = (RegularPrecession, ScullingMotion)
+
+
 def _as_motions(motion):
-    if isinstance(motion, RegularPrecession):
+    if isinstance(motion, MOTIONS):
         return [motion], False
     motions = list(motion) if isinstance(motion, (Sequence, np.ndarray)) else None
-    if not motions or not all(isinstance(m, RegularPrecession) for m in motions):
-        raise TypeError(f"Expected `motion` to be a RegularPrecession or a non-empty sequence of them, got {type(motion).__name__}")
+    if not motions or not all(isinstance(m, MOTIONS) for m in motions):
+        raise TypeError(f"Expected `motion` to be a RegularPrecession or ScullingMotion, or a non-empty sequence of them, got {type(motion).__name__}")
     return motions, True
 
 
@@ -281,9 +372,10 @@ def simulate(
     ----------
     algorithm : Algorithm
         The rotation-vector algorithm (its dual extension for velocity).
-    motion : RegularPrecession or sequence of RegularPrecession
-        The motion (4.1) or its dual analogue (4.2); a sequence is a batch of
-        parameter points and adds a leading axis to every result.
+    motion : RegularPrecession, ScullingMotion, or a sequence of them
+        The motion (4.1) or its dual analogue (4.2), or classical sculling; a
+        sequence is a batch of parameter points and adds a leading axis to
+        every result.
     sample_interval : float
         Sample interval h [s], > 0.
     duration : float
@@ -306,7 +398,7 @@ def simulate(
         non-unit ``attitude0``.
     TypeError
         If ``algorithm`` is not an :class:`Algorithm` or ``motion`` is not a
-        :class:`RegularPrecession` (or a sequence of them).
+        :class:`RegularPrecession` or :class:`ScullingMotion` (or a sequence of them).
 
     References
     ----------
@@ -318,7 +410,7 @@ def simulate(
     >>> from strapdown.derivations.coning.registry import get
     >>> m = RegularPrecession(eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
     >>> r = simulate(get("panov-4s-1"), m, 0.0025, 1.0)
-    >>> r.steps, round(float(r.drift_deg_per_h), 2)
+    >>> r.steps, round(float(r.drift_rate) * 180 / np.pi * 3600, 2)   # deg/h
     (100, 2.47)
     """
     if not isinstance(algorithm, Algorithm):
@@ -347,7 +439,7 @@ def simulate(
         _compare(carry, ms, time[:1], lam0, w0, error[rows, :1], None if dw is None else dw[:, rows, :1])
         for k0 in range(0, steps, chunk):
             k1 = min(steps, k0 + chunk)
-            inc = np.stack([sample_increments(m, h, k1 - k0, n_samples, first_step=k0, dual=velocity) for m in ms])
+            inc = np.stack([sample_increments(m, h, k1 - k0, n_samples, first_step=k0, dual=velocity, history=algorithm.history) for m in ms])
             step_q = quat.rotvec_to_quat(increment(algorithm, inc), validate=False)
             theta = _qmul(carry, _scan(tuple(step_q[..., k] for k in range(4))))
             carry = tuple(c[:, -1:] for c in theta)
@@ -382,7 +474,7 @@ def _compare(theta, motions, time, lam0, w0, error_out, dw_out) -> None:
         dw_out[1] = 2.0 * np.stack(w_inertial, axis=-1) - np.stack([e.w_inertial for e in exact])
 
 
-def _exact_attitude(motion: RegularPrecession, time, lam0):
+def _exact_attitude(motion, time, lam0):
     """Λ(t) = C ∘ Q(t) with C = Λ(0) ∘ Q̄(0): the general solution (1.8)."""
     c = quat.multiply(lam0, quat.conjugate(motion.attitude(0.0)))
     return quat.multiply(c, motion.attitude(time))

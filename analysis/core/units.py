@@ -19,6 +19,7 @@ __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
     "DEG_PER_H_TO_RAD_PER_S",
     "SECONDS_PER_HOUR",
+    "ARCSEC_PER_RAD",
     "ARCSEC",
     "PPM",
     "DEG_PER_RT_H_TO_RAD_PER_RT_S",
@@ -38,6 +39,8 @@ DEG_PER_RAD = 180.0 / math.pi
 RAD_PER_S_TO_DEG_PER_H = DEG_PER_RAD * SECONDS_PER_HOUR
 #: Factor from deg/h to rad/s.
 DEG_PER_H_TO_RAD_PER_S = 1.0 / RAD_PER_S_TO_DEG_PER_H
+#: Arc-seconds in one radian.
+ARCSEC_PER_RAD = DEG_PER_RAD * 3600.0
 #: One arc-second [rad].
 ARCSEC = DEG / 3600.0
 #: One part per million [1].

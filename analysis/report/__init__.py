@@ -60,7 +60,7 @@ class Section:
 
 @dataclass(frozen=True)
 class Erratum:
-    """A misprint found in a source paper, with the evidence that decides it.
+    """A place where a source paper and the package's checks part, with the evidence.
 
     Attributes
     ----------
@@ -69,18 +69,40 @@ class Erratum:
     printed : str
         What the paper prints.
     correct : str
-        What the check establishes.
+        For a misprint, what the check establishes; for an ambiguous place, our
+        (likely) reading.
     evidence : str
         How it was established (a computed residual, a convergence study, ...).
     section : str
         Report section holding the full evidence.
+    kind : str or None
+        ``"misprint"`` (a check decides it) or ``"ambiguous"`` (the text admits
+        readings; ``correct`` is ours, ``alternatives`` the others, with their
+        numbers).  None only for entries not classified yet (default, so that
+        sections that predate the classes keep working).
+    alternatives : str
+        For an ambiguous entry: the other readings and their numbers.
+
+    Raises
+    ------
+    ValueError
+        For a ``kind`` other than those of :attr:`KINDS` (or None).
     """
+
+    #: The classes: a check decides it, or the text admits readings.
+    KINDS = ("misprint", "ambiguous")  # not annotated: a class attribute, not a field
 
     source: str
     printed: str
     correct: str
     evidence: str
     section: str = ""
+    kind: str | None = None
+    alternatives: str = ""
+
+    def __post_init__(self):
+        if self.kind is not None and self.kind not in self.KINDS:
+            raise ValueError(f"Expected `kind` among {', '.join(self.KINDS)}, got {self.kind!r}")
 
 
 @dataclass

@@ -1,26 +1,26 @@
 """Report section ``algorithms.md``: drift and apparent-velocity error of every algorithm.
 
-The simulator (:mod:`strapdown.analysis.coning.simulator`) reproduces Table 3 of Budennyi,
-Kalinovsky, Panov et al. (u*, "parallel computation") and the table of
-Lebedev & Panov (1989), section 6; the printed numbers below are reference
-data quoted from those papers, never inputs to the computation.  Cells that
-do not reproduce are decided by convergence studies.
+Formatting only.  The numbers come from the library: Table 3 of Budennyi,
+Kalinovsky, Panov et al. (:mod:`strapdown.analysis.coning.budennyi_table3`),
+the reconstruction of their formula (1) (:mod:`strapdown.analysis.coning.formula_one`),
+the table of Lebedev & Panov (1989) (:mod:`strapdown.analysis.coning.lebedev_panov_table`)
+and the orders of convergence (:mod:`strapdown.analysis.coning.order_study`);
+the printed numbers come from :mod:`strapdown.derivations.coning.published`.
 """
 
 from __future__ import annotations
 
-import itertools
-from fractions import Fraction
-from functools import cache
+import math
 
-import numpy as np
-
-from ...derivations.coning.algorithms import Algorithm, Term, second_order_defect
-from ...derivations.coning.registry import PANOV_BASIS, PANOV_TABLE_1, get, names
-from ..coning.drift_theory import asymptotic_velocity_error
-from ..coning.local_error import BUDENNYI_BASIS, TumblingMotion, error_coefficients, local_error
-from ..coning.precession import RegularPrecession, exact_state
-from ..coning.simulator import simulate
+from ...derivations.coning import published as P
+from ...derivations.coning.registry import names
+from ..coning import budennyi_table3 as T3
+from ..coning import lebedev_panov_table as LP
+from ..coning.formula_one import assignment_scores, column_2_readings, table2_fits
+from ..coning.local_error import BUDENNYI_BASIS
+from ..coning.order_study import dot_term_study, drift_orders
+from ..coning.precession import RegularPrecession
+from ..core.units import ARCSEC_PER_RAD, deg_per_h, rad
 from . import Erratum, Section
 
 SECTION = Section(
@@ -31,279 +31,26 @@ SECTION = Section(
 )
 
 TOLERANCE = 0.02  # relative difference accepted as "reproduced"
-
-# ---------------------------------------------------------------------------
-# Reference data, quoted from the papers.
-# ---------------------------------------------------------------------------
-#: Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3: constant drift rate
-#: [deg/h] at ϑ = 1°, f = 10 Hz, H = 0.01 s; {(algorithm, ε): (u*, u_a)}
-#: (u_a of algorithm 5 at ε = 0.5 is not printed).
-BUDENNYI_TABLE_3 = {
-    (1, -1.0): (2.47, 2.51),
-    (2, -1.0): (1.42, 1.44),
-    (3, -1.0): (3.95e-4, 3.76e-4),
-    (4, -1.0): (9.60e-2, 9.92e-2),
-    (5, -1.0): (5.98e-4, 6.45e-4),
-    (1, 0.5): (6.72e-2, 5.35e-2),
-    (2, 0.5): (1.31e-1, 1.20e-1),
-    (3, 0.5): (6.45e-1, 6.41e-1),
-    (4, 0.5): (5.95e-1, 5.91e-1),
-    (5, 0.5): (6.45e-1, None),
-}
-#: Budennyi et al., Table 1, algorithm 2 as printed: (a1, a2, a3, a4).
-BUDENNYI_TABLE_1_PRINTED_2 = ("0", "0", "4/3", "0")
-#: Budennyi et al., Table 2: (k03, k12, k002, k110, k0001, δ4).
-BUDENNYI_TABLE_2 = {
-    1: (-1, 46, 16, 48, -16, Fraction(4, 45)),
-    2: (16, 124, 64, 192, -64, Fraction(1, 45)),
-    3: (0, 0, 64, 192, -64, Fraction(1, 45)),
-    4: (52, 0, 488, 1344, -488, Fraction(1, 315)),
-    5: (0, 0, 64, 192, -64, Fraction(1, 45)),
-}
-#: Lebedev & Panov (1989), section 6, table: errors at t = 100 s for
-#: ν = 2π s⁻¹, ϑ = 10°, h = 0.01 s.  Rows (quantity, order ρ, ε, variants, printed);
-#: the drift δφ° [deg/h] is common to variants 1–3, |ΔW_I| of variants 2 and 3 is one cell.
-LEBEDEV_PANOV_TABLE = (
-    ("drift", 4, -1.0, (1, 2, 3), 1.590e-1),
-    ("drift", 4, 0.5, (1, 2, 3), 8.216e-2),
-    ("drift", 6, -1.0, (1, 2, 3), 3.476e-4),
-    ("drift", 6, 0.5, (1, 2, 3), 8.372e-4),
-    ("dW_E", 4, -1.0, (1,), 8.648e-3),
-    ("dW_E", 4, -1.0, (2,), 8.619e-2),
-    ("dW_E", 4, -1.0, (3,), 8.644e-2),
-    ("dW_E", 4, 0.5, (1,), 4.597e-3),
-    ("dW_E", 4, 0.5, (2,), 4.619e-2),
-    ("dW_E", 4, 0.5, (3,), 4.644e-2),
-    ("dW_E", 6, -1.0, (1,), 5.794e-6),
-    ("dW_E", 6, -1.0, (2,), 5.851e-5),
-    ("dW_E", 6, -1.0, (3,), 5.783e-5),
-    ("dW_E", 6, 0.5, (1,), 4.017e-5),
-    ("dW_E", 6, 0.5, (2,), 3.999e-4),
-    ("dW_E", 6, 0.5, (3,), 6.406e-4),
-    ("dW_I", 4, -1.0, (1,), 8.648e-3),
-    ("dW_I", 4, -1.0, (2, 3), 8.755e-2),
-    ("dW_I", 4, 0.5, (1,), 4.629e-3),
-    ("dW_I", 4, 0.5, (2, 3), 4.688e-2),
-    ("dW_I", 6, -1.0, (1,), 5.978e-6),
-    ("dW_I", 6, -1.0, (2, 3), 6.207e-5),
-    ("dW_I", 6, 0.5, (1,), 8.687e-5),
-    ("dW_I", 6, 0.5, (2, 3), 1.232e-3),
-)
-
-# ---------------------------------------------------------------------------
-# Experiment set-ups, as described in the papers' text.
-# ---------------------------------------------------------------------------
-#: Table 3 conditions: ϑ = 1°, f = 10 Hz (ν = 2π f), H = 4h = 0.01 s.  The
-#: duration is not printed; 100 s makes the least-squares slope converge
-#: (a 10 s run changes no cell by more than 3%).
-TABLE3_SETUP = {"nutation": np.radians(1.0), "nu": 2 * np.pi * 10.0, "sample_interval": 0.0025, "duration": 100.0}
-#: Lebedev & Panov (1989), section 6: 100 s, ν = 2π s⁻¹, ϑ = 10°, h = 0.01 s.
-LP_SETUP = {"nutation": np.radians(10.0), "nu": 2 * np.pi, "sample_interval": 0.01, "duration": 100.0}
-
-
-def lp_variant(variant: int) -> dict:
-    """Variant 1–3 of Lebedev & Panov (1989), section 6: ν° [m/s²], ϑ° [m/s], W_I(0) [m/s], Λ(0)."""
-    half = LP_SETUP["nutation"] / 2
-    tilted = (np.cos(half), np.sin(half), 0.0, 0.0)
-    return {
-        1: {"nu_dual": 0.5, "nutation_dual": 10.0, "w_inertial0": (10.0, 0.0, 0.0), "attitude0": tilted},
-        2: {"nu_dual": 10.0, "nutation_dual": 100.0, "w_inertial0": (100.0, 0.0, 0.0), "attitude0": tilted},
-        3: {"nu_dual": 10.0, "nutation_dual": 100.0, "w_inertial0": (20.0, 35.0, 40.0), "attitude0": (1.0, 0.0, 0.0, 0.0)},
-    }[variant]
-
-
-def relative_difference(ours: float, printed: float) -> float:
-    """``ours / printed − 1``."""
-    return ours / printed - 1.0
-
-
-# ---------------------------------------------------------------------------
-# Computations
-# ---------------------------------------------------------------------------
-def panov_algorithm(coefficients, basis=None, name: str = "candidate") -> Algorithm:
-    """Four-sample algorithm ``Σ a_v B_v`` from Table 1 constants and a basis assignment."""
-    basis = basis or PANOV_BASIS
-    terms = []
-    for key, value in zip(("a1", "a2", "a3", "a4"), coefficients):
-        c = Fraction(value)
-        if c:
-            terms += [Term(c, pair) for pair in basis[key]]
-    return Algorithm(name, 4, tuple(terms))
-
-
-def table3_drift(algorithm: Algorithm, *, duration: float | None = None) -> dict:
-    """Simulated drift u* [deg/h] of ``algorithm`` at the Table 3 conditions, {ε: u*}."""
-    s = TABLE3_SETUP
-    motions = [RegularPrecession(eps, s["nu"], s["nutation"]) for eps in (-1.0, 0.5)]
-    r = simulate(algorithm, motions, s["sample_interval"], duration or s["duration"])
-    return {-1.0: float(r.drift_deg_per_h[0]), 0.5: float(r.drift_deg_per_h[1])}
-
-
-@cache
-def budennyi_table3_rows() -> tuple:
-    """Rows (algorithm, ε, ours u*, printed u*, printed u_a, relative difference)."""
-    rows = []
-    drifts = {k: table3_drift(get(f"panov-4s-{k}")) for k in range(1, 6)}
-    for (k, eps), (u_star, u_a) in BUDENNYI_TABLE_3.items():
-        ours = drifts[k][eps]
-        rows.append({"algorithm": k, "eps": eps, "ours": ours, "printed_u_star": u_star, "printed_u_a": u_a, "rel_diff": relative_difference(ours, u_star)})
-    return tuple(rows)
-
-
-def _lp_run(order: int, eps: float, variant: int, sample_interval: float | None = None):
-    v = lp_variant(variant)
-    s = LP_SETUP
-    motion = RegularPrecession(eps, s["nu"], s["nutation"], v["nu_dual"], v["nutation_dual"])
-    h = sample_interval or s["sample_interval"]
-    return simulate(get(f"lebedev-panov-{order}"), motion, h, s["duration"], attitude0=v["attitude0"], w_inertial0=v["w_inertial0"], velocity=True)
-
-
-@cache
-def lp_values(order: int, eps: float, variant: int, sample_interval: float | None = None) -> dict:
-    """Drift [deg/h], |ΔW_E|, |ΔW_I| [m/s] at t = 100 s of the order-ρ algorithm (2.2)/(2.5)."""
-    r = _lp_run(order, eps, variant, sample_interval)
-    return {"drift": float(r.drift_deg_per_h), "dW_E": float(r.final_dw_body), "dW_I": float(r.final_dw_inertial)}
-
-
-@cache
-def lebedev_panov_rows() -> tuple:
-    """Rows (quantity, order, ε, variants, ours per variant, printed, worst relative difference)."""
-    rows = []
-    for quantity, order, eps, variants, printed in LEBEDEV_PANOV_TABLE:
-        ours = [lp_values(order, eps, v)[quantity] for v in variants]
-        rel = [relative_difference(o, printed) for o in ours]
-        worst = max(rel, key=abs)
-        rows.append({"quantity": quantity, "order": order, "eps": eps, "variants": variants, "ours": ours, "printed": printed, "rel_diff": worst})
-    return tuple(rows)
-
-
-@cache
-def lp_theory(order: int, eps: float, variant: int) -> dict:
-    """|ΔW_E|, |ΔW_I| [m/s] at t = 100 s from the asymptotic error theory (5.1)–(5.6), no simulation."""
-    v = lp_variant(variant)
-    s = LP_SETUP
-    alg = get(f"lebedev-panov-{order}")
-    err = asymptotic_velocity_error(alg, s["duration"], eps=eps, nu=s["nu"], nutation=s["nutation"], nu_dual=v["nu_dual"],
-                                    nutation_dual=v["nutation_dual"], step=alg.samples * s["sample_interval"])
-    motion = RegularPrecession(eps, s["nu"], s["nutation"], v["nu_dual"], v["nutation_dual"])
-    w_body = exact_state(motion, s["duration"], v["attitude0"], v["w_inertial0"]).w_body
-    return {"dW_E": float(np.linalg.norm(err.dw_body(w_body))), "dW_I": float(err.dw_inertial)}
-
-
-def lp_theory_agreement(order: int) -> float:
-    """Largest |theory / simulation − 1| over the velocity cells of order ``order`` (every variant)."""
-    return max(
-        abs(relative_difference(lp_theory(order, eps, v)[q], lp_values(order, eps, v)[q]))
-        for q, o, eps, variants, _ in LEBEDEV_PANOV_TABLE
-        if o == order and q != "drift"
-        for v in variants
-    )
-
-
-@cache
-def lp_convergence(quantity: str, order: int, eps: float, variant: int) -> dict:
-    """Convergence study of one cell: values at h = 0.02, 0.01, 0.005 s and observed orders."""
-    hs = (0.02, 0.01, 0.005)
-    values = [lp_values(order, eps, variant, h)[quantity] for h in hs]
-    orders = [float(np.log2(values[i] / values[i + 1])) for i in range(2)]
-    return {"h": hs, "values": values, "orders": orders}
-
-
-@cache
-def mapping_evidence() -> tuple:
-    """Every assignment of a1..a4 to the four basis combinations, with printed and corrected Table 1.
-
-    Returns rows (assignment, second-order defects, cells reproduced with the
-    printed Table 1, cells reproduced with column 2 corrected).
-    """
-    combos = list(PANOV_BASIS.values())
-    printed = dict(PANOV_TABLE_1)
-    printed[2] = BUDENNYI_TABLE_1_PRINTED_2
-    rows = []
-    cache: dict = {}
-    for perm in itertools.permutations(range(4)):
-        basis = {key: combos[perm[i]] for i, key in enumerate(("a1", "a2", "a3", "a4"))}
-        counts = []
-        defects = []
-        for table in (printed, PANOV_TABLE_1):
-            hits = 0
-            for k in range(1, 6):
-                alg = panov_algorithm(table[k], basis)
-                key = alg.pairwise.items().__repr__()
-                if key not in cache:
-                    cache[key] = (table3_drift(alg, duration=20.0), second_order_defect(alg))
-                drift, defect = cache[key]
-                if table is PANOV_TABLE_1:
-                    defects.append(defect)
-                hits += sum(abs(relative_difference(drift[eps], BUDENNYI_TABLE_3[(k, eps)][0])) <= TOLERANCE for eps in (-1.0, 0.5))
-            counts.append(hits)
-        label = ", ".join(f"{key}→{_combo_text(basis[key])}" for key in ("a1", "a2", "a3", "a4"))
-        rows.append({"assignment": label, "identity": perm == (0, 1, 2, 3), "consistent": all(d == 0 for d in defects), "printed_hits": counts[0], "corrected_hits": counts[1]})
-    return tuple(rows)
-
-
-def _combo_text(pairs) -> str:
-    return "+".join(f"p{i}×p{j}" for i, j in pairs)
-
-
-@cache
-def table2_evidence() -> tuple:
-    """Fitted δ4·k of each algorithm (and of the printed column 2) against Table 2."""
-    rows = []
-    candidates = [(k, f"panov-4s-{k}", get(f"panov-4s-{k}")) for k in range(1, 6)]
-    candidates.insert(2, (2, "Table 1 column 2 as printed", panov_algorithm(BUDENNYI_TABLE_1_PRINTED_2)))
-    for k, label, alg in candidates:
-        coef, resid = error_coefficients(alg)
-        *ks, delta = BUDENNYI_TABLE_2[k]
-        fitted_k = [float(c / delta) for c in coef]
-        rows.append({"algorithm": k, "label": label, "printed_k": ks, "delta": delta, "fitted_k": fitted_k, "residual": resid})
-    return tuple(rows)
-
-
-@cache
-def lp6_local_orders() -> tuple:
-    """Local-error exponents of (2.2) on the tumbling motion; the sixth-order term with its dot term and without."""
-    printed = get("lebedev-panov-6")
-    no_dot = Algorithm("lebedev-panov-6 without (p2·p3) term", 4, tuple(t for t in printed.terms if not t.dots))
-    motion = TumblingMotion()
-    steps = np.array([0.2, 0.1, 0.05])
-    rows = []
-    for alg in (get("lebedev-panov-2"), get("lebedev-panov-4"), printed, no_dot):
-        exps = []
-        for t in (0.3, 1.1, 2.4):
-            e = np.array([np.linalg.norm(local_error(alg, motion, t, H)) for H in steps])
-            exps.append(float(np.polyfit(np.log(steps), np.log(e), 1)[0]))
-        rows.append({"algorithm": alg.name, "exponents": exps})
-    return tuple(rows)
-
-
 ORDER_STUDY_STEPS = (0.16, 0.08, 0.04, 0.02)
+#: The order study runs at ν = 2π s⁻¹, ϑ = 10° (the conditions of Lebedev & Panov 1989).
+ORDER_STUDY_MOTIONS = (RegularPrecession(-1.0, 2 * math.pi, rad(10.0)), RegularPrecession(0.5, 2 * math.pi, rad(10.0)))
 
 
-@cache
-def order_study(quick: bool = False) -> dict:
-    """Drift [deg/h] against the step H for every registry algorithm, ν = 2π s⁻¹, ϑ = 10°.
-
-    Returns {ε: {name: (H values, drifts, fitted slope)}}.
-    """
-    steps = ORDER_STUDY_STEPS[:3] if quick else ORDER_STUDY_STEPS
-    out = {}
-    for eps in (-1.0, 0.5):
-        motion = RegularPrecession(eps, 2 * np.pi, np.radians(10.0))
-        table = {}
-        for name in names():
-            alg = get(name)
-            big_h = np.array(steps)
-            drifts = np.array([float(simulate(alg, motion, H / alg.samples, 20.0).drift_deg_per_h) for H in big_h])
-            slope = float(np.polyfit(np.log(big_h), np.log(drifts), 1)[0])
-            table[name] = (big_h, drifts, slope)
-        out[eps] = table
-    return out
+def _printed_u_star(algorithm: int) -> str:
+    """The printed u* of ``algorithm`` under coning and precession, "a and b"-ready."""
+    rows = {r.eps: r for r in P.BUDENNYI_TABLE_3 if r.algorithm == algorithm}
+    return f"{rows[-1.0].u_star:g}", f"{rows[0.5].u_star:g}"
 
 
-# ---------------------------------------------------------------------------
-# Report
-# ---------------------------------------------------------------------------
+def _table2(algorithm: int):
+    return next(c for c in P.BUDENNYI_TABLE_2 if c.algorithm == algorithm)
+
+
+def _signed(k) -> str:
+    """An integer with a typographic minus."""
+    return f"−{-k}" if k < 0 else f"{k}"
+
+
 def _fmt(x) -> str:
     return "—" if x is None else f"{x:.3e}"
 
@@ -312,21 +59,41 @@ def _pct(x) -> str:
     return f"{100 * x:+.2f}%"
 
 
-def _lp_worst_reproduced() -> float:
-    """Largest |ours / printed − 1| over the reproduced cells of the Lebedev & Panov (1989) table."""
-    return max(abs(r["rel_diff"]) for r in lebedev_panov_rows() if abs(r["rel_diff"]) <= TOLERANCE)
+def _lp_shown(quantity: str, value: float) -> float:
+    """A value of the Lebedev & Panov table in the unit of the print (deg/h for the drift)."""
+    return deg_per_h(value) if quantity == "drift" else value
 
 
-def _lp_non_reproduced():
-    for row in lebedev_panov_rows():
-        if abs(row["rel_diff"]) > TOLERANCE:
-            yield row
+def _order_study(quick: bool) -> dict:
+    steps = ORDER_STUDY_STEPS[:3] if quick else ORDER_STUDY_STEPS
+    return {m.eps: drift_orders(m, steps=steps) for m in ORDER_STUDY_MOTIONS}
 
 
 def build(ctx) -> None:
+    """Write ``algorithms.md`` and its figures.
+
+    Parameters
+    ----------
+    ctx : strapdown.analysis.report.Context
+        Where to write, and whether to run the quick variant.
+    """
     import matplotlib.pyplot as plt
 
-    lines = [
+    study = _order_study(ctx.quick)
+    lines = _intro()
+    lines += _table3_section()
+    lines += _mapping_section()
+    lines += _table2_section()
+    lines += _lp_section()
+    lines += _lp6_section()
+    lines += _order_section(study)
+    ctx.savefig(_error_figure(plt), "figures/algorithms-coning-error.png")
+    ctx.savefig(_order_figure(plt, study), "figures/algorithms-drift-vs-step.png")
+    ctx.write_text("algorithms.md", "\n".join(lines))
+
+
+def _intro() -> list:
+    return [
         "# Algorithms: attitude drift and apparent-velocity error",
         "",
         "Every number here is computed by the simulator (`strapdown.analysis.coning.simulator.simulate`): the algorithm is",
@@ -338,22 +105,10 @@ def build(ctx) -> None:
         f"A printed cell counts as reproduced when the relative difference is within {TOLERANCE:.0%}.",
         "",
     ]
-    lines += _table3_section()
-    lines += _mapping_section()
-    lines += _table2_section()
-    lines += _lp_section()
-    lines += _lp6_section()
-    lines += _order_section(ctx)
-
-    fig = _error_figure(plt)
-    ctx.savefig(fig, "figures/algorithms-coning-error.png")
-    fig = _order_figure(plt, order_study(ctx.quick))
-    ctx.savefig(fig, "figures/algorithms-drift-vs-step.png")
-    ctx.write_text("algorithms.md", "\n".join(lines))
 
 
 def _table3_section() -> list:
-    rows = budennyi_table3_rows()
+    cells = T3.reproduce_u_star()
     out = [
         "## Budennyi, Kalinovsky, Panov et al., Table 3 (u*)",
         "",
@@ -363,15 +118,16 @@ def _table3_section() -> list:
         "| Algorithm | ε | ours | printed u* | difference | printed u_a |",
         "|---|---|---|---|---|---|",
     ]
-    for r in rows:
-        out.append(f"| panov-4s-{r['algorithm']} | {r['eps']:g} | {_fmt(r['ours'])} | {_fmt(r['printed_u_star'])} | {_pct(r['rel_diff'])} | {_fmt(r['printed_u_a'])} |")
-    n_ok = sum(abs(r["rel_diff"]) <= TOLERANCE for r in rows)
-    out += ["", f"{n_ok} of {len(rows)} cells reproduced within {TOLERANCE:.0%}.", ""]
+    for c in cells:
+        p = c.printed
+        out.append(f"| panov-4s-{p.algorithm} | {p.eps:g} | {_fmt(deg_per_h(c.simulated))} | {_fmt(p.u_star)} | {_pct(c.relative_difference)} | {_fmt(p.u_a)} |")
+    n_ok = sum(abs(c.relative_difference) <= TOLERANCE for c in cells)
+    out += ["", f"{n_ok} of {len(cells)} cells reproduced within {TOLERANCE:.0%}.", ""]
     return out
 
 
 def _mapping_section() -> list:
-    rows = mapping_evidence()
+    scores = assignment_scores(tolerance=TOLERANCE)
     out = [
         "## Reconstruction of formula (1) of Budennyi et al.",
         "",
@@ -385,18 +141,18 @@ def _mapping_section() -> list:
         "| Assignment | sum rule | cells, Table 1 as printed | cells, column 2 corrected |",
         "|---|---|---|---|",
     ]
-    for r in sorted(rows, key=lambda r: (-r["corrected_hits"], -r["printed_hits"], r["assignment"])):
-        mark = " (registry)" if r["identity"] else ""
-        out.append(f"| {r['assignment']}{mark} | {'yes' if r['consistent'] else 'no'} | {r['printed_hits']}/10 | {r['corrected_hits']}/10 |")
-    best_other = max(r["corrected_hits"] for r in rows if not r["identity"])
-    ident = next(r for r in rows if r["identity"])
-    cand = table3_drift(panov_algorithm(BUDENNYI_TABLE_1_PRINTED_2))
-    fixed = table3_drift(get("panov-4s-2"))
+    for s in sorted(scores, key=lambda s: (-s.hits_corrected, -s.hits_as_printed, s.assignment.label)):
+        mark = " (registry)" if s.assignment.is_registry else ""
+        out.append(f"| {s.assignment.label}{mark} | {'yes' if s.satisfies_sum_rule else 'no'} | {s.hits_as_printed}/10 | {s.hits_corrected}/10 |")
+    best_other = max(s.hits_corrected for s in scores if not s.assignment.is_registry)
+    ident = next(s for s in scores if s.assignment.is_registry)
+    col2 = column_2_readings()
+    u_c, u_p = _printed_u_star(2)
     out += [
         "",
-        f"The registry assignment reproduces {ident['corrected_hits']}/10 cells; the best other assignment reproduces {best_other}/10.",
-        f"With Table 1 as printed, algorithm 2 (4/3 (p1×p3 + p2×p4)) drifts {cand[-1.0]:.3g} and {cand[0.5]:.3g} deg/h",
-        f"(printed u* 1.42 and 0.131); read as 4/3 (p1×p4 + p2×p3) it drifts {fixed[-1.0]:.4g} and {fixed[0.5]:.4g} deg/h.",
+        f"The registry assignment reproduces {ident.hits_corrected}/10 cells; the best other assignment reproduces {best_other}/10.",
+        f"With Table 1 as printed, algorithm 2 (4/3 (p1×p3 + p2×p4)) drifts {deg_per_h(col2.printed.coning):.3g} and {deg_per_h(col2.printed.precession):.3g} deg/h",
+        f"(printed u* {u_c} and {u_p}); read as 4/3 (p1×p4 + p2×p3) it drifts {deg_per_h(col2.corrected.coning):.4g} and {deg_per_h(col2.corrected.precession):.4g} deg/h.",
         "No assignment of the printed column 2 to the basis reproduces both its cells while keeping algorithms",
         "1, 3, 4, 5, and Table 2 (next section) independently confirms the corrected reading.",
         "",
@@ -417,22 +173,33 @@ def _table2_section() -> list:
         "| Algorithm | δ4 | k printed | k fitted | fit residual |",
         "|---|---|---|---|---|",
     ]
-    for r in table2_evidence():
-        fitted = ", ".join(f"{k:.2f}" for k in r["fitted_k"])
-        printed = ", ".join(str(k) for k in r["printed_k"])
-        out.append(f"| {r['label']} | {r['delta']} | {printed} | {fitted} | {r['residual']:.1e} |")
+    fits = {f.label: f for f in table2_fits()}
+    for f in fits.values():
+        fitted = ", ".join(f"{k:.2f}" for k in f.fitted_k)
+        printed = ", ".join(str(k) for k in f.printed.k)
+        out.append(f"| {f.label} | {f.printed.delta} | {printed} | {fitted} | {f.residual:.1e} |")
+    t2, t4 = _table2(2), _table2(4)
+    k4 = fits["panov-4s-4"].fitted_k
     out += [
         "",
-        "The corrected algorithm 2 matches every printed k (k12 = 124); the printed column gives k12 = 4.",
-        "For algorithm 4 the printed k002 = 488 and k0001 = −488 disagree with the fit (448, −448); the",
-        "degree-3 and degree-4 coefficients are common to all five algorithms (δ4 k002 = 64/45 = 448/315),",
-        "so 488 is a misprint of 448.",
+        f"The corrected algorithm 2 matches every printed k (k12 = {t2.k[1]}); the printed column gives k12 = {fits['Table 1 column 2 as printed'].fitted_k[1]:.0f}.",
+        f"For algorithm 4 the printed k002 = {t4.k[2]} and k0001 = {_signed(t4.k[4])} disagree with the fit ({k4[2]:.0f}, {_signed(round(k4[4]))}); the",
+        f"degree-3 and degree-4 coefficients are common to all five algorithms (δ4 k002 = {_table2(3).delta * _table2(3).k[2]} = {k4[2]:.0f}/{t4.delta.denominator}),",
+        f"so {t4.k[2]} is a misprint of {k4[2]:.0f}.",
         "",
     ]
     return out
 
 
 def _lp_section() -> list:
+    table = LP.reproduce_table(tolerance=TOLERANCE)
+    out = _lp_table(table)
+    out += _lp_convergence(table)
+    out += _lp_theory(table)
+    return out
+
+
+def _lp_table(table) -> list:
     out = [
         "## Lebedev & Panov (1989), section 6, table",
         "",
@@ -444,26 +211,28 @@ def _lp_section() -> list:
         "| Quantity | ρ | ε | variants | ours | printed | difference |",
         "|---|---|---|---|---|---|---|",
     ]
-    for r in lebedev_panov_rows():
-        ours = " / ".join(_fmt(v) for v in r["ours"])
-        var = ",".join(str(v) for v in r["variants"])
-        out.append(f"| {r['quantity']} | {r['order']} | {r['eps']:g} | {var} | {ours} | {_fmt(r['printed'])} | {_pct(r['rel_diff'])} |")
-    bad = list(_lp_non_reproduced())
-    out += [
+    for c in table.cells:
+        p = c.printed
+        ours = " / ".join(_fmt(_lp_shown(p.quantity, v)) for v in c.ours)
+        var = ",".join(str(v) for v in p.variants)
+        out.append(f"| {p.quantity} | {p.order} | {p.eps:g} | {var} | {ours} | {_fmt(p.value)} | {_pct(c.worst)} |")
+    return out
+
+
+def _lp_convergence(table) -> list:
+    out = [
         "",
-        f"{len(LEBEDEV_PANOV_TABLE) - len(bad)} of {len(LEBEDEV_PANOV_TABLE)} printed cells reproduced within {TOLERANCE:.0%}: the drift row and",
+        f"{len(table.reproduced)} of {len(table.cells)} printed cells reproduced within {TOLERANCE:.0%}: the drift row and",
         "all ρ = 4 rows. The ρ = 6 velocity cells do not reproduce. Convergence study of each (our value at",
         "h = 0.02, 0.01, 0.005 s and the observed order log2 of successive ratios; a sixth-order algorithm gives 6):",
         "",
         "| Quantity | ε | variant | h = 0.02 | h = 0.01 | h = 0.005 | orders | printed (h = 0.01) | printed / ours |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
-    for r in bad:
-        for v, ours in zip(r["variants"], r["ours"]):
-            c = lp_convergence(r["quantity"], r["order"], r["eps"], v)
-            vals = " | ".join(_fmt(x) for x in c["values"])
-            orders = ", ".join(f"{o:.2f}" for o in c["orders"])
-            out.append(f"| {r['quantity']} | {r['eps']:g} | {v} | {vals} | {orders} | {_fmt(r['printed'])} | {r['printed'] / ours:.2f} |")
+    for e in LP.cell_evidence(table):
+        vals = " | ".join(_fmt(x) for x in e.convergence.values)
+        orders = ", ".join(f"{o:.2f}" for o in e.convergence.orders)
+        out.append(f"| {e.printed.quantity} | {e.printed.eps:g} | {e.variant} | {vals} | {orders} | {_fmt(e.printed.value)} | {e.printed_over_ours:.2f} |")
     out += [
         "",
         "Our ρ = 6 values shrink by 2⁶ per halving of h, so they are the error of the algorithm at h = 0.01 s,",
@@ -472,22 +241,29 @@ def _lp_section() -> list:
         "'printed / ours'), so no single change of h or of a coefficient explains them. They are recorded as",
         "not reproduced, with this evidence, in the errata.",
         "",
+    ]
+    return out
+
+
+def _lp_theory(table) -> list:
+    out = [
         "An independent estimate decides between the two. The asymptotic error theory of section 5",
         "(`strapdown.analysis.coning.drift_theory.asymptotic_velocity_error`) takes the one-step error of the algorithm from the",
         "symbolic series through weight 7, drives the error equation (5.1) with it, integrates (5.2) in closed form",
         "and obtains the velocity error as the dual extension in ν and ϑ (transfer principle, (5.4)); by (3.5)",
         "$|\\Delta W_I| = |\\delta\\varphi^\\circ|$ and $\\Delta W_E = \\delta\\varphi^\\circ + W_E \\times \\delta\\varphi$. It uses",
         "neither the simulator nor biquaternions. Over every |ΔW_E|, |ΔW_I| cell and variant, theory and",
-        f"simulation differ by at most {lp_theory_agreement(4):.1e} (relative) for ρ = 4 and {lp_theory_agreement(6):.1e} for ρ = 6",
+        f"simulation differ by at most {LP.theory_agreement(4):.1e} (relative) for ρ = 4 and {LP.theory_agreement(6):.1e} for ρ = 6",
         "(there the theory keeps only the leading weight 7). For the cells above:",
         "",
         "| Quantity | ε | variant | theory | ours (simulation) | printed | theory / ours | printed / theory |",
         "|---|---|---|---|---|---|---|---|",
     ]
-    for r in bad:
-        for v, ours in zip(r["variants"], r["ours"]):
-            th = lp_theory(r["order"], r["eps"], v)[r["quantity"]]
-            out.append(f"| {r['quantity']} | {r['eps']:g} | {v} | {_fmt(th)} | {_fmt(ours)} | {_fmt(r['printed'])} | {th / ours:.4f} | {r['printed'] / th:.2f} |")
+    for e in LP.cell_evidence(table):
+        p = e.printed
+        out.append(
+            f"| {p.quantity} | {p.eps:g} | {e.variant} | {_fmt(e.theory)} | {_fmt(e.ours)} | {_fmt(p.value)} | {e.theory_over_ours:.4f} | {e.printed_over_theory:.2f} |"
+        )
     out += [
         "",
         "The theory confirms the simulated ρ = 6 values and contradicts the printed ones. Theory and simulation",
@@ -510,10 +286,10 @@ def _lp6_section() -> list:
         "| Algorithm | local-error exponents |",
         "|---|---|",
     ]
-    rows = lp6_local_orders()
+    rows = dot_term_study()
     for r in rows:
-        out.append(f"| {r['algorithm']} | {', '.join(f'{e:.2f}' for e in r['exponents'])} |")
-    printed, no_dot = (round(float(np.mean(r["exponents"]))) for r in rows[2:4])
+        out.append(f"| {r.algorithm} | {', '.join(f'{e:.2f}' for e in r.exponents)} |")
+    printed, no_dot = (r.local_order for r in rows[2:4])
     verdict = (
         "The printed form is correct and the registry keeps it."
         if printed == 7
@@ -528,8 +304,8 @@ def _lp6_section() -> list:
     return out
 
 
-def _order_section(ctx) -> list:
-    study = order_study(ctx.quick)
+def _order_section(study) -> list:
+    slopes = {eps: {r.algorithm: r.slope for r in rows} for eps, rows in study.items()}
     out = [
         "## Orders of convergence of every registry algorithm",
         "",
@@ -542,7 +318,7 @@ def _order_section(ctx) -> list:
         "|---|---|---|",
     ]
     for name in names():
-        out.append(f"| {name} | {study[-1.0][name][2]:.2f} | {study[0.5][name][2]:.2f} |")
+        out.append(f"| {name} | {slopes[-1.0][name]:.2f} | {slopes[0.5][name]:.2f} |")
     out += [
         "",
         "Under general precession every four-sample and three-sample algorithm is of order 4, two-sample too",
@@ -564,12 +340,9 @@ def _order_section(ctx) -> list:
 
 
 def _error_figure(plt):
-    s = TABLE3_SETUP
-    motion = RegularPrecession(-1.0, s["nu"], s["nutation"])
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    for k in range(1, 6):
-        r = simulate(get(f"panov-4s-{k}"), motion, s["sample_interval"], 10.0)
-        ax.semilogy(r.time[1:], np.degrees(np.linalg.norm(r.attitude_error[1:], axis=-1)) * 3600.0, label=f"panov-4s-{k}")
+    for h in T3.coning_error_histories():
+        ax.semilogy(h.time[1:], h.error[1:] * ARCSEC_PER_RAD, label=h.algorithm)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("|δφ_I| [arcsec]")
     ax.set_title("Attitude error under coning (ϑ = 1°, f = 10 Hz, H = 0.01 s)")
@@ -580,8 +353,8 @@ def _error_figure(plt):
 def _order_figure(plt, study):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
     for ax, eps in zip(axes, (-1.0, 0.5)):
-        for name, (big_h, drifts, slope) in study[eps].items():
-            ax.loglog(big_h, drifts, "o-", ms=3, label=f"{name} ({slope:.2f})")
+        for r in study[eps]:
+            ax.loglog(r.steps, deg_per_h(r.drifts), "o-", ms=3, label=f"{r.algorithm} ({r.slope:.2f})")
         ax.set_xlabel("step H [s]")
         ax.set_title(f"ε = {eps:g} (ν = 2π s⁻¹, ϑ = 10°); fitted slope in brackets")
         ax.set_ylim(top=ax.get_ylim()[1] * 300)
@@ -592,55 +365,73 @@ def _order_figure(plt, study):
 
 
 def errata(ctx) -> list:
-    out = []
-    cand = table3_drift(panov_algorithm(BUDENNYI_TABLE_1_PRINTED_2))
-    fixed = table3_drift(get("panov-4s-2"))
-    t2 = {r["label"]: r for r in table2_evidence()}
-    printed_k12 = t2["Table 1 column 2 as printed"]["fitted_k"][1]
-    fixed_k12 = t2["panov-4s-2"]["fitted_k"][1]
-    out.append(
-        Erratum(
-            "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 1, algorithm 2",
-            "a1 = 0, a2 = 0, a3 = 4/3, a4 = 0, i.e. 4/3 (p1×p3 + p2×p4) under the reconstructed formula (1)",
-            "a1 = a2 = 4/3, a3 = a4 = 0, i.e. 4/3 (p1×p4 + p2×p3)",
-            f"Simulated at the Table 3 conditions the printed column drifts {cand[-1.0]:.3g} / {cand[0.5]:.3g} deg/h (ε = −1 / 0.5; printed u* 1.42 / 0.131), "
-            f"the corrected one {fixed[-1.0]:.4g} / {fixed[0.5]:.4g} deg/h. Its fitted local-error coefficient k12 is {fixed_k12:.2f} "
-            f"(Table 2: 124) against {printed_k12:.2f} for the printed column. The same basis reproduces algorithms 1, 3, 4, 5 in both tables.",
-            "algorithms",
-        )
+    """The errata this section's checks establish, with their evidence.
+
+    Parameters
+    ----------
+    ctx : strapdown.analysis.report.Context
+        The report context.
+
+    Returns
+    -------
+    list of Erratum
+    """
+    col2 = column_2_readings()
+    fits = {f.label: f for f in table2_fits()}
+    return [_column_2_erratum(col2, fits), _table2_erratum(fits), *_lp_errata()]
+
+
+def _column_2_erratum(col2, fits) -> Erratum:
+    printed_k12 = fits["Table 1 column 2 as printed"].fitted_k[1]
+    fixed_k12 = fits["panov-4s-2"].fitted_k[1]
+    u_c, u_p = _printed_u_star(2)
+    column = ", ".join(f"{key} = {value}" for key, value in zip(("a1", "a2", "a3", "a4"), P.BUDENNYI_TABLE_1_COLUMN_2))
+    return Erratum(
+        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 1, algorithm 2",
+        f"{column}, i.e. 4/3 (p1×p3 + p2×p4) under the reconstructed formula (1)",
+        "a1 = a2 = 4/3, a3 = a4 = 0, i.e. 4/3 (p1×p4 + p2×p3)",
+        f"Simulated at the Table 3 conditions the printed column drifts {deg_per_h(col2.printed.coning):.3g} / {deg_per_h(col2.printed.precession):.3g} deg/h "
+        f"(ε = −1 / 0.5; printed u* {u_c} / {u_p}), the corrected one {deg_per_h(col2.corrected.coning):.4g} / {deg_per_h(col2.corrected.precession):.4g} deg/h. "
+        f"Its fitted local-error coefficient k12 is {fixed_k12:.2f} (Table 2: {_table2(2).k[1]}) against {printed_k12:.2f} for the printed column. "
+        "The same basis reproduces algorithms 1, 3, 4, 5 in both tables.",
+        "algorithms",
+        kind="misprint",
     )
-    k4 = t2["panov-4s-4"]["fitted_k"]
-    out.append(
-        Erratum(
-            "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2, algorithm 4",
-            "k002 = 488, k0001 = −488 (δ4 = 1/315)",
-            "k002 = 448, k0001 = −448",
-            f"The local error fitted on a tumbling motion gives k002 = {k4[2]:.2f}, k0001 = {k4[4]:.2f} (k03 = {k4[0]:.2f}, k110 = {k4[3]:.2f} match the print); "
-            "these two coefficients are common to every algorithm that meets the second-order condition (64/45 = 448/315).",
-            "algorithms",
-        )
+
+
+def _table2_erratum(fits) -> Erratum:
+    k4 = fits["panov-4s-4"].fitted_k
+    t4 = _table2(4)
+    return Erratum(
+        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2, algorithm 4",
+        f"k002 = {t4.k[2]}, k0001 = {_signed(t4.k[4])} (δ4 = {t4.delta})",
+        f"k002 = {k4[2]:.0f}, k0001 = {_signed(round(k4[4]))}",
+        f"The local error fitted on a tumbling motion gives k002 = {k4[2]:.2f}, k0001 = {k4[4]:.2f} (k03 = {k4[0]:.2f}, k110 = {k4[3]:.2f} match the print); "
+        f"these two coefficients are common to every algorithm that meets the second-order condition ({_table2(3).delta * _table2(3).k[2]} = {k4[2]:.0f}/{t4.delta.denominator}).",
+        "algorithms",
+        kind="misprint",
     )
-    bad = list(_lp_non_reproduced())
-    if bad:
-        cells = []
-        for r in bad:
-            for v, ours in zip(r["variants"], r["ours"]):
-                c = lp_convergence(r["quantity"], r["order"], r["eps"], v)
-                th = lp_theory(r["order"], r["eps"], v)[r["quantity"]]
-                cells.append(
-                    f"{r['quantity']} ε={r['eps']:g} v{v}: printed {r['printed']:.3e}, ours {ours:.3e} (orders {c['orders'][0]:.2f}, {c['orders'][1]:.2f}; "
-                    f"asymptotic theory {th:.3e})"
-                )
-        out.append(
-            Erratum(
-                "Lebedev & Panov (1989), section 6, table, ρ = 6 rows of |ΔW_E| and |ΔW_I|",
-                "the values listed below",
-                "the simulated values listed below (the error of (2.5) at h = 0.01 s)",
-                f"Not reproduced. The same simulator reproduces every ρ = 4 cell and the ρ = 6 drift cells within {_lp_worst_reproduced():.1%}, and our ρ = 6 values "
-                "converge at order 6 when h is halved (0.02 → 0.01 → 0.005 s). The asymptotic error theory of section 5 "
-                "(one-step error series, (5.1)–(5.2) in closed form, dual extension (5.4), (3.5); no simulation) agrees with the simulation "
-                f"within {lp_theory_agreement(4):.1e} for ρ = 4 and {lp_theory_agreement(6):.1e} for ρ = 6: " + "; ".join(cells) + ".",
-                "algorithms",
-            )
+
+
+def _lp_errata() -> list:
+    table = LP.reproduce_table(tolerance=TOLERANCE)
+    if not table.not_reproduced:
+        return []
+    cells = [
+        f"{e.printed.quantity} ε={e.printed.eps:g} v{e.variant}: printed {e.printed.value:.3e}, ours {e.ours:.3e} "
+        f"(orders {e.convergence.orders[0]:.2f}, {e.convergence.orders[1]:.2f}; asymptotic theory {e.theory:.3e})"
+        for e in LP.cell_evidence(table)
+    ]
+    return [
+        Erratum(
+            "Lebedev & Panov (1989), section 6, table, ρ = 6 rows of |ΔW_E| and |ΔW_I|",
+            "the values listed below",
+            "the simulated values listed below (the error of (2.5) at h = 0.01 s)",
+            f"Not reproduced. The same simulator reproduces every ρ = 4 cell and the ρ = 6 drift cells within {table.worst_reproduced:.1%}, and our ρ = 6 values "
+            "converge at order 6 when h is halved (0.02 → 0.01 → 0.005 s). The asymptotic error theory of section 5 "
+            "(one-step error series, (5.1)–(5.2) in closed form, dual extension (5.4), (3.5); no simulation) agrees with the simulation "
+            f"within {LP.theory_agreement(4):.1e} for ρ = 4 and {LP.theory_agreement(6):.1e} for ρ = 6: " + "; ".join(cells) + ".",
+            "algorithms",
+            kind="misprint",
         )
-    return out
+    ]

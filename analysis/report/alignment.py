@@ -465,12 +465,15 @@ def alignment_errata(ctx) -> list:
         err[h] = (float(analytic_alignment(rec, formula="paper").heading_error[0]), float(analytic_alignment(rec, formula="levelled").heading_error[0]))
     return [
         Erratum(
-            "Hrechka & Koroliov, eq. (2) with σ = arctg(B/A) (ambiguous: the correction holds at zero azimuth)",
+            "Hrechka & Koroliov, eq. (2) with σ = arctg(B/A)",
             "α = −arctg(f2/f1) + σ, σ = arctg(B/A) with A, B independent of α",
-            "Likely reading: (2) with this σ is the analytic gyrocompass for a near-north orientation (from the paper's reference [5]); "
-            "at an azimuth ψ the tilt correction depends on ψ. The heading from the mean rate levelled by the estimated tilts is exact at any azimuth",
+            "Likely reading: (2) with this σ is the analytic gyrocompass for a near-north orientation of the two gyros (the paper takes it from "
+            "its reference [5]); the tilt correction σ is the one at zero azimuth",
             f"Ideal sensors, φ = 60°, β0 = 1°, γ0 = −0.5°: error of (2) with σ {err[0.0][0] * D:.2g}° at ψ = 0, {err[45.0][0] * D:.3g}° at 45°, "
-            f"{err[90.0][0] * D:.3g}° at 90°; levelled: below {max(abs(v[1]) for v in err.values()) * D:.1g}° at all three.",
+            f"{err[90.0][0] * D:.3g}° at 90°; the mean rate levelled by the same tilt estimates: below {max(abs(v[1]) for v in err.values()) * D:.1g}° at all three.",
             "azimuth",
+            kind="ambiguous",
+            alternatives="Read as a formula for any azimuth, (2) with σ is wrong by about tg φ · β0 at 90° (the numbers above); the exact correction "
+            "depends on the azimuth: the levelled formula ψ = atan2(−ω_h,y, ω_h,x), ω_h = R_x(−β̂) R_y(γ̂) ω̄.",
         )
     ]

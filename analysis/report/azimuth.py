@@ -463,20 +463,22 @@ def errata(ctx) -> list:
     p = g.linear_parts()
     out = [
         Erratum(
-            "Hrechka & Koroliov, definition of A after eq. (2) (misprint)",
+            "Hrechka & Koroliov, definition of A after eq. (2)",
             "A = cos φ sin γ + sin φ cos β sin γ",
             "A = cos φ cos γ + sin φ cos β sin γ",
             f"The printed A differs from the paper's own expansion (5)–(6) by up to {rows['A (after (2))'].residual:.2f} on random points "
             f"(printed (5), (6) agree with the cos γ form to {max(rows['(5)'].residual, rows['(6)'].residual):.1e}); with sin γ, A = 0 at zero tilt and σ would be undefined.",
             "azimuth",
+            kind="misprint",
         ),
         Erratum(
-            "Hrechka & Koroliov, eq. (7), ξ term of ζ1 (misprint)",
+            "Hrechka & Koroliov, eq. (7), ξ term of ζ1",
             "− ξ sin φ cos β0 sin γ0",
             "− ξ sin φ sin β0 sin γ0 (as in (5): ∂A/∂β = −sin φ sin β sin γ)",
             f"SymPy: printed (7) − derived = ${_latex(rows['(7)'].difference)}$, max residual {rows['(7)'].residual:.2f} on random points; "
             f"the derived ζ1 = ${_latex(p.zeta1)}$ also equals the first-order part of the printed (5) (residual {rows['(5)'].residual:.1e}).",
             "azimuth",
+            kind="misprint",
         ),
     ]
     n = 400_000 if ctx.quick else 4_000_000
@@ -484,14 +486,27 @@ def errata(ctx) -> list:
     r, mc = v.mc.result, v.mc
     out.append(
         Erratum(
-            "Hrechka & Koroliov, eq. (15) and conclusion 2 (ambiguous: a first-order estimate, not a bound)",
+            "Hrechka & Koroliov, eq. (15) and conclusion 2",
             "δ ≤ tg φ √Dξ, practically independent of the rocking in other planes",
-            "Likely reading: the first-order estimate δ² = tg²φ Dξ + O(D²), exact to that order. Read as a bound on δ it fails: "
-            "δ² = tg²φ Dξ [1 + Dη(1 + 3 tg²φ) − κ Dξ (1 + 2 tg²φ)/3] + O(D³), so (14)/(15) hold only to first order and η enters at second order",
-            f"The paper drops the second-order terms before (14) ('відкинувши члени другого порядку малості'). Monte Carlo ({r.n_samples} samples, "
-            f"φ = 80°, β0 = γ0 = 0, Gaussian σξ = ση = 1°): rms {r.rms * D:.5f}° (95 % CI {r.rms_ci[0] * D:.5f}–{r.rms_ci[1] * D:.5f}°) > (15) = "
-            f"{mc.bound15 * D:.5f}°; the fourth-order theory gives {mc.theory.rms * D:.5f}°.",
+            "Likely reading: a first-order estimate, δ² = tg²φ Dξ + O(D²), exact to that order (the paper drops the second-order terms before (14): "
+            "'відкинувши члени другого порядку малості')",
+            f"Monte Carlo ({r.n_samples} samples, φ = 80°, β0 = γ0 = 0, Gaussian σξ = ση = 1°): rms {r.rms * D:.5f}° (95 % CI {r.rms_ci[0] * D:.5f}–{r.rms_ci[1] * D:.5f}°) "
+            f"> (15) = {mc.bound15 * D:.5f}°; the fourth-order theory gives {mc.theory.rms * D:.5f}°.",
             "azimuth",
+            kind="ambiguous",
+            alternatives="Read as a bound on δ, (14)/(15) fail: δ² = tg²φ Dξ [1 + Dη(1 + 3 tg²φ) − κ Dξ (1 + 2 tg²φ)/3] + O(D³), exceeded for equal "
+            "Gaussian or sinusoidal rocking at any latitude, and η, against conclusion 2, enters at second order.",
+        )
+    )
+    out.append(
+        Erratum(
+            "Hrechka & Koroliov, the expression before eq. (16)",
+            "α̂*ₙ = arctg [sin φ sin β*₀,ₙ / (cos φ cos γ*₀,ₙ + sin φ cos β*₀,ₙ sin γ*₀,ₙ)]",
+            "σ̂*ₙ = arctg [sin φ sin β*₀,ₙ / (cos φ cos γ*₀,ₙ + sin φ cos β*₀,ₙ sin γ*₀,ₙ)]: the estimate of σ that (16) adds to −arctg(f₂/f₁)",
+            "The right-hand side is σ = arctg(B/A) of (2) with A*, B* at the sample means, and (16), α̂* = −arctg(f₂/f₁) + σ̂*ₙ, uses σ̂*ₙ, "
+            "which is defined nowhere else; read as α̂*ₙ, the azimuth estimate would lack the −arctg(f₂/f₁) term of (2).",
+            "azimuth",
+            kind="misprint",
         )
     )
     from .alignment import alignment_errata

@@ -190,6 +190,15 @@ class Algorithm:
 def second_order_defect(algorithm: Algorithm) -> Fraction:
     """``Σ c_ij (j − i) − N³/12``: zero iff the second-order condition holds.
 
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (cross-step indices allowed).
+
+    Returns
+    -------
+    Fraction
+
     With ``p_j = h ω + (j − (N+1)/2) h² ω' + …`` the pairwise terms give
     ``Σ c_ij (j − i) h³ ω × ω'``, and the exact increment needs
     ``H³/12 ω × ω' = N³ h³/12 ω × ω'``.

@@ -1,4 +1,4 @@
-"""Local-error series of rotation-vector algorithms, up to h⁷.
+"""Local-error series of rotation-vector algorithms, to any weight.
 
 Expand the body rate about the middle ``t_m`` of the step ``H = N h``,
 
@@ -8,34 +8,40 @@ and write ``x_{αβ…γδ} = ω_m^(α) × (ω_m^(β) × … × (ω_m^(γ) × ω
 the right-nested cross products of Lebedev & Panov (1989), eq. (2.4).  The
 symbol ``ω^(k)`` carries the *weight* ``k + 1``: a product of weight ``w``
 multiplies ``H^w`` (or ``h^w``), so the series in the step is the series in
-the weight, and everything is truncated at weight :data:`MAX_WEIGHT` = 7.
+the weight.  Every series is a :class:`~strapdown.derivations.coning.graded.Graded`
+series whose parts are computed on demand: the weight of a result is a
+parameter (``max_weight``, default :data:`DEFAULT_MAX_WEIGHT` = 7, at most
+:data:`WEIGHT_LIMIT`), and asking for ``h⁷`` costs only the work of the weights
+up to 7.
 
 Two representations, each where it is cheapest:
 
-* **Exact increment (free Lie algebra).**  The attitude obeys
-  ``2Λ' = Λ ∘ ω``, so the step quaternion is the time-ordered exponential
-  ``Σ_n ∫_{t_1<…<t_n} X(t_1)…X(t_n)`` with ``X = ω/2`` as a pure quaternion.
-  Its coefficients on words in the letters ``ω^(k)`` are iterated integrals
-  of monomials (exact rationals); the logarithm of that series is ``φ/2``
-  (the Magnus expansion), and the Dynkin–Specht–Wever map turns it into
-  right-nested brackets, i.e. into the ``x_w`` above.  With ``[u, v] = 2 u×v``
-  for pure quaternions, a Lie element ``Σ c_w w`` of word length ``n`` is
-  ``φ = Σ (c_w / n) x_w``.  No symbolic ``expand`` is involved: words are
-  tuples and coefficients are :class:`fractions.Fraction`.
+* **Exact increment (free Lie algebra).**  The Magnus expansion of
+  :mod:`strapdown.derivations.coning.magnus`: iterated integrals, their
+  logarithm and the Dynkin map give the increment as nested products ``x_w``
+  with exact rational coefficients, weight by weight.
 
-* **Algorithms (component polynomials).**  The increments ``p_j`` are linear
-  in the 21 components of ``ω^(0) … ω^(6)``; cross and dot products are taken
-  component by component in a :mod:`sympy.polys.rings` ring over QQ with
-  graded truncation (only pieces whose weights add up to at most 7 are
-  multiplied).  Dot-product factors such as ``(p_2·p_3) p_2×p_3`` are
-  therefore as easy as cross products.
+* **Component polynomials.**  The ``x_w``, the increments ``p_j`` (linear in
+  the components of ``ω^(0) … ω^(K−1)``) and every term of an algorithm are
+  vectors of polynomials in the ring :data:`RING` over QQ.  Cross and dot
+  products of homogeneous parts are exact products (weights add), so nothing
+  is truncated and dot-product factors such as ``(p_2·p_3) p_2×p_3`` are as
+  easy as cross products.
 
-The local error is ``δφ = Δφ_algorithm − Δφ_exact`` on the same ω(t).  Its
-parts are returned in units of ``H`` (set ``H = 1``); multiply the weight-w
-part by ``H^w = N^w h^w``.  In R³ the nested products are not independent
-(Jacobi identity, and R³-only identities such as
-``a×(a×(a×b)) = −|a|² a×b``), so series are compared by *value*: as
-polynomials in the 21 components, which is equality for all ω-derivatives.
+**Sign convention** (the package docstring, "Local errors"): the local error
+is ``δφ = Δφ_exact − Δφ_algorithm`` on the same ω(t).  Its parts are returned
+in units of ``H`` (set ``H = 1``); multiply the weight-w part by
+``H^w = N^w h^w``.  In R³ the nested products are not independent (Jacobi
+identity, and R³-only identities such as ``a×(a×(a×b)) = −|a|² a×b``), so
+series are compared by *value*: as polynomials in the components, which is
+equality for all ω-derivatives.
+
+**Sample indices.**  With N samples per step, ``p_1 … p_N`` are the samples of
+the current step and ``p_0, p_{−1}, …`` those of earlier steps
+(:mod:`strapdown.derivations.coning.algorithms`); every increment is expanded
+about the middle of the *current* step, ``p_j`` over
+``[−1/2 + (j−1)/N, −1/2 + j/N]`` in units of H, so cross-step terms need
+nothing else.
 
 References
 ----------
@@ -46,6 +52,7 @@ Bortz (1971); Magnus (1954) for the exponential representation.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
@@ -55,18 +62,30 @@ import sympy as sp
 from sympy.polys.domains import QQ
 from sympy.polys.rings import ring
 
+from . import graded as G
 from .algorithms import Algorithm
+from .magnus import evaluate, exact_words, rotation_series, weight
 
 __all__ = [
+    "DEFAULT_MAX_WEIGHT",
+    "WEIGHT_LIMIT",
     "MAX_WEIGHT",
     "RING",
     "OMEGA",
+    "omega",
+    "check_max_weight",
     "weight",
+    "monomial_weight",
+    "weight_part",
+    "truncate",
     "exact_words",
+    "exact_increment_series",
     "exact_increment",
     "nested",
     "lie_vector",
+    "increment_series",
     "increments",
+    "algorithm_increment_series",
     "algorithm_series",
     "LocalError",
     "local_error",
@@ -82,263 +101,323 @@ __all__ = [
     "dual_words",
 ]
 
-#: Highest weight kept (the series runs to ``h**MAX_WEIGHT``).
-MAX_WEIGHT = 7
+#: Weight of a series when none is asked for (the series run to ``h**7``).
+DEFAULT_MAX_WEIGHT = 7
+#: Highest weight the component ring supports (ω^(0) … ω^(WEIGHT_LIMIT − 1)).
+WEIGHT_LIMIT = 20
+#: The default weight under its earlier name.
+MAX_WEIGHT = DEFAULT_MAX_WEIGHT
 
-_DERIVS = MAX_WEIGHT  # ω^(0) … ω^(6)
-_NAMES = [f"w{k}{c}" for k in range(_DERIVS) for c in "xyz"]
+_NAMES = [f"w{k}{c}" for k in range(WEIGHT_LIMIT) for c in "xyz"]
+#: Polynomials over QQ in the components of ω^(0) … ω^(WEIGHT_LIMIT − 1).
 RING, *_GENS = ring(_NAMES, QQ)
 #: ``OMEGA[k]`` is the symbolic vector ω_m^(k) as a triple of ring generators.
-OMEGA = tuple(tuple(_GENS[3 * k + i] for i in range(3)) for k in range(_DERIVS))
-_WEIGHTS = tuple(k + 1 for k in range(_DERIVS) for _ in range(3))
+OMEGA = tuple(tuple(_GENS[3 * k + i] for i in range(3)) for k in range(WEIGHT_LIMIT))
+_WEIGHTS = tuple(k + 1 for k in range(WEIGHT_LIMIT) for _ in range(3))
 _ZERO = RING.zero
 
 
-def weight(word) -> int:
-    """Weight ``Σ (k + 1)`` of a word of derivative orders.
-
-    >>> weight((0, 3))
-    5
-    """
-    return sum(k + 1 for k in word)
-
-
-def _monomial_weight(monom) -> int:
-    return sum(w * e for w, e in zip(_WEIGHTS, monom) if e)
-
-
-# ---------------------------------------------------------------------------
-# Exact increment: time-ordered exponential, logarithm, Dynkin map
-# ---------------------------------------------------------------------------
-def _poly_integrate(coeffs: dict, lower: Fraction) -> dict:
-    """∫_lower^t of the polynomial ``{power: coefficient}`` in t."""
-    out = {}
-    for n, c in coeffs.items():
-        out[n + 1] = out.get(n + 1, 0) + c / (n + 1)
-    const = -sum(c * lower**n for n, c in out.items())
-    if const:
-        out[0] = out.get(0, 0) + const
-    return out
-
-
-def _poly_eval(coeffs: dict, t: Fraction) -> Fraction:
-    return sum((c * t**n for n, c in coeffs.items()), Fraction(0))
-
-
-def _time_ordered(lower: Fraction, upper: Fraction, max_weight: int) -> dict:
-    """Coefficients of the time-ordered exponential on words (letters X_k = ω^(k)/2 · τ^k/k!).
-
-    ``U = Σ_w I_w w`` with ``I_{(k1…kn)} = ∫_{lower<t1<…<tn<upper} Π t_i^{k_i}/k_i!``;
-    the left letter is the earliest (``U' = U X``).
-    """
-    out: dict = {}
-    # depth-first over words, carrying F_w(t) = ∫ … (polynomial in t)
-    stack = [((), {0: Fraction(1)})]
-    while stack:
-        word, f = stack.pop()
-        w = weight(word)
-        for k in range(_DERIVS):
-            if w + k + 1 > max_weight:
-                break
-            g = {n + k: c / factorial(k) for n, c in f.items()}
-            g = _poly_integrate(g, lower)
-            new = word + (k,)
-            out[new] = _poly_eval(g, upper)
-            stack.append((new, g))
-    return out
-
-
-def _word_mul(a: dict, b: dict, max_weight: int) -> dict:
-    out: dict = {}
-    for wa, ca in a.items():
-        wta = weight(wa)
-        for wb, cb in b.items():
-            if wta + weight(wb) > max_weight:
-                continue
-            key = wa + wb
-            out[key] = out.get(key, 0) + ca * cb
-    return {k: v for k, v in out.items() if v}
-
-
-@cache
-def exact_words(lower: Fraction = Fraction(-1, 2), upper: Fraction = Fraction(1, 2), max_weight: int = MAX_WEIGHT) -> tuple:
-    """Exact rotation-vector increment over ``[t_m + lower·H, t_m + upper·H]`` as nested products.
+def check_max_weight(max_weight) -> int:
+    """``max_weight`` validated: an integer in ``1 … WEIGHT_LIMIT``.
 
     Parameters
     ----------
-    lower, upper : Fraction
-        Interval ends in units of ``H`` relative to the expansion point t_m.
     max_weight : int
-        Truncation weight.
+        Highest weight (power of h) of a series.
 
     Returns
     -------
-    tuple of (word, Fraction)
-        ``φ = Σ c_w x_w`` (``H = 1``), with right-nested words whose last two
-        letters are in increasing order; words are sorted by (weight, length, word).
+    int
 
-    Examples
-    --------
-    >>> dict(exact_words())[(0, 1)]
-    Fraction(1, 12)
+    Raises
+    ------
+    TypeError
+        If it is not an integer.
+    ValueError
+        If it is outside ``1 … WEIGHT_LIMIT``.
     """
-    lower, upper = Fraction(lower), Fraction(upper)
-    u = _time_ordered(lower, upper, max_weight)
-    # log U = Σ (−1)^{n+1} (U − 1)^n / n, U − 1 = u (no empty word)
-    log: dict = {}
-    power = dict(u)
-    n = 1
-    while power:
-        for k, v in power.items():
-            log[k] = log.get(k, 0) + Fraction((-1) ** (n + 1), n) * v
-        power = _word_mul(power, u, max_weight)
-        n += 1
-    # Dynkin–Specht–Wever: a Lie element of length n equals (1/n) Σ c_w [w]
-    # (right-nested); with X = ω/2 this is φ = Σ (c_w / n) x_w.
-    out: dict = {}
-    for word, c in log.items():
-        if not c:
-            continue
-        if len(word) >= 2:
-            a, b = word[-2], word[-1]
-            if a == b:
-                continue
-            if a > b:
-                word, c = word[:-2] + (b, a), -c
-        out[word] = out.get(word, 0) + c / len(word)
-    items = [(w, c) for w, c in out.items() if c]
-    return tuple(sorted(items, key=lambda wc: (weight(wc[0]), len(wc[0]), wc[0])))
+    if isinstance(max_weight, bool) or not isinstance(max_weight, int):
+        raise TypeError(f"Expected `max_weight` to be an integer, got {type(max_weight).__name__}")
+    if not 1 <= max_weight <= WEIGHT_LIMIT:
+        raise ValueError(f"Expected `max_weight` in 1..{WEIGHT_LIMIT}, got {max_weight}")
+    return max_weight
 
 
-# ---------------------------------------------------------------------------
-# Component polynomials with graded truncation
-# ---------------------------------------------------------------------------
-def _graded(p) -> list:
-    return [(m, c, _monomial_weight(m)) for m, c in p.items()]
+def omega(k: int) -> tuple:
+    """The letter ``ω^(k)`` as three generators of :data:`RING`.
+
+    Parameters
+    ----------
+    k : int
+        Derivative order, ``0 ≤ k < WEIGHT_LIMIT``.
+
+    Returns
+    -------
+    tuple of three ring generators
+
+    Raises
+    ------
+    ValueError
+        For a derivative order the ring does not hold.
+    """
+    if not 0 <= k < WEIGHT_LIMIT:
+        raise ValueError(f"Expected a derivative order in 0..{WEIGHT_LIMIT - 1} (weight at most {WEIGHT_LIMIT}), got {k}")
+    return OMEGA[k]
 
 
-def _mul(p, q, max_weight: int = MAX_WEIGHT):
-    """Product of two ring elements, keeping monomials of weight ≤ ``max_weight``."""
-    if not p or not q:
-        return _ZERO
-    gp = sorted(_graded(p), key=lambda t: t[2])
-    gq = sorted(_graded(q), key=lambda t: t[2])
-    out: dict = {}
-    for mp, cp, wp in gp:
-        room = max_weight - wp
-        for mq, cq, wq in gq:
-            if wq > room:
-                break
-            m = tuple(a + b for a, b in zip(mp, mq))
-            v = out.get(m)
-            out[m] = cp * cq if v is None else v + cp * cq
-    return RING.from_dict({m: c for m, c in out.items() if c})
+def monomial_weight(monom) -> int:
+    """Weight of a monomial of :data:`RING` (its exponent tuple).
+
+    Parameters
+    ----------
+    monom : tuple of int
+        Exponents of the generators.
+
+    Returns
+    -------
+    int
+    """
+    return sum(w * e for w, e in zip(_WEIGHTS, monom) if e)
 
 
-def _cross(a, b, max_weight: int = MAX_WEIGHT):
-    return (
-        _mul(a[1], b[2], max_weight) - _mul(a[2], b[1], max_weight),
-        _mul(a[2], b[0], max_weight) - _mul(a[0], b[2], max_weight),
-        _mul(a[0], b[1], max_weight) - _mul(a[1], b[0], max_weight),
-    )
+def weight_part(vector, w: int) -> tuple:
+    """The monomials of weight ``w`` of a vector of :data:`RING` polynomials.
+
+    Parameters
+    ----------
+    vector : sequence of ring elements
+        Components.
+    w : int
+        Weight kept.
+
+    Returns
+    -------
+    tuple of ring elements
+    """
+    return tuple(RING.from_dict({m: c for m, c in x.items() if monomial_weight(m) == w}) for x in vector)
 
 
-def _dot(a, b, max_weight: int = MAX_WEIGHT):
-    return _mul(a[0], b[0], max_weight) + _mul(a[1], b[1], max_weight) + _mul(a[2], b[2], max_weight)
+def truncate(vector, max_weight: int) -> tuple:
+    """The monomials of weight ≤ ``max_weight`` of a vector of :data:`RING` polynomials.
+
+    Parameters
+    ----------
+    vector : sequence of ring elements
+        Components.
+    max_weight : int
+        Highest weight kept.
+
+    Returns
+    -------
+    tuple of ring elements
+    """
+    return tuple(RING.from_dict({m: c for m, c in x.items() if monomial_weight(m) <= max_weight}) for x in vector)
 
 
 def _scale(v, c):
     return tuple(c * x for x in v)
 
 
-def _add(a, b):
-    return tuple(x + y for x, y in zip(a, b))
+# ---------------------------------------------------------------------------
+# Exact increment as component polynomials
+# ---------------------------------------------------------------------------
+@cache
+def exact_increment_series(lower=Fraction(-1, 2), upper=Fraction(1, 2)) -> G.Graded:
+    """Exact rotation-vector increment over ``[lower, upper]`` (units of H) as a graded vector of :data:`RING`.
+
+    Parameters
+    ----------
+    lower, upper : Fraction
+        Interval ends relative to the expansion point t_m, in units of H.
+
+    Returns
+    -------
+    Graded
+        Part w is the weight-w part of the increment (``H = 1``), built on demand
+        from :func:`strapdown.derivations.coning.magnus.words`.
+    """
+    return rotation_series(RING, omega, Fraction(lower), Fraction(upper))
 
 
-def _sub(a, b):
-    return tuple(x - y for x, y in zip(a, b))
+def exact_increment(lower=Fraction(-1, 2), upper=Fraction(1, 2), max_weight: int = DEFAULT_MAX_WEIGHT) -> tuple:
+    """Exact increment :func:`exact_words` as component polynomials (``H = 1``), through ``max_weight``.
 
+    Parameters
+    ----------
+    lower, upper : Fraction
+        Interval ends relative to t_m, in units of H.
+    max_weight : int
+        Highest weight kept.
 
-def _truncate(v, max_weight: int):
-    return tuple(RING.from_dict({m: c for m, c in x.items() if _monomial_weight(m) <= max_weight}) for x in v)
-
-
-def _weight_part(v, w: int):
-    return tuple(RING.from_dict({m: c for m, c in x.items() if _monomial_weight(m) == w}) for x in v)
+    Returns
+    -------
+    tuple of three ring elements
+    """
+    return exact_increment_series(Fraction(lower), Fraction(upper)).total(check_max_weight(max_weight))
 
 
 def nested(word) -> tuple:
     """``x_w`` as three ring polynomials.
 
+    Parameters
+    ----------
+    word : sequence of int
+        Derivative orders, left to right (``x_{αβ…} = ω^(α) × (ω^(β) × …)``).
+
+    Returns
+    -------
+    tuple of three ring elements
+
+    Examples
+    --------
     >>> nested((0, 1))[2] == OMEGA[0][0] * OMEGA[1][1] - OMEGA[0][1] * OMEGA[1][0]
     True
     """
-    word = tuple(word)
-    v = OMEGA[word[-1]]
-    for k in reversed(word[:-1]):
-        v = _cross(OMEGA[k], v, 10**6)
-    return v
+    return evaluate([(tuple(word), 1)], omega)
 
 
 def lie_vector(series) -> tuple:
-    """``Σ c_w x_w`` (``series``: iterable of (word, coefficient)) as three ring polynomials."""
-    total = (_ZERO, _ZERO, _ZERO)
-    for word, c in series:
-        total = _add(total, _scale(nested(word), QQ(c.numerator, c.denominator) if isinstance(c, Fraction) else c))
-    return total
+    """``Σ c_w x_w`` as three ring polynomials.
+
+    Parameters
+    ----------
+    series : iterable of (word, coefficient)
+        Nested products and their coefficients (Fraction or int).
+
+    Returns
+    -------
+    tuple of three ring elements
+    """
+    items = [(tuple(w), Fraction(c)) for w, c in series if c]
+    return evaluate(items, omega) if items else (_ZERO, _ZERO, _ZERO)
 
 
-@cache
-def exact_increment(lower: Fraction = Fraction(-1, 2), upper: Fraction = Fraction(1, 2)) -> tuple:
-    """Exact increment :func:`exact_words` as component polynomials (``H = 1``)."""
-    return lie_vector(exact_words(Fraction(lower), Fraction(upper)))
+# ---------------------------------------------------------------------------
+# Increments and algorithms
+# ---------------------------------------------------------------------------
+def _increment_interval(j: int, samples: int) -> tuple:
+    a = Fraction(-1, 2) + Fraction(j - 1, samples)
+    return a, a + Fraction(1, samples)
 
 
-@cache
-def increments(samples: int) -> tuple:
-    """Series of the increments ``p_j = ∫ ω dt`` over the N sub-intervals of the step (``H = 1``).
+def increment_series(samples: int, *, first_index: int = 1, ring=RING, letter=omega) -> tuple:
+    """The increments ``p_j = ∫ ω dt``, j = first_index … N, as graded vector series (``H = 1``).
 
-    ``p_j = Σ_k ω^(k) (b^{k+1} − a^{k+1})/(k+1)!`` with ``a = −1/2 + (j−1)/N``,
-    ``b = a + 1/N`` (Lebedev & Panov 1989, eq. (2.3)).
+    ``p_j = Σ_k ω^(k) (b^{k+1} − a^{k+1})/(k+1)!`` over ``[a, b]`` with
+    ``a = −1/2 + (j−1)/N``, ``b = a + 1/N`` (Lebedev & Panov 1989, eq. (2.3));
+    indices ``j ≤ 0`` are samples of earlier steps.
+
+    Parameters
+    ----------
+    samples : int
+        N, samples per step.
+    first_index : int, keyword-only
+        Lowest sample index (``1 − history``; ≤ 0 for cross-step algorithms).
+    ring : PolyRing, keyword-only
+        Ring of the letter values (default :data:`RING`).
+    letter : callable, keyword-only
+        ``k -> (x, y, z)``: value of ω^(k) in ``ring`` (default the generators).
+
+    Returns
+    -------
+    tuple of Graded
+        ``p_{first_index} … p_N``, oldest first.
     """
     out = []
-    for j in range(1, samples + 1):
-        a = Fraction(-1, 2) + Fraction(j - 1, samples)
-        b = a + Fraction(1, samples)
-        vec = [_ZERO, _ZERO, _ZERO]
-        for k in range(_DERIVS):
-            c = (b ** (k + 1) - a ** (k + 1)) / factorial(k + 1)
-            for i in range(3):
-                vec[i] = vec[i] + QQ(c.numerator, c.denominator) * OMEGA[k][i]
-        out.append(tuple(vec))
+    for j in range(first_index, samples + 1):
+        a, b = _increment_interval(j, samples)
+
+        def rule(w, a=a, b=b):
+            c = G.coefficient(ring, (b**w - a**w) / factorial(w))
+            return tuple(x * c for x in letter(w - 1))
+
+        out.append(G.Graded(ring, 3, rule, low=1))
     return tuple(out)
 
 
-def _term_value(expr, p):
-    if isinstance(expr, int):
-        return p[expr - 1]
-    a, b = expr
-    return _cross(_term_value(a, p), _term_value(b, p))
+def increments(samples: int, *, first_index: int = 1, max_weight: int = DEFAULT_MAX_WEIGHT) -> tuple:
+    """Series of the increments ``p_j`` (``H = 1``) as component polynomials through ``max_weight``.
+
+    Parameters
+    ----------
+    samples : int
+        N.
+    first_index : int, keyword-only
+        Lowest sample index (≤ 0: samples of earlier steps).
+    max_weight : int, keyword-only
+        Highest weight kept.
+
+    Returns
+    -------
+    tuple of (three ring elements)
+        ``p_{first_index} … p_N``.
+    """
+    check_max_weight(max_weight)
+    return tuple(p.total(max_weight) for p in increment_series(samples, first_index=first_index))
 
 
-def algorithm_series(algorithm: Algorithm) -> tuple:
-    """Increment ``Δφ`` of ``algorithm`` as component polynomials to weight 7 (``H = 1``).
+def algorithm_increment_series(algorithm: Algorithm, *, ring=RING, letter=omega) -> G.Graded:
+    """Increment ``Δφ`` of ``algorithm`` as a graded vector series (``H = 1``).
 
     Every term of the data model is supported: nested cross products of any
-    depth and dot-product factors.
+    depth, dot-product factors, and sample indices of earlier steps.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    ring : PolyRing, keyword-only
+        Ring of the letter values (default :data:`RING`).
+    letter : callable, keyword-only
+        ``k -> (x, y, z)``: value of ω^(k) (default the generators of RING).
+
+    Returns
+    -------
+    Graded
     """
-    p = increments(algorithm.samples)
-    total = (_ZERO, _ZERO, _ZERO)
-    for pj in p:
-        total = _add(total, pj)
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    first = algorithm.first_index
+    p = increment_series(algorithm.samples, first_index=first, ring=ring, letter=letter)
+
+    def sample(j):
+        return p[j - first]
+
+    def value(expr):
+        if isinstance(expr, int):
+            return sample(expr)
+        a, b = expr
+        return G.cross(value(a), value(b))
+
+    terms = [(1, sample(j)) for j in range(1, algorithm.samples + 1)]
     for term in algorithm.terms:
-        value = _term_value(term.cross, p)
+        v = value(term.cross)
         for i, j in term.dots:
-            d = _dot(p[i - 1], p[j - 1])
-            value = tuple(_mul(d, x) for x in value)
-        c = term.coefficient
-        total = _add(total, _scale(value, QQ(c.numerator, c.denominator)))
-    return total
+            v = G.times(G.dot(sample(i), sample(j)), v)
+        terms.append((term.coefficient, v))
+    return G.combine(terms)
+
+
+@cache
+def _algorithm_series(algorithm: Algorithm) -> G.Graded:
+    return algorithm_increment_series(algorithm)
+
+
+def algorithm_series(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> tuple:
+    """Increment ``Δφ`` of ``algorithm`` as component polynomials through ``max_weight`` (``H = 1``).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    max_weight : int
+        Highest weight kept.
+
+    Returns
+    -------
+    tuple of three ring elements
+    """
+    return _algorithm_series(algorithm).total(check_max_weight(max_weight))
 
 
 # ---------------------------------------------------------------------------
@@ -346,22 +425,28 @@ def algorithm_series(algorithm: Algorithm) -> tuple:
 # ---------------------------------------------------------------------------
 @dataclass(frozen=True)
 class LocalError:
-    """Local error ``δφ = Δφ_algorithm − Δφ_exact`` of one step, by weight.
+    """Local error ``δφ = Δφ_exact − Δφ_algorithm`` of one step, by weight.
 
     Attributes
     ----------
     algorithm : Algorithm
+        The algorithm.
     parts : tuple
-        ``parts[w]`` (w = 0 … 7) is the weight-w part as three ring polynomials
-        in units of H (``H = 1``); ``parts[0]`` is zero.
+        ``parts[w]`` (w = 0 … max_weight) is the weight-w part as three ring
+        polynomials in units of H (``H = 1``); ``parts[0]`` is zero.
     """
 
     algorithm: Algorithm
     parts: tuple
 
     @property
+    def max_weight(self) -> int:
+        """Highest weight held."""
+        return len(self.parts) - 1
+
+    @property
     def leading_weight(self) -> int | None:
-        """Smallest weight with a nonzero part (None if zero through weight 7)."""
+        """Smallest weight with a nonzero part (None if zero through :attr:`max_weight`)."""
         for w, v in enumerate(self.parts):
             if any(v):
                 return w
@@ -369,12 +454,31 @@ class LocalError:
 
     @property
     def order(self) -> int | None:
-        """Order ρ of the algorithm: local error O(h^(ρ+1))."""
+        """Order ρ of the algorithm: local error O(h^(ρ+1)); None if zero through :attr:`max_weight`."""
         w = self.leading_weight
         return None if w is None else w - 1
 
     def part(self, w: int, *, unit: str = "H") -> tuple:
-        """Weight-w part; ``unit="h"`` rescales it to the coefficient of ``h^w`` (``H = N h``)."""
+        """Weight-w part; ``unit="h"`` rescales it to the coefficient of ``h^w`` (``H = N h``).
+
+        Parameters
+        ----------
+        w : int
+            Weight, ``0 … max_weight``.
+        unit : {"H", "h"}, keyword-only
+            Step (H) or sample interval (h) as the unit of the coefficients.
+
+        Returns
+        -------
+        tuple of three ring elements
+
+        Raises
+        ------
+        ValueError
+            For an unknown ``unit`` or a weight beyond :attr:`max_weight`.
+        """
+        if not 0 <= w <= self.max_weight:
+            raise ValueError(f"Expected `w` in 0..{self.max_weight} (the weight of this series), got {w}")
         v = self.parts[w]
         if unit == "H":
             return v
@@ -384,8 +488,28 @@ class LocalError:
 
 
 @cache
-def local_error(algorithm: Algorithm) -> LocalError:
-    """Local-error series of ``algorithm`` through weight 7 (algorithm minus exact).
+def _local_error_series(algorithm: Algorithm) -> G.Graded:
+    return G.combine([(1, exact_increment_series()), (-1, _algorithm_series(algorithm))])
+
+
+def local_error(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> LocalError:
+    """Local-error series of ``algorithm`` through ``max_weight`` (exact minus algorithm).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
+    max_weight : int
+        Highest weight (power of h) kept, 1 … :data:`WEIGHT_LIMIT`.
+
+    Returns
+    -------
+    LocalError
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a bad ``algorithm`` or ``max_weight``.
 
     Examples
     --------
@@ -395,9 +519,14 @@ def local_error(algorithm: Algorithm) -> LocalError:
     >>> local_error(get("lebedev-panov-2")).order
     2
     """
-    delta = _sub(algorithm_series(algorithm), exact_increment())
-    parts = tuple(_weight_part(delta, w) for w in range(MAX_WEIGHT + 1))
-    return LocalError(algorithm, parts)
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    return _local_error(algorithm, check_max_weight(max_weight))
+
+
+@cache
+def _local_error(algorithm: Algorithm, max_weight: int) -> LocalError:
+    return LocalError(algorithm, _local_error_series(algorithm).parts(max_weight))
 
 
 # ---------------------------------------------------------------------------
@@ -417,9 +546,15 @@ def express(vector, words) -> dict:
     Parameters
     ----------
     vector : tuple of three ring polynomials
+        The vector to express (elements of :data:`RING`).
     words : sequence of tuples
         The nested products allowed.  If they are linearly dependent in R³ the
         solution with the free parameters set to zero is returned.
+
+    Returns
+    -------
+    dict
+        ``{word: Fraction}``.
 
     Raises
     ------
@@ -454,13 +589,66 @@ ORDER4_BASIS = ((0, 3), (1, 2), (0, 0, 2), (1, 1, 0), (0, 0, 0, 1))
 def fourth_order_coefficients(algorithm: Algorithm) -> dict:
     """Weight-5 local error in the basis :data:`ORDER4_BASIS`, coefficients of ``h⁵``.
 
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+
     Returns
     -------
     dict
-        ``{word: Fraction}``: ``δφ = h⁵ Σ c_w x_w + O(h⁶)`` (algorithm minus exact,
-        ``H = N h``).
+        ``{word: Fraction}``: ``δφ = h⁵ Σ c_w x_w + O(h⁶)`` (exact minus algorithm,
+        ``H = N h``); these are the products ``δ4 · k`` of Budennyi, Kalinovsky,
+        Panov et al., Table 2.
     """
-    return express(local_error(algorithm).part(5, unit="h"), ORDER4_BASIS)
+    return express(local_error(algorithm, max(DEFAULT_MAX_WEIGHT, 5)).part(5, unit="h"), ORDER4_BASIS)
+
+
+class _Echelon:
+    """Exact row echelon form over QQ of sparse vectors ``{key: coefficient}``, grown one vector at a time."""
+
+    def __init__(self):
+        self._rows: list = []  # (pivot key, row), the row normalised to 1 at its pivot
+
+    def reduce(self, vec: dict) -> dict:
+        v = {k: c for k, c in vec.items() if c}
+        for pivot, row in self._rows:
+            c = v.get(pivot)
+            if c:
+                for k, r in row.items():
+                    x = v.get(k, 0) - c * r
+                    if x:
+                        v[k] = x
+                    else:
+                        v.pop(k, None)
+        return v
+
+    def add(self, vec: dict) -> bool:
+        """Add ``vec``; True if it was independent of the vectors added before."""
+        v = self.reduce(vec)
+        if not v:
+            return False
+        pivot = min(v)
+        inv = 1 / v[pivot]
+        row = {k: c * inv for k, c in v.items()}
+        # keep earlier rows reduced at the new pivot (so reduce() stays one pass)
+        self._rows = [(p, _eliminate(r, pivot, row)) for p, r in self._rows]
+        self._rows.append((pivot, row))
+        return True
+
+
+def _eliminate(row: dict, pivot, by: dict) -> dict:
+    c = row.get(pivot)
+    if not c:
+        return row
+    out = dict(row)
+    for k, r in by.items():
+        x = out.get(k, 0) - c * r
+        if x:
+            out[k] = x
+        else:
+            out.pop(k, None)
+    return out
 
 
 @cache
@@ -470,30 +658,32 @@ def canonical_basis(w: int) -> tuple:
     Candidates are right-nested words with increasing last pair, tried in the
     order (length, word) and kept when independent (by value) of those kept
     before.  For ``w = 5`` this is :data:`ORDER4_BASIS` up to order.
+
+    Parameters
+    ----------
+    w : int
+        Weight, 1 … :data:`WEIGHT_LIMIT`.
+
+    Returns
+    -------
+    tuple of words
     """
     from itertools import combinations_with_replacement, permutations
 
-    from sympy.polys.matrices import DomainMatrix
-
+    check_max_weight(w)
     cands = set()
     for n in range(1, w + 1):
-        for letters in combinations_with_replacement(range(_DERIVS), n):
+        for letters in combinations_with_replacement(range(w), n):
             if weight(letters) != w:
                 continue
             for p in permutations(letters):
                 if n == 1 or p[-2] < p[-1]:
                     cands.add(p)
-    basis, cols = [], []
+    echelon = _Echelon()
+    basis = []
     for cand in sorted(cands, key=lambda p: (len(p), p)):
-        col = _flatten(nested(cand))
-        if not col:
-            continue
-        trial = cols + [col]
-        ks = sorted(set().union(*[set(c) for c in trial]))
-        mat = DomainMatrix([[c.get(k, QQ(0)) for c in trial] for k in ks], (len(ks), len(trial)), QQ)
-        if mat.rank() == len(trial):
+        if echelon.add(_flatten(nested(cand))):
             basis.append(cand)
-            cols.append(col)
     return tuple(basis)
 
 
@@ -508,22 +698,37 @@ class ErrorCoefficients:
     Attributes
     ----------
     order : int or None
-        ρ (None if the error vanishes through h⁷).
+        ρ (None if the error vanishes through ``h**max_weight``).
     delta : Fraction
+        δ.
     coefficients : dict
         ``{word: Fraction}`` (integers under this normalisation).
     basis : tuple of words
+        The nested products of the expansion.
+    max_weight : int
+        Weight of the series the coefficients come from.
     """
 
     order: int | None
     delta: Fraction
     coefficients: dict
     basis: tuple
+    max_weight: int = DEFAULT_MAX_WEIGHT
 
     def latex(self, *, dual: bool = False) -> str:
-        """``δφ = δ h^{ρ+1}(Σ k x)`` as LaTeX (``dual=True``: its dual part by the transfer principle)."""
+        """``δφ = δ h^{ρ+1}(Σ k x)`` as LaTeX.
+
+        Parameters
+        ----------
+        dual : bool, keyword-only
+            Give its dual part by the transfer principle instead.
+
+        Returns
+        -------
+        str
+        """
         if self.order is None:
-            return "\\delta\\varphi = O(h^{8})"
+            return f"\\delta\\varphi = O(h^{{{self.max_weight + 1}}})"
         series = [(w, c) for w, c in self.coefficients.items() if c]
         d = sp.latex(sp.Rational(self.delta.numerator, self.delta.denominator))
         head = f"{d}\\, h^{{{self.order + 1}}}"
@@ -541,12 +746,22 @@ class ErrorCoefficients:
         return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
 
 
-@cache
-def error_coefficients(algorithm: Algorithm) -> ErrorCoefficients:
+def error_coefficients(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> ErrorCoefficients:
     """Leading local-error coefficients (Table 2 convention, see :class:`ErrorCoefficients`).
 
     The basis is :data:`ORDER4_BASIS` for ρ = 4 and :func:`canonical_basis`
     otherwise.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    max_weight : int
+        Weight of the series searched for the leading term.
+
+    Returns
+    -------
+    ErrorCoefficients
 
     Examples
     --------
@@ -555,19 +770,23 @@ def error_coefficients(algorithm: Algorithm) -> ErrorCoefficients:
     >>> e.order, e.delta, [int(e.coefficients[w]) for w in ORDER4_BASIS]
     (4, Fraction(1, 45), [0, 0, 64, 192, -64])
     """
-    import math
+    err = local_error(algorithm, max_weight)
+    return _error_coefficients(err.algorithm, err.max_weight)
 
-    err = local_error(algorithm)
+
+@cache
+def _error_coefficients(algorithm: Algorithm, max_weight: int) -> ErrorCoefficients:
+    err = _local_error(algorithm, max_weight)
     rho = err.order
     if rho is None:
-        return ErrorCoefficients(None, Fraction(0), {}, ())
+        return ErrorCoefficients(None, Fraction(0), {}, (), max_weight)
     basis = ORDER4_BASIS if rho == 4 else canonical_basis(rho + 1)
-    raw = express(_scale(err.part(rho + 1, unit="h"), QQ(-1)), basis)
+    raw = express(err.part(rho + 1, unit="h"), basis)
     lcm = 1
     for c in raw.values():
         lcm = lcm * c.denominator // math.gcd(lcm, c.denominator)
     delta = Fraction(1, lcm)
-    return ErrorCoefficients(rho, delta, {w: c / delta for w, c in raw.items()}, tuple(basis))
+    return ErrorCoefficients(rho, delta, {w: c / delta for w, c in raw.items()}, tuple(basis), max_weight)
 
 
 # ---------------------------------------------------------------------------
@@ -591,6 +810,16 @@ def lie_basis_reduce(series) -> tuple:
     Words are tried in the order (weight, length, word) and kept when independent
     of those kept before; the result is unique for a given ordering.  This uses
     only the Jacobi identity and antisymmetry, not identities special to R³.
+
+    Parameters
+    ----------
+    series : iterable of (word, coefficient)
+        Nested products and their coefficients.
+
+    Returns
+    -------
+    tuple of (word, Fraction)
+        The same Lie element on independent words, sorted by (weight, length, word).
     """
     from sympy.polys.matrices import DomainMatrix
 
@@ -643,6 +872,18 @@ def dual_words(series) -> tuple:
     with one factor ``ω^(k)`` replaced by ``a^(k)``.  A marked word is returned
     as ``(word, position)``: ``x°_{w,i}`` has ``a^(w_i)`` in place ``i``.
 
+    Parameters
+    ----------
+    series : iterable of (word, coefficient)
+        Nested products and their coefficients.
+
+    Returns
+    -------
+    tuple of (word, int, Fraction)
+        ``(word, marked position, coefficient)``.
+
+    Examples
+    --------
     >>> dual_words([((0, 1), Fraction(1, 12))])
     (((0, 1), 0, Fraction(1, 12)), ((0, 1), 1, Fraction(1, 12)))
     """
@@ -653,13 +894,44 @@ def dual_words(series) -> tuple:
 # LaTeX
 # ---------------------------------------------------------------------------
 def word_latex(word, marked: int | None = None) -> str:
-    """``x_{αβ…}`` with an optional dual mark ``°`` on one index."""
+    r"""``x_{αβ…}`` with an optional dual mark ``°`` on one index.
+
+    Parameters
+    ----------
+    word : sequence of int
+        Derivative orders.
+    marked : int, optional
+        Position of the dual mark.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> print(word_latex((0, 1), 1))
+    x_{01^\circ}
+    """
     idx = "".join(f"{k}^\\circ" if i == marked else str(k) for i, k in enumerate(word))
     return f"x_{{{idx}}}"
 
 
 def series_latex(series, *, power: str = "", factor: Fraction | None = None) -> str:
-    """``factor · power · (Σ c_w x_w)`` as LaTeX (terms in the given order)."""
+    """``factor · power · (Σ c_w x_w)`` as LaTeX (terms in the given order).
+
+    Parameters
+    ----------
+    series : iterable of (word, coefficient)
+        Nested products and their coefficients.
+    power : str, keyword-only
+        LaTeX put before the bracket (e.g. ``"h^5"``).
+    factor : Fraction, keyword-only
+        Common factor taken out of the coefficients.
+
+    Returns
+    -------
+    str
+    """
     terms = []
     for w, c in series:
         c = Fraction(c)
