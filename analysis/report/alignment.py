@@ -303,6 +303,9 @@ def _design_figure(ctx, designs, checks, tilt) -> None:
                 ax.plot([p.frequency for p in pts], [p.amplitude * D for p in pts], "o", color=colors[d.method], ms=5, mfc="none")
         ax.set_title(f"{rock} rocking" + (", envelope over phase (analytic)" if rock == "sine" else ", ζ = 0.1"), fontsize=9)
         ax.set_xlabel("rocking frequency [Hz]")
+        ticks = [f for f in (0.05, 0.1, 0.2, 0.4) if t.frequency.min() * 0.99 <= f <= t.frequency.max() * 1.01]
+        ax.set_xticks(ticks, [f"{f:g}" for f in ticks])
+        ax.xaxis.set_minor_formatter(plt.NullFormatter())
     axes[0].set_ylabel("admissible amplitude [deg]")
     axes[0].set_ylim(1e-4, 40.0)
     axes[1].legend(fontsize=6, loc="center right")
@@ -467,13 +470,13 @@ def alignment_errata(ctx) -> list:
         Erratum(
             "Hrechka & Koroliov, eq. (2) with σ = arctg(B/A)",
             "α = −arctg(f2/f1) + σ, σ = arctg(B/A) with A, B independent of α",
-            "Likely reading: (2) with this σ is the analytic gyrocompass for a near-north orientation of the two gyros (the paper takes it from "
+            "(2) with this σ is the analytic gyrocompass for a near-north orientation of the two gyros (the paper takes it from "
             "its reference [5]); the tilt correction σ is the one at zero azimuth",
             f"Ideal sensors, φ = 60°, β0 = 1°, γ0 = −0.5°: error of (2) with σ {err[0.0][0] * D:.2g}° at ψ = 0, {err[45.0][0] * D:.3g}° at 45°, "
             f"{err[90.0][0] * D:.3g}° at 90°; the mean rate levelled by the same tilt estimates: below {max(abs(v[1]) for v in err.values()) * D:.1g}° at all three.",
             "azimuth",
             kind="ambiguous",
-            alternatives="Read as a formula for any azimuth, (2) with σ is wrong by about tg φ · β0 at 90° (the numbers above); the exact correction "
+            alternatives="Read as a formula for any azimuth, (2) with σ is off by degrees at 45° and 90° for tilts of a degree (the evidence); the exact correction "
             "depends on the azimuth: the levelled formula ψ = atan2(−ω_h,y, ω_h,x), ω_h = R_x(−β̂) R_y(γ̂) ω̄.",
         )
     ]

@@ -488,7 +488,7 @@ def errata(ctx) -> list:
         Erratum(
             "Hrechka & Koroliov, eq. (15) and conclusion 2",
             "δ ≤ tg φ √Dξ, practically independent of the rocking in other planes",
-            "Likely reading: a first-order estimate, δ² = tg²φ Dξ + O(D²), exact to that order (the paper drops the second-order terms before (14): "
+            "A first-order estimate, δ² = tg²φ Dξ + O(D²), exact to that order (the paper drops the second-order terms before (14): "
             "'відкинувши члени другого порядку малості')",
             f"Monte Carlo ({r.n_samples} samples, φ = 80°, β0 = γ0 = 0, Gaussian σξ = ση = 1°): rms {r.rms * D:.5f}° (95 % CI {r.rms_ci[0] * D:.5f}–{r.rms_ci[1] * D:.5f}°) "
             f"> (15) = {mc.bound15 * D:.5f}°; the fourth-order theory gives {mc.theory.rms * D:.5f}°.",
