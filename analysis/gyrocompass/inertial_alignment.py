@@ -210,12 +210,8 @@ def _residual_projector(basis):
 
 
 def _quat_to_matrix(q):
-    q0, q1, q2, q3 = (q[..., i] for i in range(4))
-    return np.stack(
-        [
-            np.stack([1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)], axis=-1),
-            np.stack([2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 - q0 * q1)], axis=-1),
-            np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), 1 - 2 * (q1 * q1 + q2 * q2)], axis=-1),
-        ],
-        axis=-2,
-    )
+    """Rotation matrices of scalar-first unit quaternions ``(..., 4)`` (scipy)."""
+    from scipy.spatial.transform import Rotation
+
+    q = np.asarray(q, dtype=float)
+    return Rotation.from_quat(q.reshape(-1, 4), scalar_first=True).as_matrix().reshape(q.shape[:-1] + (3, 3))
