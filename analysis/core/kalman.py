@@ -189,7 +189,7 @@ def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
 
 
 def nis(innovations, covariances):
-    """Normalised innovation squared ``yᵀ S⁻¹ y`` (filterpy has no NIS helper).
+    """Normalised innovation squared ``yᵀ S⁻¹ y`` (filterpy has no NIS function).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""The whole-system self-alignment part of the ``azimuth`` report page (a helper, not a section).
+"""The whole-system self-alignment part of the ``azimuth`` report page (formatted here, listed under that section).
 
 Self-alignment on a rocking base: the rocking in the gyros and the
 accelerometers, sensor errors, three methods, the admissible rocking.
@@ -183,7 +183,7 @@ def _kalman_lines(cases, mismatch) -> list:
         "## 3. Kalman fine alignment: consistency and a wrong rocking model",
         "",
         "NEES (the whole state, against the truth of the simulation) and NIS (innovations, $y^TS^{-1}y$, χ² bounds from `scipy.stats.chi2`;",
-        "filterpy has no NIS helper) averaged over trials at eight epochs, with their two-sided 95 % bands. The random biases are drawn",
+        "filterpy has no NIS function) averaged over trials at eight epochs, with their two-sided 95 % bands. The random biases are drawn",
         "from the filter's prior, the initial attitude error too. At rest the filter is consistent. On the rocking base the NEES stays in",
         "its band and the NIS falls below it: the filter's rocking states are a shaping filter driven by white noise, whose rates are",
         "rougher than the band-limited rocking of the simulation (cut off at 4ω0), so it expects larger innovations than it gets —",
