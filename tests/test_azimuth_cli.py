@@ -74,5 +74,32 @@ def test_design_amplitude_meets_budget_at_first_order():
     """At the first-order admissible amplitude the first-order alignment rms equals the budget."""
     budget, lat, T = math.radians(0.05), math.radians(50), 30.0
     d = admissible_amplitude(budget, lat, T, [0.1], rocking="narrowband")
-    a = d["amplitude_first_order"][0]
-    assert math.tan(lat) * a / math.sqrt(2) * math.sqrt(d["variance_factor"][0]) == pytest.approx(budget, rel=1e-12)
+    a = d.amplitude_first_order[0]
+    assert math.tan(lat) * a / math.sqrt(2) * math.sqrt(d.variance_factor[0]) == pytest.approx(budget, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "extra, needle",
+    [
+        (["--period", "5"], "--period does not apply to --rocking normal"),
+        (["--rocking", "sine", "--damping", "0.2"], "--damping does not apply to --rocking sine"),
+        (["--rocking", "sine", "--sigma-xi-deg", "70"], "--sigma-xi-deg <= 63.64 deg"),
+        (["--beta0-deg", "30", "--sigma-eta-deg", "20"], "--sigma-eta-deg <= 15 deg"),
+    ],
+)
+def test_options_outside_the_model_exit_2(capsys, extra, needle):
+    argv = ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "0.1", "--sigma-eta-deg", "0.1", "--samples", "1000"] + extra
+    code, out, err = _run(capsys, argv)
+    assert code == 2 and out == ""
+    assert needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_design_percentile_and_exact_phase(capsys):
+    base = ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "60", "--points", "6", "--rocking", "sine", "--json"]
+    _, out, _ = _run(capsys, base)
+    env = json.loads(out)
+    _, out, _ = _run(capsys, base + ["--exact-phase"])
+    exact = json.loads(out)
+    assert env["envelope_over_phase"] and not exact["envelope_over_phase"]
+    assert all(a <= b * (1 + 1e-12) for a, b in zip(env["amplitude_deg"], exact["amplitude_deg"]))  # the envelope is the worst case
+    assert all(p <= a for p, a in zip(env["amplitude_percentile_deg"], env["amplitude_first_order_deg"]))

@@ -80,22 +80,15 @@ def missing_parameters(obj) -> list:
 #: Modules whose docstrings are still being completed (strict xfail: remove a module once it passes).
 PENDING = {
     "strapdown.analysis.cli",
-    "strapdown.analysis.cli.azimuth",
     "strapdown.analysis.cli.report",
     "strapdown.analysis.core.dual",
     "strapdown.analysis.core.kalman",
     "strapdown.analysis.core.montecarlo",
     "strapdown.analysis.core.quaternion",
     "strapdown.analysis.core.validation",
-    "strapdown.analysis.gyrocompass.azimuth",
-    "strapdown.analysis.gyrocompass.bound_sweep",
-    "strapdown.analysis.gyrocompass.rocking",
-    "strapdown.analysis.gyrocompass.tilt_estimation",
     "strapdown.analysis.report",
-    "strapdown.analysis.report.azimuth",
     "strapdown.analysis.report.html",
     "strapdown.analysis.report.index",
-    "strapdown.derivations.gyrocompass.azimuth_error",
     "strapdown.derivations.reproducible",
 }
 

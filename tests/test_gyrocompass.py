@@ -8,42 +8,47 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from strapdown.analysis.gyrocompass.azimuth import azimuth_error, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
+from strapdown.analysis.gyrocompass.formula_checks import check_printed_formulas
 from strapdown.analysis.gyrocompass.rocking import GaussianRocking, SineRocking
 from strapdown.derivations.gyrocompass import azimuth_error as g
+from strapdown.derivations.gyrocompass.published import printed_formula
 
-phi, b0, g0, xi, eta = g.phi, g.beta0, g.gamma0, g.xi, g.eta
-
-# Printed formulas of Hrechka & Koroliov, typed from the paper (reference data).
-PRINTED_6 = sp.cos(phi) * sp.cos(g0) + sp.sin(phi) * sp.cos(b0) * sp.sin(g0)
-PRINTED_7 = eta * (sp.sin(phi) * sp.cos(b0) * sp.cos(g0) - sp.cos(phi) * sp.sin(g0)) - xi * sp.sin(phi) * sp.cos(b0) * sp.sin(g0)
-PRINTED_9 = sp.sin(phi) * sp.sin(b0)
-PRINTED_10 = xi * sp.sin(phi) * sp.cos(b0)
+phi, b0, g0, xi, eta = g.SYMBOLS.phi, g.SYMBOLS.beta0, g.SYMBOLS.gamma0, g.SYMBOLS.xi, g.SYMBOLS.eta
 
 
 def test_printed_6_9_10_agree_with_derivation():
     p = g.linear_parts()
-    assert sp.simplify(p["A_star"] - PRINTED_6) == 0
-    assert sp.simplify(p["B_star"] - PRINTED_9) == 0
-    assert sp.simplify(p["zeta2"] - PRINTED_10) == 0
+    assert sp.simplify(p.A_star - printed_formula("(6)").expression) == 0
+    assert sp.simplify(p.B_star - printed_formula("(9)").expression) == 0
+    assert sp.simplify(p.zeta2 - printed_formula("(10)").expression) == 0
 
 
 def test_printed_7_is_a_misprint_sin_beta0():
     """(7) prints cos β0 in the ξ term; the derivation (and (5)) give sin β0."""
     p = g.linear_parts()
-    diff = sp.simplify(p["zeta1"] - PRINTED_7)
-    assert diff != 0
-    fixed = PRINTED_7.subs(xi * sp.sin(phi) * sp.cos(b0) * sp.sin(g0), xi * sp.sin(phi) * sp.sin(b0) * sp.sin(g0))
-    assert sp.simplify(p["zeta1"] - fixed) == 0
+    printed = printed_formula("(7)").expression
+    assert sp.simplify(p.zeta1 - printed) != 0
+    fixed = printed.subs(xi * sp.sin(phi) * sp.cos(b0) * sp.sin(g0), xi * sp.sin(phi) * sp.sin(b0) * sp.sin(g0))
+    assert sp.simplify(p.zeta1 - fixed) == 0
+
+
+def test_formula_checks_flag_exactly_the_misprints():
+    """The numeric residual confirms each symbolic verdict: A (after (2)) and (7) differ, the rest agree."""
+    checks = {c.label: c for c in check_printed_formulas()}
+    assert {k for k, c in checks.items() if not c.agrees} == {"A (after (2))", "(7)"}
+    for c in checks.values():
+        assert (c.residual > 1e-3) == (not c.agrees), c.label
 
 
 def test_bound14_reduces_to_15_squared():
     assert sp.simplify(g.bound14_rocking().subs({b0: 0, g0: 0}) - g.bound15() ** 2) == 0
+    assert g.bound14_reduces_to_15()
 
 
 def test_linear_error_is_the_arg_difference():
     p = g.linear_parts()
     L = sum(c * xi**i * eta**j for (i, j), c in g.error_series(1).items())
-    target = (p["A_star"] * p["zeta2"] - p["B_star"] * p["zeta1"]) / (p["A_star"] ** 2 + p["B_star"] ** 2)
+    target = (p.A_star * p.zeta2 - p.B_star * p.zeta1) / (p.A_star**2 + p.B_star**2)
     vals = {phi: 0.7, b0: 0.05, g0: -0.03, xi: 0.3, eta: -0.2}
     assert abs(float((L - target).subs(vals))) < 1e-14
 
@@ -65,9 +70,10 @@ def test_error_series_remainder_is_fourth_order():
 
 
 def test_mse_at_zero_tilt_closed_form():
-    m = sp.simplify(g.mse_fourth_order().subs({b0: 0, g0: 0}))
+    m = g.mse_at_zero_tilt()
     t2 = sp.tan(phi) ** 2
-    expected = t2 * g.D_xi * (1 + g.D_eta * (1 + 3 * t2) - g.kappa_xi * g.D_xi * (1 + 2 * t2) / 3)
+    S = g.SYMBOLS
+    expected = t2 * S.D_xi * (1 + S.D_eta * (1 + 3 * t2) - S.kappa_xi * S.D_xi * (1 + 2 * t2) / 3)
     assert sp.simplify(m - expected) == 0
     assert sp.simplify(g.bias_second_order().subs({b0: 0})) == 0
 
@@ -77,7 +83,7 @@ def test_gradient_matches_finite_difference():
     h = 1e-6
     gb = float(azimuth_error(h, 0.0, latitude=lat, beta0=bb, gamma0=gg) - azimuth_error(-h, 0.0, latitude=lat, beta0=bb, gamma0=gg)) / (2 * h)
     ge = float(azimuth_error(0.0, h, latitude=lat, beta0=bb, gamma0=gg) - azimuth_error(0.0, -h, latitude=lat, beta0=bb, gamma0=gg)) / (2 * h)
-    assert gradient(lat, bb, gg) == pytest.approx((gb, ge), rel=1e-7)
+    assert tuple(gradient(lat, bb, gg)) == pytest.approx((gb, ge), rel=1e-7)
 
 
 @settings(max_examples=60, deadline=None)
@@ -94,7 +100,7 @@ def test_bound14_dominates_first_order_rms(lat, bb, gg, sx, se):
     if abs(math.cos(args[0]) * math.cos(args[2]) + math.sin(args[0]) * math.cos(args[1]) * math.sin(args[2])) < 1e-3:
         return
     t = second_order_theory(*args)
-    assert t["rms_first_order"] <= bound14(*args) * (1 + 1e-9) + 1e-15
+    assert t.rms_first_order <= bound14(*args) * (1 + 1e-9) + 1e-15
 
 
 def test_mc_agrees_with_second_order_theory_not_first():
@@ -102,8 +108,8 @@ def test_mc_agrees_with_second_order_theory_not_first():
     lat, s = math.radians(80.0), math.radians(1.0)
     mc = azimuth_monte_carlo(lat, 0.0, 0.0, GaussianRocking(s, s), 2_000_000, rng=11)
     lo, hi = mc.result.rms_ci
-    assert lo < mc.theory["rms"] < hi
-    assert mc.theory["rms_first_order"] < lo  # (14) = (15) = first order here: violated
+    assert lo < mc.theory.rms < hi
+    assert mc.theory.rms_first_order < lo  # (14) = (15) = first order here: violated
     assert mc.result.covers(mc.bound15) == "fails"
 
 
@@ -111,7 +117,7 @@ def test_small_rocking_sine_agrees_with_theory():
     lat, s = math.radians(45.0), math.radians(0.05)
     mc = azimuth_monte_carlo(lat, math.radians(2), math.radians(1), SineRocking(s, s), 1_000_000, rng=3)
     lo, hi = mc.result.rms_ci
-    assert lo < mc.theory["rms"] < hi
+    assert lo < mc.theory.rms < hi
 
 
 @pytest.mark.parametrize(

@@ -45,7 +45,7 @@ def test_narrowband_has_the_exact_stationary_covariance(period, damping, dt):
     m = NarrowbandRocking(1.0, 1.0, period, damping)
     n = 25
     eye = np.eye(n + 1)
-    x = m._series_from_normals(eye[:, :3], eye[:, 3:], n, dt)  # row i: response to normal i
+    x = m.series_from_normals(eye[:, :3], eye[:, 3:], n, dt)  # row i: response to normal i
     cov = x.T @ x
     lags = np.abs(np.subtract.outer(np.arange(n), np.arange(n))) * dt
     np.testing.assert_allclose(cov, m.autocorrelation(lags), rtol=0, atol=1e-12)

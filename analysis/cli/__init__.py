@@ -76,8 +76,9 @@ class Commands:
 COMMANDS = {
     "algorithms list": ("algorithms", "list the registry: name, samples, previous samples read, order, source"),
     "algorithms show": ("algorithms", "one algorithm: terms as exact fractions, samples, history, second-order defect, order, source"),
+    "align": ("align", "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory"),
     "azimuth": ("azimuth", "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)"),
-    "azimuth-design": ("azimuth", "largest admissible rocking amplitude against rocking frequency for an azimuth budget"),
+    "azimuth-design": ("azimuth", "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)"),
     "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^order, exact fraction"),
     "derive local-error": ("derive_local_error", "local-error series of an algorithm (exact fractions, LaTeX) to any order"),
     "derive lyapunov": ("lyapunov", "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))"),

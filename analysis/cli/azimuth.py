@@ -1,49 +1,128 @@
-"""``strapdown azimuth`` and ``strapdown azimuth-design``: gyrocompass azimuth error under rocking."""
+"""``strapdown azimuth`` and ``strapdown azimuth-design``: gyrocompass azimuth error under rocking (tilt channel).
+
+Degrees at the edge, radians inside: options are converted with
+:mod:`strapdown.analysis.core.units`.  Library imports are lazy, so that a
+warm call imports neither SymPy nor the other domains.
+"""
 
 from __future__ import annotations
 
-import math
+from . import Result, UsageError
 
-import numpy as np
+__all__ = ["register", "check_applicable", "check_rocking_domain"]
 
-from . import Result
+_DEFAULTS = {"period": 8.0, "damping": 0.1}
+_APPLIES = {"period": ("sine", "narrowband"), "damping": ("narrowband",)}
 
 
-def _rad(value, name):
-    from ..core.validation import as_float
+def check_applicable(args, rocking: str, options=("period", "damping")) -> None:
+    """Raise :class:`UsageError` for an option given that the rocking model does not use; fill defaults.
 
-    return math.radians(as_float(value, name))
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options (``None`` where not given).
+    rocking : str
+        The chosen rocking model.
+    options : sequence of str
+        Option names to check (``period``, ``damping``).
+
+    Raises
+    ------
+    UsageError
+        Naming the option as typed.
+    """
+    for name in options:
+        value = getattr(args, name)
+        if value is None:
+            setattr(args, name, _DEFAULTS[name])
+        elif rocking not in _APPLIES[name]:
+            raise UsageError(f"--{name} does not apply to --rocking {rocking} (it applies to {', '.join(_APPLIES[name])})")
+
+
+def check_rocking_domain(rocking_type, beta0_deg: float, gamma0_deg: float, sigmas_deg) -> None:
+    """Raise :class:`UsageError` when the tilts or sigmas leave the range where the model is defined (in degrees).
+
+    Parameters
+    ----------
+    rocking_type : type
+        Rocking model class (supplies ``peak_factor``).
+    beta0_deg, gamma0_deg : float
+        Stable tilts [deg].
+    sigmas_deg : dict
+        ``{option: standard deviation [deg]}``.
+
+    Raises
+    ------
+    UsageError
+        With the limit in degrees.
+    """
+    from ..core.units import deg, rad
+    from ..gyrocompass.rocking import tilt_domain_limit
+
+    for name, value in (("beta0-deg", beta0_deg), ("gamma0-deg", gamma0_deg)):
+        if not abs(value) < 90.0:
+            raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
+    limit = deg(tilt_domain_limit(rocking_type, rad(beta0_deg), rad(gamma0_deg)))
+    for name, value in sigmas_deg.items():
+        if value > limit:
+            raise UsageError(
+                f"Expected --{name} <= {limit:.4g} deg (the tilts |tilt0| + {rocking_type.peak_factor:.3g}·sigma must stay within ±90 deg for {rocking_type.name} rocking), got {value:g}"
+            )
 
 
 def _latitude(value) -> float:
+    from ..core.units import rad
     from ..core.validation import in_open_interval
 
-    return math.radians(in_open_interval(value, "lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
+    return rad(in_open_interval(value, "lat-deg", -90.0, 90.0, text="(-90, 90) deg"))
 
 
 def _azimuth(args) -> Result:
-    from ..core.validation import as_int, nonnegative
+    from ..core.units import deg, rad
+    from ..core.validation import as_float, as_int, nonnegative
     from ..gyrocompass.azimuth import azimuth_monte_carlo
-    from ..gyrocompass.rocking import rocking_model
+    from ..gyrocompass.rocking import MODELS, rocking_model
 
     lat = _latitude(args.lat_deg)
-    sx = math.radians(nonnegative(args.sigma_xi_deg, "sigma-xi-deg"))
-    se = math.radians(nonnegative(args.sigma_eta_deg, "sigma-eta-deg"))
+    check_applicable(args, args.rocking)
+    sx_deg = nonnegative(args.sigma_xi_deg, "sigma-xi-deg")
+    se_deg = nonnegative(args.sigma_eta_deg, "sigma-eta-deg")
+    b0_deg, g0_deg = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
+    check_rocking_domain(MODELS[args.rocking], b0_deg, g0_deg, {"sigma-xi-deg": sx_deg, "sigma-eta-deg": se_deg})
     n = as_int(args.samples, "samples", minimum=2)
     seed = as_int(args.seed, "seed", minimum=0)
-    model = rocking_model(args.rocking, sx, se, period=args.period_s, damping=args.damping)
-    executor = None
+    model = rocking_model(args.rocking, rad(sx_deg), rad(se_deg), period=args.period, damping=args.damping)
     workers = as_int(args.workers, "workers", minimum=1)
+    executor = None
     if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
         executor = ProcessPoolExecutor(workers)
     try:
-        mc = azimuth_monte_carlo(lat, _rad(args.beta0_deg, "beta0-deg"), _rad(args.gamma0_deg, "gamma0-deg"), model, n, rng=seed, executor=executor, progress=args.progress)
+        mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress)
     finally:
         if executor is not None:
             executor.shutdown()
-    data = {"rocking": args.rocking, "seed": seed, **mc.as_dict(degrees=True)}
+    r, th = mc.result, mc.theory
+    data = {
+        "rocking": args.rocking,
+        "seed": seed,
+        "rms_error_deg": deg(r.rms),
+        "rms_ci_deg": [deg(r.rms_ci[0]), deg(r.rms_ci[1])],
+        "mean_error_deg": deg(r.mean),
+        "mean_ci_deg": [deg(r.mean_ci[0]), deg(r.mean_ci[1])],
+        "bound14_deg": deg(mc.bound14),
+        "bound15_deg": deg(mc.bound15),
+        "theory_rms_first_order_deg": deg(th.rms_first_order),
+        "theory_rms_second_order_deg": deg(th.rms),
+        "theory_bias_deg": deg(th.bias),
+        "quantiles_deg": {f"{level:g}": deg(v) for level, v in r.quantiles.items()},
+        "bound14_holds": r.covers(mc.bound14),
+        "bound15_holds": r.covers(mc.bound15),
+        "samples": r.n_samples,
+        "trials": r.n_trials,
+    }
     text = (
         f"rms azimuth error {data['rms_error_deg']:.6g} deg (95 % CI {data['rms_ci_deg'][0]:.6g} .. {data['rms_ci_deg'][1]:.6g}), "
         f"mean {data['mean_error_deg']:.3g} deg; bound (14) {data['bound14_deg']:.6g} deg [{data['bound14_holds']}], "
@@ -54,68 +133,99 @@ def _azimuth(args) -> Result:
 
 
 def _design(args) -> Result:
-    from ..core.validation import as_int, positive
+    import numpy as np
+
+    from ..core.units import deg, rad
+    from ..core.validation import as_float, as_int, in_open_interval, positive
     from ..gyrocompass.admissible_rocking import admissible_amplitude
 
     lat = _latitude(args.lat_deg)
+    check_applicable(args, args.rocking, ("damping",))
+    if args.exact_phase and args.rocking != "sine":
+        raise UsageError(f"--exact-phase does not apply to --rocking {args.rocking} (it applies to sine)")
     fmin, fmax = positive(args.freq_min_hz, "freq-min-hz"), positive(args.freq_max_hz, "freq-max-hz")
+    fs = positive(args.sample_rate_hz, "sample-rate-hz")
     if fmax <= fmin:
-        raise ValueError(f"Expected `freq-max-hz` > freq-min-hz = {fmin:g}, got {fmax:g}")
+        raise ValueError(f"Expected `freq-max-hz` > freq-min-hz = {fmin:g} Hz, got {fmax:g}")
+    if fmax >= fs / 2:
+        raise ValueError(f"Expected `freq-max-hz` < sample-rate-hz/2 = {fs / 2:g} Hz, got {fmax:g}")
+    T = positive(args.averaging_time, "averaging-time")
+    if T * fs < 1:
+        raise ValueError(f"Expected `averaging-time` >= 1/sample-rate-hz = {1 / fs:g} s, got {T:g}")
     points = as_int(args.points, "points", minimum=2)
-    budget = math.radians(positive(args.budget_deg, "budget-deg"))
-    freqs = np.geomspace(fmin, fmax, points)
+    budget = rad(positive(args.budget_deg, "budget-deg"))
+    level = in_open_interval(args.level, "level", 0.0, 1.0)
+    b0_deg, g0_deg = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
+    for name, value in (("beta0-deg", b0_deg), ("gamma0-deg", g0_deg)):
+        if not abs(value) < 90.0:
+            raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
     d = admissible_amplitude(
         budget,
         lat,
-        args.averaging_time_s,
-        freqs,
+        T,
+        np.geomspace(fmin, fmax, points),
         rocking=args.rocking,
         damping=args.damping,
-        sample_rate=args.sample_rate_hz,
-        beta0=_rad(args.beta0_deg, "beta0-deg"),
-        gamma0=_rad(args.gamma0_deg, "gamma0-deg"),
-        max_amplitude=math.radians(positive(args.max_amplitude_deg, "max-amplitude-deg")),
+        sample_rate=fs,
+        beta0=rad(b0_deg),
+        gamma0=rad(g0_deg),
+        max_amplitude=rad(positive(args.max_amplitude_deg, "max-amplitude-deg")),
+        level=level,
+        envelope=not args.exact_phase,
     )
     data = {
         "rocking": args.rocking,
         "budget_deg": args.budget_deg,
         "lat_deg": args.lat_deg,
-        "averaging_time_s": args.averaging_time_s,
-        "frequency_hz": d["frequency"].tolist(),
-        "amplitude_deg": np.degrees(d["amplitude"]).tolist(),
-        "amplitude_first_order_deg": np.degrees(d["amplitude_first_order"]).tolist(),
-        "variance_factor": d["variance_factor"].tolist(),
+        "averaging_time": T,
+        "sample_rate_hz": fs,
+        "envelope_over_phase": d.envelope,
+        "level": d.level,
+        "frequency_hz": d.frequency.tolist(),
+        "amplitude_deg": deg(d.amplitude).tolist(),
+        "amplitude_first_order_deg": deg(d.amplitude_first_order).tolist(),
+        "amplitude_percentile_deg": deg(d.amplitude_percentile).tolist(),
+        "variance_factor": d.variance_factor.tolist(),
     }
-    rows = [f"{'f [Hz]':>10} {'a_max [deg]':>12} {'first order':>12}"]
-    rows += [f"{f:10.4g} {a:12.5g} {a1:12.5g}" for f, a, a1 in zip(data["frequency_hz"], data["amplitude_deg"], data["amplitude_first_order_deg"])]
+    rows = [f"{'f [Hz]':>10} {'a_max rms [deg]':>16} {'first order':>12} {f'{level:.0%} of |err|':>14}"]
+    rows += [f"{f:10.4g} {a:16.5g} {a1:12.5g} {ap:14.5g}" for f, a, a1, ap in zip(data["frequency_hz"], data["amplitude_deg"], data["amplitude_first_order_deg"], data["amplitude_percentile_deg"])]
     return Result(data, "\n".join(rows))
 
 
 def register(commands) -> None:
+    """Add ``azimuth`` and ``azimuth-design`` to the command line.
+
+    Parameters
+    ----------
+    commands : Commands
+        The registry of :mod:`strapdown.analysis.cli`.
+    """
     p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)")
-    p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90")
+    p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
-    p.add_argument("--sigma-xi-deg", type=float, required=True, help="standard deviation of ξ [deg] (sine amplitude = SX·√2)")
-    p.add_argument("--sigma-eta-deg", type=float, required=True, help="standard deviation of η [deg]")
-    p.add_argument("--rocking", choices=["normal", "sine", "narrowband"], default="normal", help="rocking model (default normal)")
-    p.add_argument("--period-s", type=float, default=8.0, help="rocking period [s] (sine, narrowband)")
-    p.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking")
-    p.add_argument("--samples", type=int, default=1_000_000, help="rocking samples N (default 1e6)")
-    p.add_argument("--seed", type=int, default=0, help="root seed (default 0)")
-    p.add_argument("--workers", type=int, default=1, help="worker processes (the result does not depend on it)")
-    p.add_argument("--progress", action="store_true", help="progress bar on stderr")
+    p.add_argument("--sigma-xi-deg", type=float, required=True, help="standard deviation of ξ [deg] (required; sine amplitude = SX·√2)")
+    p.add_argument("--sigma-eta-deg", type=float, required=True, help="standard deviation of η [deg] (required)")
+    p.add_argument("--rocking", choices=["normal", "sine", "narrowband"], default="normal", help="rocking model: normal, sine or narrowband (default normal)")
+    p.add_argument("--period", type=float, default=None, help="rocking period [s] (sine, narrowband; default 8)")
+    p.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
+    p.add_argument("--samples", type=int, default=1_000_000, help="rocking samples N [1] (default 1000000)")
+    p.add_argument("--seed", type=int, default=0, help="root seed [1] (default 0)")
+    p.add_argument("--workers", type=int, default=1, help="worker processes [1] (default 1; the result does not depend on it)")
+    p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
 
-    d = commands.add("azimuth-design", _design, "largest admissible rocking amplitude against rocking frequency for an azimuth budget")
-    d.add_argument("--budget-deg", type=float, required=True, help="rms azimuth error budget [deg]")
-    d.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90")
-    d.add_argument("--averaging-time-s", type=float, default=60.0, help="averaging time of the tilt estimates (16) [s]")
-    d.add_argument("--rocking", choices=["sine", "narrowband"], default="narrowband", help="rocking model (default narrowband)")
-    d.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking")
-    d.add_argument("--sample-rate-hz", type=float, default=10.0, help="accelerometer sample rate [Hz]")
-    d.add_argument("--freq-min-hz", type=float, default=0.02, help="lowest rocking frequency [Hz]")
-    d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz]")
-    d.add_argument("--points", type=int, default=12, help="frequencies (log-spaced)")
-    d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg]")
-    d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg]")
-    d.add_argument("--max-amplitude-deg", type=float, default=20.0, help="cap of the reported amplitude [deg]")
+    d = commands.add("azimuth-design", _design, "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)")
+    d.add_argument("--budget-deg", type=float, required=True, help="azimuth error budget [deg] (required; on the rms and on the percentile)")
+    d.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
+    d.add_argument("--averaging-time", type=float, default=60.0, help="averaging time of the tilt estimates (16) [s] (default 60)")
+    d.add_argument("--rocking", choices=["sine", "narrowband"], default="narrowband", help="rocking model: sine or narrowband (default narrowband)")
+    d.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
+    d.add_argument("--sample-rate-hz", type=float, default=10.0, help="accelerometer sample rate [Hz] (default 10)")
+    d.add_argument("--freq-min-hz", type=float, default=0.02, help="lowest rocking frequency [Hz] (default 0.02)")
+    d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz] (default 1), below half the sample rate")
+    d.add_argument("--points", type=int, default=12, help="frequencies, log-spaced [1] (default 12)")
+    d.add_argument("--level", type=float, default=0.95, help="percentile level of the percentile criterion, in (0, 1) [1] (default 0.95)")
+    d.add_argument("--exact-phase", action="store_true", help="sine: the exact Dirichlet factor instead of its envelope over phase (default off)")
+    d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
+    d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
+    d.add_argument("--max-amplitude-deg", type=float, default=20.0, help="cap of the reported amplitude [deg] (default 20)")

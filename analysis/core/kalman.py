@@ -9,9 +9,11 @@ computed once by filterpy and then applied to many trials at once.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-__all__ = ["make_filter", "gain_sequence", "apply_gains", "filterpy_batch", "nees"]
+__all__ = ["make_filter", "gain_sequence", "apply_gains", "filterpy_batch", "nees", "FilterSequence", "filter_sequence", "nis", "chi2_band", "discretise"]
 
 
 def make_filter(F, Q, H, R, x0, P0):
@@ -119,3 +121,145 @@ def nees(errors, covariances):
 
     errors = np.asarray(errors, dtype=float)
     return np.asarray(NEES(np.zeros_like(errors), errors, np.asarray(covariances, dtype=float)), dtype=float)
+
+
+class FilterSequence(NamedTuple):
+    """Gains and covariances of a linear Kalman filter over ``n_steps`` predict–update cycles.
+
+    Attributes
+    ----------
+    gains : ndarray
+        ``(n_steps, n, m)`` Kalman gains.
+    prior : ndarray
+        ``(n_steps, n, n)`` covariances after the prediction.
+    posterior : ndarray
+        ``(n_steps, n, n)`` covariances after the update.
+    innovation : ndarray
+        ``(n_steps, m, m)`` innovation covariances ``S = H P⁻ Hᵀ + R``.
+    """
+
+    gains: np.ndarray
+    prior: np.ndarray
+    posterior: np.ndarray
+    innovation: np.ndarray
+
+
+def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
+    """Gains, prior, posterior and innovation covariances by filterpy, run once on zero measurements.
+
+    The covariances of a linear filter do not depend on the measurements, so
+    one run serves every trial (as :func:`gain_sequence`, with the prior and
+    innovation covariances that NEES and NIS need).
+
+    Parameters
+    ----------
+    F : (n, n) array
+        State transition per step.
+    Q : (n, n) array
+        Process noise covariance per step.
+    H : (m, n) array
+        Measurement matrix.
+    R : (m, m) array
+        Measurement noise covariance.
+    P0 : (n, n) array
+        Prior covariance.
+    n_steps : int
+        Cycles.
+
+    Returns
+    -------
+    FilterSequence
+    """
+    F = np.atleast_2d(np.asarray(F, dtype=float))
+    kf = make_filter(F, Q, H, R, np.zeros(F.shape[0]), P0)
+    z = np.zeros((kf.dim_z, 1))
+    n, m = kf.dim_x, kf.dim_z
+    gains = np.empty((n_steps, n, m))
+    prior = np.empty((n_steps, n, n))
+    post = np.empty((n_steps, n, n))
+    innov = np.empty((n_steps, m, m))
+    for k in range(n_steps):
+        kf.predict()
+        prior[k] = kf.P
+        kf.update(z)
+        gains[k] = kf.K
+        post[k] = kf.P
+        innov[k] = kf.S
+    return FilterSequence(gains, prior, post, innov)
+
+
+def nis(innovations, covariances):
+    """Normalised innovation squared ``yᵀ S⁻¹ y`` (filterpy has no NIS function).
+
+    Parameters
+    ----------
+    innovations : (..., m) array
+        Innovations y.
+    covariances : (..., m, m) array
+        Innovation covariances S (broadcast against y).
+
+    Returns
+    -------
+    ndarray
+        ``(...)``.
+    """
+    y = np.asarray(innovations, dtype=float)
+    S = np.asarray(covariances, dtype=float)
+    return np.einsum("...i,...i->...", y, np.linalg.solve(S, y[..., None])[..., 0])
+
+
+def chi2_band(dof: int, n_trials: int, level: float = 0.95) -> tuple:
+    """Two-sided band of the trial average of a χ²(dof) statistic: ``χ²_{(1∓level)/2}(dof·n)/n``.
+
+    Parameters
+    ----------
+    dof : int
+        Degrees of freedom of one statistic (state or measurement dimension).
+    n_trials : int
+        Trials averaged.
+    level : float
+        Coverage of the band.
+
+    Returns
+    -------
+    (low, high) : tuple of float
+    """
+    from scipy.stats import chi2
+
+    a = (1.0 - level) / 2.0
+    return tuple(float(x) for x in chi2.ppf([a, 1.0 - a], dof * n_trials) / n_trials)
+
+
+def discretise(A, G_Qc_Gt, dt: float):
+    """Exact discretisation of ``x' = A x + w``, ``E w wᵀ = G Qc Gᵀ δ``: ``(Φ, Q_d)`` by Van Loan's method.
+
+    Parameters
+    ----------
+    A : (n, n) array
+        Continuous dynamics.
+    G_Qc_Gt : (n, n) array
+        Continuous process-noise spectral density.
+    dt : float
+        Step [s].
+
+    Returns
+    -------
+    Phi, Qd : ndarray
+
+    References
+    ----------
+    Van Loan, C. F., "Computing integrals involving the matrix exponential",
+    *IEEE Trans. Autom. Control* 23(3), 1978.
+    """
+    from scipy.linalg import expm
+
+    A = np.atleast_2d(np.asarray(A, dtype=float))
+    n = A.shape[0]
+    M = np.zeros((2 * n, 2 * n))
+    M[:n, :n] = -A
+    M[:n, n:] = np.asarray(G_Qc_Gt, dtype=float)
+    M[n:, n:] = A.T
+    E = expm(M * dt)
+    Phi = E[n:, n:].T
+    Qd = Phi @ E[:n, n:]
+    return Phi, 0.5 * (Qd + Qd.T)

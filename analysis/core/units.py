@@ -21,6 +21,10 @@ __all__ = [
     "SECONDS_PER_HOUR",
     "STANDARD_GRAVITY",
     "ARCSEC_PER_RAD",
+    "ARCSEC",
+    "PPM",
+    "DEG_PER_RT_H_TO_RAD_PER_RT_S",
+    "M_S_PER_RT_H_TO_M_S_PER_RT_S",
     "deg",
     "rad",
     "deg_per_h",
@@ -40,6 +44,14 @@ RAD_PER_S_TO_DEG_PER_H = DEG_PER_RAD * SECONDS_PER_HOUR
 DEG_PER_H_TO_RAD_PER_S = 1.0 / RAD_PER_S_TO_DEG_PER_H
 #: Arc-seconds in one radian.
 ARCSEC_PER_RAD = DEG_PER_RAD * 3600.0
+#: One arc-second [rad].
+ARCSEC = DEG / 3600.0
+#: One part per million [1].
+PPM = 1e-6
+#: Factor from deg/√h (angle random walk) to rad/√s.
+DEG_PER_RT_H_TO_RAD_PER_RT_S = DEG / math.sqrt(SECONDS_PER_HOUR)
+#: Factor from m/s/√h (velocity random walk) to m/s/√s.
+M_S_PER_RT_H_TO_M_S_PER_RT_S = 1.0 / math.sqrt(SECONDS_PER_HOUR)
 
 
 def deg(x):

@@ -22,31 +22,55 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cache
+from typing import NamedTuple
 
 import numpy as np
 
 from ..core import montecarlo
+from ..core.cache import compiled
 from ..core.validation import as_float, as_int, in_open_interval, nonnegative
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
 
 __all__ = [
     "tilt_correction",
+    "tilt_components",
+    "relative_angle",
     "azimuth_error",
     "bound14",
     "bound15",
+    "bound14_squared",
+    "SecondOrderTheory",
     "second_order_theory",
+    "TiltSensitivity",
+    "gradient",
     "AzimuthErrorKernel",
     "AzimuthMonteCarlo",
     "azimuth_monte_carlo",
     "check_latitude",
-    "gradient",
 ]
 
 
 def check_latitude(latitude) -> float:
-    """Return ``latitude`` [rad] if |φ| < π/2, else raise ValueError naming it."""
+    """Return ``latitude`` [rad] if |φ| < π/2, else raise ValueError naming it.
+
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad].
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        If |latitude| ≥ π/2 or it is not finite.
+    """
     return in_open_interval(latitude, "latitude", -math.pi / 2, math.pi / 2, text="(-π/2, π/2) rad, i.e. |latitude| < 90°")
+
+
+_QUARTER_PI = 0.25 * math.pi
 
 
 def _cos_from_sin(angle, sine):
@@ -67,20 +91,67 @@ def _cos_from_sin(angle, sine):
     return c
 
 
-_QUARTER_PI = 0.25 * math.pi
+def tilt_components(beta, gamma, sin_latitude: float, cos_latitude: float):
+    """``(A, B)`` of the tilt correction ``σ = arg(A + iB)``, vectorised (the Monte Carlo hot path).
 
+    Parameters
+    ----------
+    beta, gamma : ndarray or float
+        Tilts β, γ [rad] (not modified).
+    sin_latitude, cos_latitude : float
+        ``sin φ`` and ``cos φ`` of the latitude.
 
-def _components(beta, gamma, sphi, cphi):
+    Returns
+    -------
+    A, B : ndarray or float
+        ``A = cos φ cos γ + sin φ cos β sin γ``, ``B = sin φ sin β`` (new arrays).
+
+    References
+    ----------
+    Hrechka & Koroliov, the lines after eq. (2) (with ``cos γ`` in the first term of A).
+
+    >>> A, B = tilt_components(0.0, 0.0, 0.5, math.sqrt(0.75))
+    >>> float(B), round(float(A), 12)
+    (0.0, 0.866025403784)
+    """
     sg = np.sin(gamma)
     A = _cos_from_sin(gamma, sg)
-    A *= cphi
+    A *= cos_latitude
     B = np.sin(beta)
     cb = _cos_from_sin(beta, B)
     cb *= sg
-    cb *= sphi
+    cb *= sin_latitude
     A += cb
-    B *= sphi
+    B *= sin_latitude
     return A, B
+
+
+def relative_angle(A, B, A_ref, B_ref):
+    """``arg((A + iB)(A_ref − iB_ref))`` [rad]: the angle of ``A + iB`` relative to ``A_ref + iB_ref``.
+
+    This is ``arctan(B/A) − arctan(B_ref/A_ref)`` when both A are positive, and
+    the wrapped angle difference in (−π, π] otherwise.
+
+    Parameters
+    ----------
+    A, B : ndarray or float
+        Components (from :func:`tilt_components`); arrays are overwritten.
+    A_ref, B_ref : ndarray or float
+        Reference components (broadcast against A, B).
+
+    Returns
+    -------
+    ndarray or float
+        The angle [rad] (in the memory of ``B``'s product when arrays are given).
+    """
+    num = B * A_ref
+    num -= A * B_ref
+    A *= A_ref
+    B *= B_ref
+    A += B
+    if isinstance(num, np.ndarray):
+        return np.arctan2(num, A, out=num)
+    return np.arctan2(num, A)
 
 
 def tilt_correction(beta, gamma, latitude):
@@ -88,9 +159,16 @@ def tilt_correction(beta, gamma, latitude):
 
     Parameters
     ----------
-    beta : array_like — tilt β [rad]
-    gamma : array_like — tilt γ [rad]
-    latitude : float — latitude φ [rad], |φ| < π/2
+    beta : array_like
+        Tilt β [rad].
+    gamma : array_like
+        Tilt γ [rad].
+    latitude : float
+        Latitude φ [rad], |φ| < π/2.
+
+    Returns
+    -------
+    ndarray
 
     References
     ----------
@@ -100,7 +178,7 @@ def tilt_correction(beta, gamma, latitude):
     0.01
     """
     latitude = check_latitude(latitude)
-    A, B = _components(np.asarray(beta, dtype=float), np.asarray(gamma, dtype=float), math.sin(latitude), math.cos(latitude))
+    A, B = tilt_components(np.asarray(beta, dtype=float), np.asarray(gamma, dtype=float), math.sin(latitude), math.cos(latitude))
     return np.arctan2(B, A)
 
 
@@ -109,11 +187,19 @@ def azimuth_error(xi, eta, *, latitude, beta0, gamma0, beta_ref=None, gamma_ref=
 
     Parameters
     ----------
-    xi, eta : array_like — rocking ξ, η [rad]
-    latitude : float — latitude φ [rad]
-    beta0, gamma0 : float — stable tilts β0, γ0 [rad]
-    beta_ref, gamma_ref : array_like, optional — tilts used by the estimate [rad]
-        (default β0, γ0: the estimate (11); sample means give (16))
+    xi, eta : array_like
+        Rocking ξ, η [rad].
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : float
+        Stable tilts β0, γ0 [rad].
+    beta_ref, gamma_ref : array_like, optional
+        Tilts used by the estimate [rad] (default β0, γ0: the estimate (11);
+        sample means give (16)).
+
+    Returns
+    -------
+    ndarray
 
     References
     ----------
@@ -129,45 +215,64 @@ def azimuth_error(xi, eta, *, latitude, beta0, gamma0, beta_ref=None, gamma_ref=
     xi, eta = np.asarray(xi, dtype=float), np.asarray(eta, dtype=float)
     beta_ref = beta0 if beta_ref is None else np.asarray(beta_ref, dtype=float)
     gamma_ref = gamma0 if gamma_ref is None else np.asarray(gamma_ref, dtype=float)
-    As, Bs = _components(np.asarray(beta_ref, dtype=float), np.asarray(gamma_ref, dtype=float), sphi, cphi)
-    return _error(xi + beta0, eta + gamma0, sphi, cphi, As, Bs)
-
-
-def _error(beta, gamma, sphi, cphi, As, Bs):
-    """``arg((A + iB)(A* − iB*))`` with in-place arithmetic (the Monte Carlo hot path)."""
-    A, B = _components(beta, gamma, sphi, cphi)
-    num = B * As
-    num -= A * Bs
-    A *= As
-    B *= Bs
-    A += B
-    if isinstance(num, np.ndarray):
-        return np.arctan2(num, A, out=num)
-    return np.arctan2(num, A)
+    A_ref, B_ref = tilt_components(np.asarray(beta_ref, dtype=float), np.asarray(gamma_ref, dtype=float), sphi, cphi)
+    A, B = tilt_components(xi + beta0, eta + gamma0, sphi, cphi)
+    return relative_angle(A, B, A_ref, B_ref)
 
 
 # --------------------------------------------------------------------- theory
-@cache
-def _theory():
-    """Lambdified derivations: coefficient values and the generic moments."""
-    import sympy as sp
+def _coefficients():
+    """Taylor coefficients of A, B at (φ, β0, γ0): generated once, cached on disk."""
 
-    from ...derivations.gyrocompass import azimuth_error as g
+    def build():
+        from ...derivations.gyrocompass.azimuth_error import coefficient_expressions
 
-    As, Bs, a, b = g.coefficient_symbols(3)
-    coeff_syms = [As, Bs, *a.values(), *b.values()]
-    values = g.coefficient_values(3)
-    coeff_fn = sp.lambdify((g.phi, g.beta0, g.gamma0), [values[s] for s in coeff_syms], modules="math")
-    moments = (g.D_xi, g.D_eta, g.kappa_xi, g.kappa_eta)
-    args = (*coeff_syms, *moments)
-    first = sp.lambdify(args, g.first_order_mse(generic=True), modules="math", cse=True)
-    bias = sp.lambdify(args, g.bias_second_order(generic=True), modules="math", cse=True)
-    mse4 = sp.lambdify(args, g.mse_fourth_order(generic=True), modules="math", cse=True)
-    # The radicand Dζ1·Dζ2 of (14) is a product of variances (≥ 0); evaluated in expanded
-    # form it can round to about −1e-20 when one variance vanishes, so clip it at zero.
-    sqrt_nonneg = {"sqrt": lambda x: np.sqrt(np.maximum(x, 0.0))}
-    b14 = sp.lambdify((g.phi, g.beta0, g.gamma0, g.D_xi, g.D_eta), g.bound14_rocking(), modules=[sqrt_nonneg, "numpy"])
-    return coeff_fn, first, bias, mse4, b14
+        return coefficient_expressions(3)
+
+    return compiled("gyrocompass:taylor-coefficients:order-3:v1", build)
+
+
+def _moments():
+    """Generic moments of the error (first-order mse, bias, fourth-order mse)."""
+
+    def build():
+        from ...derivations.gyrocompass.azimuth_error import moment_expressions
+
+        args, m = moment_expressions()
+        return args, tuple(m)
+
+    return compiled("gyrocompass:error-moments:v1", build)
+
+
+def _bound14_squared():
+    """Bound (14) on δ² as a function of (φ, β0, γ0, Dξ, Dη)."""
+
+    def build():
+        from ...derivations.gyrocompass.azimuth_error import SYMBOLS, bound14_rocking
+
+        s = SYMBOLS
+        return (s.phi, s.beta0, s.gamma0, s.D_xi, s.D_eta), bound14_rocking()
+
+    return compiled("gyrocompass:bound14-rocking:v1", build)
+
+
+def bound14_squared(latitude, beta0, gamma0, var_xi, var_eta):
+    """Bound (14) on δ² [rad²], vectorised (no validation: the hot path of the sample-mean kernel).
+
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : array_like
+        Stable tilts (or their estimates) [rad].
+    var_xi, var_eta : array_like
+        Variances Dξ, Dη (or their estimates) [rad²].
+
+    Returns
+    -------
+    ndarray
+    """
+    return np.asarray(_bound14_squared()(latitude, beta0, gamma0, var_xi, var_eta), dtype=float)
 
 
 def _sigmas(sigma_xi, sigma_eta):
@@ -179,9 +284,21 @@ def bound14(latitude, beta0, gamma0, sigma_xi, sigma_eta) -> float:
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad]
-    beta0, gamma0 : float — stable tilts [rad]
-    sigma_xi, sigma_eta : float — standard deviations of ξ, η [rad]
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad].
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        For |latitude| ≥ π/2, a negative sigma or non-finite input.
 
     References
     ----------
@@ -193,7 +310,7 @@ def bound14(latitude, beta0, gamma0, sigma_xi, sigma_eta) -> float:
     latitude = check_latitude(latitude)
     beta0, gamma0 = as_float(beta0, "beta0"), as_float(gamma0, "gamma0")
     sx, se = _sigmas(sigma_xi, sigma_eta)
-    return math.sqrt(float(_theory()[4](latitude, beta0, gamma0, sx * sx, se * se)))
+    return math.sqrt(float(bound14_squared(latitude, beta0, gamma0, sx * sx, se * se)))
 
 
 def bound15(latitude, sigma_xi) -> float:
@@ -201,8 +318,14 @@ def bound15(latitude, sigma_xi) -> float:
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad]
-    sigma_xi : float — standard deviation of ξ [rad]
+    latitude : float
+        Latitude φ [rad].
+    sigma_xi : float
+        Standard deviation of ξ [rad].
+
+    Returns
+    -------
+    float
 
     References
     ----------
@@ -215,48 +338,131 @@ def bound15(latitude, sigma_xi) -> float:
     return abs(math.tan(latitude)) * nonnegative(sigma_xi, "sigma_xi")
 
 
-def second_order_theory(latitude, beta0, gamma0, sigma_xi, sigma_eta, *, kappa_xi: float = 3.0, kappa_eta: float = 3.0) -> dict:
+@dataclass(frozen=True)
+class SecondOrderTheory:
+    """Moments of the azimuth error ``σ − σ*`` from the Taylor series of σ [rad, rad²].
+
+    Attributes
+    ----------
+    rms_first_order : float
+        ``√E L²`` of the linear error (exact to second order in the rocking).
+    bias : float
+        ``E(σ − σ*)`` to second order.
+    rms : float
+        ``√E(σ − σ*)²`` with the mean square to fourth order.
+    mse_first_order : float
+        ``E L²``.
+    mse : float
+        ``E(σ − σ*)²`` to fourth order.
+    """
+
+    rms_first_order: float
+    bias: float
+    rms: float
+    mse_first_order: float
+    mse: float
+
+
+def second_order_theory(latitude, beta0, gamma0, sigma_xi, sigma_eta, *, kappa_xi: float = 3.0, kappa_eta: float = 3.0) -> SecondOrderTheory:
     """Moments of the azimuth error from the Taylor series of σ (not in the paper).
+
+    The series comes from :mod:`strapdown.derivations.gyrocompass.azimuth_error`;
+    its numerical code is generated once and cached on disk
+    (:func:`strapdown.analysis.core.cache.compiled`), so a call does not import SymPy.
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad]
-    beta0, gamma0 : float — stable tilts [rad]
-    sigma_xi, sigma_eta : float — standard deviations of ξ, η [rad]
-    kappa_xi, kappa_eta : float — ``E ξ⁴/(E ξ²)²`` (3 Gaussian, 1.5 sinusoid)
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad].
+    kappa_xi, kappa_eta : float
+        ``E ξ⁴/(E ξ²)²`` and likewise for η (3 Gaussian, 1.5 sinusoid).
 
     Returns
     -------
-    dict
-        ``rms_first_order`` (exact to second order in the rocking),
-        ``bias`` (``E(σ − σ*)`` to second order), ``rms`` (``√E(σ − σ*)²``
-        with the mean square to fourth order) [rad].
+    SecondOrderTheory
+
+    Raises
+    ------
+    ValueError
+        For |latitude| ≥ π/2, a negative sigma or non-finite input.
 
     >>> t = second_order_theory(math.radians(45), 0.0, 0.0, 0.01, 0.0)
-    >>> round(t["rms_first_order"], 12), t["bias"]
+    >>> round(t.rms_first_order, 12), t.bias
     (0.01, 0.0)
     """
     latitude = check_latitude(latitude)
     beta0, gamma0 = as_float(beta0, "beta0"), as_float(gamma0, "gamma0")
     sx, se = _sigmas(sigma_xi, sigma_eta)
-    coeff_fn, first, bias, mse4, _ = _theory()
-    args = (*coeff_fn(latitude, beta0, gamma0), sx * sx, se * se, as_float(kappa_xi, "kappa_xi"), as_float(kappa_eta, "kappa_eta"))
-    m1, m4 = first(*args), mse4(*args)
-    return {"rms_first_order": math.sqrt(max(m1, 0.0)), "bias": float(bias(*args)), "rms": math.sqrt(max(m4, 0.0)), "mse_first_order": m1, "mse": m4}
+    coefficients = _coefficients()(latitude, beta0, gamma0)
+    args = (*coefficients, sx * sx, se * se, as_float(kappa_xi, "kappa_xi"), as_float(kappa_eta, "kappa_eta"))
+    m1, bias, m4 = (float(v) for v in _moments()(*args))
+    return SecondOrderTheory(math.sqrt(max(m1, 0.0)), bias, math.sqrt(max(m4, 0.0)), m1, m4)
+
+
+class TiltSensitivity(NamedTuple):
+    """First-order sensitivity of the azimuth to the tilts at (β0, γ0) [rad/rad].
+
+    Attributes
+    ----------
+    d_beta : float
+        ``∂σ/∂β``.
+    d_gamma : float
+        ``∂σ/∂γ``.
+    """
+
+    d_beta: float
+    d_gamma: float
+
+
+def gradient(latitude, beta0, gamma0) -> TiltSensitivity:
+    """``(∂σ/∂β, ∂σ/∂γ)`` at (β0, γ0) [rad/rad]: the first-order sensitivity of the azimuth.
+
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : float
+        Stable tilts [rad].
+
+    Returns
+    -------
+    TiltSensitivity
+
+    >>> g = gradient(math.radians(45), 0.0, 0.0)
+    >>> round(g.d_beta, 12), round(g.d_gamma, 12)
+    (1.0, 0.0)
+    """
+    latitude = check_latitude(latitude)
+    c = _coefficients()(latitude, as_float(beta0, "beta0"), as_float(gamma0, "gamma0"))
+    As, Bs, a10, a01, b10, b01 = (float(c[i]) for i in (0, 1, 2, 3, 2 + 9, 3 + 9))
+    r2 = As * As + Bs * Bs
+    return TiltSensitivity((As * b10 - Bs * a10) / r2, (As * b01 - Bs * a01) / r2)
 
 
 # ---------------------------------------------------------------- Monte Carlo
+_ESTIMATES = ("known", "sample-mean")
+
+
 @dataclass(frozen=True)
 class AzimuthErrorKernel:
     """Monte Carlo kernel: azimuth errors of ``n_trials`` rocking records.
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad]
-    beta0, gamma0 : float — stable tilts [rad]
-    rocking : GaussianRocking | SineRocking | NarrowbandRocking — rocking model
-    n_steps : int — samples per trial
-    dt : float or None — sample interval [s]; None for independent instants
+    latitude : float
+        Latitude φ [rad].
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    rocking : GaussianRocking | SineRocking | NarrowbandRocking
+        Rocking model.
+    n_steps : int
+        Samples per trial.
+    dt : float or None
+        Sample interval [s]; None for independent instants.
     estimate : str
         ``"known"``: the error ``σ(β0 + ξ, γ0 + η) − σ*`` of (12) at every
         sample (α* from the true β0, γ0, eq. (11));
@@ -286,8 +492,8 @@ class AzimuthErrorKernel:
         object.__setattr__(self, "n_steps", as_int(self.n_steps, "n_steps", minimum=1))
         if not isinstance(self.rocking, (GaussianRocking, SineRocking, NarrowbandRocking)):
             raise TypeError(f"Expected `rocking` to be a rocking model, got {type(self.rocking).__name__}")
-        if self.estimate not in ("known", "sample-mean"):
-            raise ValueError(f"Expected `estimate` in ('known', 'sample-mean'), got {self.estimate!r}")
+        if self.estimate not in _ESTIMATES:
+            raise ValueError(f"Expected `estimate` in {_ESTIMATES}, got {self.estimate!r}")
         if self.estimate == "sample-mean" and self.n_steps < 2:
             raise ValueError(f"Expected `n_steps` >= 2 for sample-mean estimates, got {self.n_steps}")
 
@@ -296,50 +502,38 @@ class AzimuthErrorKernel:
         sphi, cphi = math.sin(self.latitude), math.cos(self.latitude)
         xi += self.beta0
         eta += self.gamma0
+        A_ref, B_ref = tilt_components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
         if self.estimate == "known":
-            As, Bs = _components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
-            return _error(xi, eta, sphi, cphi, As, Bs)
+            A, B = tilt_components(xi, eta, sphi, cphi)
+            return relative_angle(A, B, A_ref, B_ref)
         b_hat, g_hat = xi.mean(axis=1), eta.mean(axis=1)
         dxi = xi.var(axis=1)  # 1/n normalisation, as in (16)
         deta = eta.var(axis=1)
-        As, Bs = _components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
-        errors = _error(b_hat, g_hat, sphi, cphi, As, Bs)[:, None]
-        b14sq = np.broadcast_to(_theory()[4](self.latitude, b_hat, g_hat, dxi, deta), dxi.shape)
+        A, B = tilt_components(b_hat, g_hat, sphi, cphi)
+        errors = relative_angle(A, B, A_ref, B_ref)[:, None]
+        b14sq = np.broadcast_to(bound14_squared(self.latitude, b_hat, g_hat, dxi, deta), dxi.shape)
         b15sq = math.tan(self.latitude) ** 2 * dxi
         return errors, np.stack([b14sq, b15sq], axis=-1)
 
 
 @dataclass(frozen=True)
 class AzimuthMonteCarlo:
-    """Monte Carlo of the azimuth error with the bounds and the theory of the same case [rad]."""
+    """Monte Carlo of the azimuth error with the bounds and the theory of the same case [rad].
+
+    Attributes
+    ----------
+    result : MonteCarloResult
+        Statistics of the error.
+    bound14, bound15 : float
+        Bounds (14), (15) at the true variances [rad].
+    theory : SecondOrderTheory
+        Second-order theory of the case.
+    """
 
     result: montecarlo.MonteCarloResult
     bound14: float
     bound15: float
-    theory: dict
-
-    def as_dict(self, *, degrees: bool = True) -> dict:
-        """Flat dictionary (angles in degrees with ``degrees``), as the CLI prints it."""
-        k = math.degrees(1.0) if degrees else 1.0
-        r = self.result
-        unit = "deg" if degrees else "rad"
-        q = {f"{level:g}": v * k for level, v in r.quantiles.items()}
-        return {
-            f"rms_error_{unit}": r.rms * k,
-            f"rms_ci_{unit}": [r.rms_ci[0] * k, r.rms_ci[1] * k],
-            f"mean_error_{unit}": r.mean * k,
-            f"mean_ci_{unit}": [r.mean_ci[0] * k, r.mean_ci[1] * k],
-            f"bound14_{unit}": self.bound14 * k,
-            f"bound15_{unit}": self.bound15 * k,
-            f"theory_rms_first_order_{unit}": self.theory["rms_first_order"] * k,
-            f"theory_rms_second_order_{unit}": self.theory["rms"] * k,
-            f"theory_bias_{unit}": self.theory["bias"] * k,
-            f"quantiles_{unit}": q,
-            "bound14_holds": r.covers(self.bound14),
-            "bound15_holds": r.covers(self.bound15),
-            "samples": r.n_samples,
-            "trials": r.n_trials,
-        }
+    theory: SecondOrderTheory
 
 
 def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None, steps_per_trial: int = 1024, executor=None, progress: bool = False, blocks_per_chunk: int = 16) -> AzimuthMonteCarlo:
@@ -347,15 +541,24 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad], |φ| < π/2
-    beta0, gamma0 : float — stable tilts [rad]
-    rocking : rocking model (:mod:`strapdown.analysis.gyrocompass.rocking`)
-    n_samples : int — rocking samples (rounded up to whole trials), at least 2
-    rng : Generator | SeedSequence | int | None — random streams
-    steps_per_trial : int — samples per trial (batch size of the standard error)
-    executor : Executor | dask Client | None — where chunks run (the result does not depend on it)
-    progress : bool — tqdm progress bar on stderr
-    blocks_per_chunk : int — blocks per work item (the result does not depend on it)
+    latitude : float
+        Latitude φ [rad], |φ| < π/2.
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    rocking : rocking model
+        From :mod:`strapdown.analysis.gyrocompass.rocking`.
+    n_samples : int
+        Rocking samples (rounded up to whole trials), at least 2.
+    rng : Generator | SeedSequence | int | None
+        Random streams.
+    steps_per_trial : int
+        Samples per trial (batch size of the standard error).
+    executor : Executor | dask Client | None
+        Where chunks run (the result does not depend on it).
+    progress : bool
+        tqdm progress bar on stderr.
+    blocks_per_chunk : int
+        Blocks per work item (the result does not depend on it).
 
     Returns
     -------
@@ -371,7 +574,7 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     >>> from strapdown.analysis.gyrocompass.rocking import GaussianRocking
     >>> mc = azimuth_monte_carlo(math.radians(45), 0.0, 0.0, GaussianRocking(1e-3, 1e-3), 4096, rng=1, steps_per_trial=64)
     >>> lo, hi = mc.result.rms_ci
-    >>> bool(lo < mc.theory["rms"] < hi)
+    >>> bool(lo < mc.theory.rms < hi)
     True
     """
     latitude = check_latitude(latitude)
@@ -380,20 +583,6 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     kernel = AzimuthErrorKernel(latitude, beta0, gamma0, rocking, n_steps=steps)
     theory = second_order_theory(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
     n_trials = max(2, -(-n_samples // steps))
-    scale = theory["rms_first_order"] if theory["rms_first_order"] > 0 else 1e-12
+    scale = theory.rms_first_order if theory.rms_first_order > 0 else 1e-12
     result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress)
     return AzimuthMonteCarlo(result, bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi), theory)
-
-
-def gradient(latitude, beta0, gamma0) -> tuple:
-    """``(∂σ/∂β, ∂σ/∂γ)`` at (β0, γ0) [rad/rad]: the first-order sensitivity of the azimuth.
-
-    >>> g = gradient(math.radians(45), 0.0, 0.0)
-    >>> round(g[0], 12), round(g[1], 12)
-    (1.0, 0.0)
-    """
-    latitude = check_latitude(latitude)
-    c = _theory()[0](latitude, as_float(beta0, "beta0"), as_float(gamma0, "gamma0"))
-    As, Bs, a10, a01, b10, b01 = c[0], c[1], c[2], c[3], c[2 + 9], c[3 + 9]
-    r2 = As * As + Bs * Bs
-    return (As * b10 - Bs * a10) / r2, (As * b01 - Bs * a01) / r2

@@ -1,11 +1,25 @@
 """Cross-check sweep: where bounds (14) and (15) of Hrechka & Koroliov hold, and by how much.
 
 A sweep is a list of :class:`SweepCase` (latitude, rocking amplitude,
-distribution, correlation, stable tilts, estimate).  Case ``i`` runs its Monte
-Carlo serially from the ``i``-th child of the root SeedSequence, so a sweep
-gives bit-identical numbers whether it runs serially, on a
-:class:`concurrent.futures.ProcessPoolExecutor` or on a ``dask.distributed``
-cluster (pass the ``Client`` as ``executor``).
+distribution, correlation, stable tilts, estimate), all angles in radians.
+Case ``i`` runs its Monte Carlo serially from the ``i``-th child of the root
+SeedSequence, so a sweep gives bit-identical numbers whether it runs serially,
+on a :class:`concurrent.futures.ProcessPoolExecutor` or on a
+``dask.distributed`` cluster (pass the ``Client`` as ``executor``).
+
+Two estimates are compared with different yardsticks:
+
+``"known"``
+    the error (12) at independent instants, against the bounds (14), (15) at
+    the variances of the rocking (what the paper bounds);
+``"sample-mean"``
+    the alignment error ``σ(β̂0, γ̂0) − σ(β0, γ0)`` of the estimate (16) over
+    an averaging time, against (14) and (15) evaluated with the variances of
+    the *means* (``Dξ → v Dξ``, :func:`strapdown.analysis.gyrocompass.rocking.mean_variance_factor`):
+    the bound that applies to the error of a mean.  The paper's own
+    prescription (14) with the sample variances of (16) bounds the
+    instantaneous error, not the error of the mean; it is kept as
+    ``plugin14`` to show by how much it overstates.
 """
 
 from __future__ import annotations
@@ -16,84 +30,162 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import montecarlo
-from ..core.validation import as_int
-from .azimuth import AzimuthErrorKernel, azimuth_monte_carlo, bound14, bound15, gradient, second_order_theory
+from ..core.validation import as_array, as_int, nonnegative, positive
+from .azimuth import AzimuthErrorKernel, azimuth_monte_carlo, bound14, bound15, check_latitude, gradient, second_order_theory
 from .rocking import mean_variance_factor, rocking_model
 
-__all__ = ["SweepCase", "evaluate_case", "sweep", "grid_cases", "local_cluster"]
+__all__ = ["SweepCase", "SweepRow", "ValidityMap", "evaluate_case", "sweep", "grid_cases", "validity_map", "first_order_alignment_rms", "local_cluster"]
+
+_MODELS = ("normal", "sine", "narrowband")
+_ESTIMATES = ("known", "sample-mean")
 
 
 @dataclass(frozen=True)
 class SweepCase:
-    """One configuration of the sweep (angles in degrees, times in seconds).
+    """One configuration of the sweep (angles in rad, times in s).
 
-    ``estimate="known"``: the error (12) at independent instants;
-    ``estimate="sample-mean"``: the alignment error of (16) from
-    ``averaging_time`` of samples every ``dt``.
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad], |φ| < π/2.
+    sigma : float
+        Standard deviation of ξ and of η [rad], ≥ 0.
+    model : str
+        ``"normal"``, ``"sine"`` or ``"narrowband"``.
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    period : float
+        Rocking period [s] (sine, narrowband).
+    damping : float
+        Damping ratio of narrow-band rocking, in (0, 1).
+    estimate : str
+        ``"known"`` (the error (12) at independent instants) or
+        ``"sample-mean"`` (the alignment error of (16)).
+    averaging_time : float
+        Averaging time of (16) [s] (sample-mean).
+    dt : float
+        Sample interval [s] (sample-mean).
     """
 
-    latitude_deg: float
-    sigma_deg: float
+    latitude: float
+    sigma: float
     model: str = "normal"
-    beta0_deg: float = 0.0
-    gamma0_deg: float = 0.0
+    beta0: float = 0.0
+    gamma0: float = 0.0
     period: float = 8.0
     damping: float = 0.1
     estimate: str = "known"
     averaging_time: float = 30.0
     dt: float = 0.1
 
+    def __post_init__(self):
+        object.__setattr__(self, "latitude", check_latitude(self.latitude))
+        object.__setattr__(self, "sigma", nonnegative(self.sigma, "sigma"))
+        if self.model not in _MODELS:
+            raise ValueError(f"Expected `model` in {_MODELS}, got {self.model!r}")
+        if self.estimate not in _ESTIMATES:
+            raise ValueError(f"Expected `estimate` in {_ESTIMATES}, got {self.estimate!r}")
+        positive(self.averaging_time, "averaging_time")
+        positive(self.dt, "dt")
+
     def rocking(self):
-        s = math.radians(self.sigma_deg)
-        return rocking_model(self.model, s, s, period=self.period, damping=self.damping)
+        """The rocking model of the case (equal standard deviations on both axes).
+
+        Returns
+        -------
+        GaussianRocking | SineRocking | NarrowbandRocking
+        """
+        return rocking_model(self.model, self.sigma, self.sigma, period=self.period, damping=self.damping)
+
+    @property
+    def n_steps(self) -> int:
+        """Samples averaged by (16) (sample-mean cases)."""
+        return max(2, int(round(self.averaging_time / self.dt)))
 
 
-def evaluate_case(case: SweepCase, n_samples: int, seed) -> dict:
+@dataclass(frozen=True)
+class SweepRow:
+    """Monte Carlo of one case with its bounds and theory (angles in rad).
+
+    Attributes
+    ----------
+    case : SweepCase
+        The configuration.
+    rms, rms_lo, rms_hi : float
+        Monte Carlo rms error and its 95 % interval.
+    mean : float
+        Monte Carlo mean error.
+    bound14, bound15 : float
+        The bounds that apply to the estimate: at the rocking variances
+        (known tilts) or at the variances of the means (sample mean).
+    theory_rms, theory_rms_first_order, theory_bias : float
+        Second-order theory of the same error.
+    plugin14 : float or None
+        Sample-mean cases: rms of (14) evaluated as the paper prescribes after
+        (16), with the sample means and sample variances; None otherwise.
+    """
+
+    case: SweepCase
+    rms: float
+    rms_lo: float
+    rms_hi: float
+    mean: float
+    bound14: float
+    bound15: float
+    theory_rms: float
+    theory_rms_first_order: float
+    theory_bias: float
+    plugin14: float | None = None
+
+    def covers(self, bound: float) -> str:
+        """``"holds"``, ``"fails"`` or ``"undecided"``: the 95 % interval of the rms against ``bound``.
+
+        Parameters
+        ----------
+        bound : float
+            Bound on the rms [rad].
+
+        Returns
+        -------
+        str
+        """
+        if self.rms_hi <= bound:
+            return "holds"
+        if self.rms_lo > bound:
+            return "fails"
+        return "undecided"
+
+
+def evaluate_case(case: SweepCase, n_samples: int, seed) -> SweepRow:
     """Monte Carlo of one case with its bounds and theory (angles in rad).
 
     Parameters
     ----------
     case : SweepCase
-    n_samples : int — rocking samples (known tilt) or trials × steps (sample mean)
-    seed : SeedSequence | int — the case's random stream
+        The configuration.
+    n_samples : int
+        Rocking samples (known tilt) or trials × steps (sample mean).
+    seed : SeedSequence | int
+        The case's random stream.
 
     Returns
     -------
-    dict
-        ``rms, rms_lo, rms_hi, mean, bound14, bound15, theory_rms,
-        theory_rms_first_order, theory_bias`` and, for the sample-mean case,
-        ``plugin14, plugin15`` (the bounds with the estimates of (16)).
+    SweepRow
     """
-    lat, b0, g0 = math.radians(case.latitude_deg), math.radians(case.beta0_deg), math.radians(case.gamma0_deg)
     rocking = case.rocking()
-    row = {}
     if case.estimate == "known":
-        mc = azimuth_monte_carlo(lat, b0, g0, rocking, n_samples, rng=seed, steps_per_trial=256)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, rocking, n_samples, rng=seed, steps_per_trial=256)
         r, th = mc.result, mc.theory
-        b14, b15 = mc.bound14, mc.bound15
-    else:
-        n_steps = max(2, int(round(case.averaging_time / case.dt)))
-        kernel = AzimuthErrorKernel(lat, b0, g0, rocking, n_steps=n_steps, dt=case.dt, estimate="sample-mean")
-        vx = mean_variance_factor(rocking, n_steps, case.dt, axis="xi")
-        ve = mean_variance_factor(rocking, n_steps, case.dt, axis="eta")
-        th = second_order_theory(lat, b0, g0, rocking.sigma_xi * math.sqrt(vx), rocking.sigma_eta * math.sqrt(ve), kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
-        n_trials = max(2, n_samples // n_steps)
-        r = montecarlo.run(kernel, n_trials, rng=seed, trials_per_block=max(1, 65536 // n_steps), scale=max(th["rms_first_order"], 1e-12))
-        b14 = bound14(lat, b0, g0, rocking.sigma_xi, rocking.sigma_eta)
-        b15 = bound15(lat, rocking.sigma_xi)
-        row["plugin14"], row["plugin15"] = math.sqrt(r.aux_mean[0]), math.sqrt(r.aux_mean[1])
-    row.update(
-        rms=r.rms,
-        rms_lo=r.rms_ci[0],
-        rms_hi=r.rms_ci[1],
-        mean=r.mean,
-        bound14=b14,
-        bound15=b15,
-        theory_rms=th["rms"],
-        theory_rms_first_order=th["rms_first_order"],
-        theory_bias=th["bias"],
-    )
-    return row
+        return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, mc.bound14, mc.bound15, th.rms, th.rms_first_order, th.bias)
+    n_steps = case.n_steps
+    kernel = AzimuthErrorKernel(case.latitude, case.beta0, case.gamma0, rocking, n_steps=n_steps, dt=case.dt, estimate="sample-mean")
+    sx = rocking.sigma_xi * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="xi"))
+    se = rocking.sigma_eta * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="eta"))
+    th = second_order_theory(case.latitude, case.beta0, case.gamma0, sx, se, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
+    r = montecarlo.run(kernel, max(2, n_samples // n_steps), rng=seed, trials_per_block=max(1, 65536 // n_steps), scale=max(th.rms_first_order, 1e-12))
+    b14 = bound14(case.latitude, case.beta0, case.gamma0, sx, se)
+    b15 = bound15(case.latitude, sx)
+    return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, b14, b15, th.rms, th.rms_first_order, th.bias, plugin14=math.sqrt(r.aux_mean[0]))
 
 
 @dataclass(frozen=True)
@@ -115,30 +207,160 @@ def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = Fa
     Parameters
     ----------
     cases : sequence of SweepCase
-    n_samples : int — rocking samples per case, at least 2
-    rng : Generator | SeedSequence | int | None — root of the per-case streams
-    executor : Executor | dask Client | None — where cases run (does not change the result)
-    progress : bool — tqdm bar on stderr
+        The configurations.
+    n_samples : int
+        Rocking samples per case, at least 2.
+    rng : Generator | SeedSequence | int | None
+        Root of the per-case streams.
+    executor : Executor | dask Client | None
+        Where cases run (does not change the result).
+    progress : bool
+        tqdm bar on stderr.
 
     Returns
     -------
-    list of dict — :func:`evaluate_case` rows with the case fields added
+    list of SweepRow
     """
     n_samples = as_int(n_samples, "n_samples", minimum=2)
     root = montecarlo.root_seed_sequence(rng)
     cases = list(cases)
+    for c in cases:
+        if not isinstance(c, SweepCase):
+            raise TypeError(f"Expected `cases` of SweepCase, got {type(c).__name__}")
     tasks = [_CaseTask(c, n_samples, root.entropy, tuple(root.spawn_key), i) for i, c in enumerate(cases)]
-    rows = montecarlo.map_tasks(executor, tasks, progress=progress, desc="azimuth sweep")
-    return [{**c.__dict__, **row} for c, row in zip(cases, rows)]
+    return montecarlo.map_tasks(executor, tasks, progress=progress, desc="azimuth sweep")
 
 
-def grid_cases(latitudes_deg, sigmas_deg, **fields) -> list:
-    """Cases on the latitude × amplitude grid (latitude-major order); ``fields`` fix the rest."""
-    return [SweepCase(float(lat), float(s), **fields) for lat in latitudes_deg for s in sigmas_deg]
+def grid_cases(latitudes, sigmas, **fields) -> list:
+    """Cases on the latitude × amplitude grid (latitude-major order).
+
+    Parameters
+    ----------
+    latitudes : array_like
+        Latitudes [rad].
+    sigmas : array_like
+        Rocking standard deviations [rad].
+    **fields
+        The other :class:`SweepCase` fields, fixed for the grid.
+
+    Returns
+    -------
+    list of SweepCase
+    """
+    return [SweepCase(float(lat), float(s), **fields) for lat in np.ravel(latitudes) for s in np.ravel(sigmas)]
+
+
+@dataclass(frozen=True)
+class ValidityMap:
+    """A sweep on the latitude × amplitude grid, as arrays (latitude rows, amplitude columns).
+
+    Attributes
+    ----------
+    latitudes : ndarray
+        Grid latitudes [rad].
+    sigmas : ndarray
+        Grid standard deviations [rad].
+    rows : tuple of SweepRow
+        The cases in latitude-major order.
+    ratio14, ratio15 : ndarray
+        Monte Carlo rms over bound (14), (15) (NaN where the bound is 0).
+    holds14, fails14, holds15, fails15 : ndarray of bool
+        The 95 % decisions of :meth:`SweepRow.covers`.
+    """
+
+    latitudes: np.ndarray
+    sigmas: np.ndarray
+    rows: tuple
+    ratio14: np.ndarray
+    ratio15: np.ndarray
+    holds14: np.ndarray
+    fails14: np.ndarray
+    holds15: np.ndarray
+    fails15: np.ndarray
+
+    @property
+    def plugin_ratio14(self) -> np.ndarray:
+        """Monte Carlo rms over the paper's plug-in (14) (sample-mean maps; NaN otherwise)."""
+        return self._grid([r.rms / r.plugin14 if r.plugin14 else math.nan for r in self.rows])
+
+    def _grid(self, values):
+        return np.array(values, dtype=float).reshape(len(self.latitudes), len(self.sigmas))
+
+
+def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, progress: bool = False, **fields) -> ValidityMap:
+    """Sweep the latitude × amplitude grid and classify bounds (14), (15) in every cell.
+
+    Parameters
+    ----------
+    latitudes : array_like
+        Grid latitudes [rad].
+    sigmas : array_like
+        Grid standard deviations of ξ and η [rad].
+    n_samples : int
+        Rocking samples per cell.
+    rng : Generator | SeedSequence | int | None
+        Root of the per-cell streams.
+    executor : Executor | dask Client | None
+        Where cells run (does not change the result).
+    progress : bool
+        tqdm bar on stderr.
+    **fields
+        The other :class:`SweepCase` fields.
+
+    Returns
+    -------
+    ValidityMap
+    """
+    lats, sig = as_array(latitudes, "latitudes").ravel(), as_array(sigmas, "sigmas").ravel()
+    rows = tuple(sweep(grid_cases(lats, sig, **fields), n_samples=n_samples, rng=rng, executor=executor, progress=progress))
+    shape = (len(lats), len(sig))
+
+    def grid(values, dtype=float):
+        return np.array(values, dtype=dtype).reshape(shape)
+
+    return ValidityMap(
+        latitudes=lats,
+        sigmas=sig,
+        rows=rows,
+        ratio14=grid([r.rms / r.bound14 if r.bound14 > 0 else math.nan for r in rows]),
+        ratio15=grid([r.rms / r.bound15 if r.bound15 > 0 else math.nan for r in rows]),
+        holds14=grid([r.covers(r.bound14) == "holds" for r in rows], bool),
+        fails14=grid([r.covers(r.bound14) == "fails" for r in rows], bool),
+        holds15=grid([r.covers(r.bound15) == "holds" for r in rows], bool),
+        fails15=grid([r.covers(r.bound15) == "fails" for r in rows], bool),
+    )
+
+
+def first_order_alignment_rms(case: SweepCase) -> float:
+    """First-order rms of the alignment error of (16) for a sample-mean case [rad].
+
+    Parameters
+    ----------
+    case : SweepCase
+        A case (its averaging time and sample interval are used).
+
+    Returns
+    -------
+    float
+    """
+    rocking = case.rocking()
+    g = gradient(case.latitude, case.beta0, case.gamma0)
+    vx = mean_variance_factor(rocking, case.n_steps, case.dt, axis="xi")
+    ve = mean_variance_factor(rocking, case.n_steps, case.dt, axis="eta")
+    return math.sqrt(g.d_beta**2 * rocking.sigma_xi**2 * vx + g.d_gamma**2 * rocking.sigma_eta**2 * ve)
 
 
 def local_cluster(n_workers: int = 2):
     """A ``dask.distributed`` Client on a local cluster (the ``distributed`` extra).
+
+    Parameters
+    ----------
+    n_workers : int
+        Worker processes.
+
+    Returns
+    -------
+    distributed.Client
 
     Raises
     ------
@@ -152,12 +374,3 @@ def local_cluster(n_workers: int = 2):
     cluster = LocalCluster(n_workers=as_int(n_workers, "n_workers", minimum=1), threads_per_worker=1, dashboard_address=None, processes=True)
     return Client(cluster)
 
-
-def first_order_alignment_rms(case: SweepCase) -> float:
-    """First-order rms of the alignment error of (16) for a sample-mean case [rad]."""
-    rocking = case.rocking()
-    n_steps = max(2, int(round(case.averaging_time / case.dt)))
-    gb, gg = gradient(math.radians(case.latitude_deg), math.radians(case.beta0_deg), math.radians(case.gamma0_deg))
-    vx = mean_variance_factor(rocking, n_steps, case.dt, axis="xi")
-    ve = mean_variance_factor(rocking, n_steps, case.dt, axis="eta")
-    return math.sqrt(gb**2 * rocking.sigma_xi**2 * vx + gg**2 * rocking.sigma_eta**2 * ve)

@@ -23,6 +23,7 @@ the amplitude of :class:`SineRocking` is ``σ √2``.  ξ and η are independent
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -30,11 +31,28 @@ import numpy as np
 
 from ..core.validation import as_float, as_int, nonnegative, positive
 
-__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "MODELS"]
+__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "tilt_domain_limit", "MODELS"]
 
 
 def as_generator(rng) -> np.random.Generator:
-    """Return a :class:`numpy.random.Generator` from ``rng`` (Generator, SeedSequence, int or None)."""
+    """Return a :class:`numpy.random.Generator` from ``rng``.
+
+    Parameters
+    ----------
+    rng : Generator | SeedSequence | BitGenerator | int | None
+        The source of randomness (None: fresh entropy).
+
+    Returns
+    -------
+    numpy.random.Generator
+
+    Raises
+    ------
+    TypeError
+        For any other type.
+    ValueError
+        For a negative seed.
+    """
     if isinstance(rng, np.random.Generator):
         return rng
     if rng is None or isinstance(rng, (np.random.SeedSequence, np.random.BitGenerator)):
@@ -60,8 +78,10 @@ class GaussianRocking:
 
     Parameters
     ----------
-    sigma_xi : float — standard deviation of ξ (about the gyro sensitive axis) [rad]
-    sigma_eta : float — standard deviation of η [rad]
+    sigma_xi : float
+        Standard deviation of ξ (about the gyro sensitive axis) [rad].
+    sigma_eta : float
+        Standard deviation of η [rad].
 
     >>> xi, eta = GaussianRocking(0.01, 0.02).sample(0, 2, 3)
     >>> xi.shape, eta.shape
@@ -74,13 +94,31 @@ class GaussianRocking:
     name = "normal"
     #: fourth moment over the squared variance, E ξ⁴ / (E ξ²)²
     kappa = 3.0
+    #: peak excursion in standard deviations used by the tilt-domain check (P(|ξ| > 4σ) = 6e-5)
+    peak_factor = 4.0
 
     def __post_init__(self):
         object.__setattr__(self, "sigma_xi", nonnegative(self.sigma_xi, "sigma_xi"))
         object.__setattr__(self, "sigma_eta", nonnegative(self.sigma_eta, "sigma_eta"))
 
     def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
-        """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad]; ``dt`` [s] is irrelevant here."""
+        """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad].
+
+        Parameters
+        ----------
+        rng : Generator | SeedSequence | int | None
+            Random stream.
+        n_trials : int
+            Independent records.
+        n_steps : int
+            Samples per record.
+        dt : float or None
+            Sample interval [s] (irrelevant for white rocking; checked if given).
+
+        Returns
+        -------
+        xi, eta : ndarray
+        """
         n_trials, n_steps = _shape(n_trials, n_steps)
         _dt(dt)
         g = as_generator(rng)
@@ -90,7 +128,17 @@ class GaussianRocking:
         return z[0], z[1]
 
     def autocorrelation(self, lag):
-        """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]: 1 at 0, else 0."""
+        """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]: 1 at 0, else 0.
+
+        Parameters
+        ----------
+        lag : array_like
+            Lags τ [s].
+
+        Returns
+        -------
+        ndarray
+        """
         lag = np.abs(np.asarray(lag, dtype=float))
         return (lag == 0).astype(float)
 
@@ -101,8 +149,10 @@ class SineRocking:
 
     Parameters
     ----------
-    sigma_xi, sigma_eta : float — standard deviations of ξ, η [rad] (amplitudes ``σ √2``)
-    period_xi, period_eta : float — rocking periods [s]
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad] (amplitudes ``σ √2``).
+    period_xi, period_eta : float
+        Rocking periods [s].
 
     Notes
     -----
@@ -122,6 +172,8 @@ class SineRocking:
 
     name = "sine"
     kappa = 1.5
+    #: the peak of a sinusoid is σ√2
+    peak_factor = math.sqrt(2.0)
 
     def __post_init__(self):
         for field in ("sigma_xi", "sigma_eta"):
@@ -130,7 +182,23 @@ class SineRocking:
             object.__setattr__(self, field, positive(getattr(self, field), field))
 
     def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
-        """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s]."""
+        """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s].
+
+        Parameters
+        ----------
+        rng : Generator | SeedSequence | int | None
+            Random stream.
+        n_trials : int
+            Independent records.
+        n_steps : int
+            Samples per record.
+        dt : float or None
+            Sample interval [s]; None: an independent phase for every sample.
+
+        Returns
+        -------
+        xi, eta : ndarray
+        """
         n_trials, n_steps = _shape(n_trials, n_steps)
         dt = _dt(dt)
         g = as_generator(rng)
@@ -147,7 +215,19 @@ class SineRocking:
         return out[0], out[1]
 
     def autocorrelation(self, lag, *, axis: str = "xi"):
-        """Normalised autocorrelation ``cos(2π τ / T)`` at lags ``lag`` [s]."""
+        """Normalised autocorrelation ``cos(2π τ / T)`` at lags ``lag`` [s].
+
+        Parameters
+        ----------
+        lag : array_like
+            Lags τ [s].
+        axis : str
+            ``"xi"`` or ``"eta"`` (their periods may differ).
+
+        Returns
+        -------
+        ndarray
+        """
         period = self.period_xi if axis == "xi" else self.period_eta
         return np.cos(2.0 * math.pi * np.asarray(lag, dtype=float) / period)
 
@@ -158,9 +238,12 @@ class NarrowbandRocking:
 
     Parameters
     ----------
-    sigma_xi, sigma_eta : float — standard deviations of ξ, η [rad]
-    period : float — natural period ``2π/ω0`` of the shaping filter [s]
-    damping : float — damping ratio ζ, in (0, 1)
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad].
+    period : float
+        Natural period ``2π/ω0`` of the shaping filter [s].
+    damping : float
+        Damping ratio ζ, in (0, 1).
 
     Notes
     -----
@@ -182,6 +265,7 @@ class NarrowbandRocking:
 
     name = "narrowband"
     kappa = 3.0
+    peak_factor = 4.0
 
     def __post_init__(self):
         for field in ("sigma_xi", "sigma_eta"):
@@ -203,29 +287,56 @@ class NarrowbandRocking:
         return 1.0 / (self.damping * self.omega0)
 
     def autocorrelation(self, lag):
-        """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]."""
+        """Normalised autocorrelation ρ(τ) at lags ``lag`` [s].
+
+        Parameters
+        ----------
+        lag : array_like
+            Lags τ [s].
+
+        Returns
+        -------
+        ndarray
+        """
         tau = np.abs(np.asarray(lag, dtype=float))
         w0, z = self.omega0, self.damping
         wd = w0 * math.sqrt(1.0 - z * z)
         return np.exp(-z * w0 * tau) * (np.cos(wd * tau) + z * w0 / wd * np.sin(wd * tau))
 
     def discretisation(self, dt: float):
-        """``(F, Qd)`` of the unit-variance state ``(ξ, ξ')`` sampled every ``dt`` [s]."""
-        from scipy.linalg import expm  # imported on use: scipy costs a command line call about a second
+        """``(F, Qd)`` of the unit-variance state ``(ξ, ξ')`` sampled every ``dt`` [s].
 
-        dt = positive(dt, "dt")
-        w0, z = self.omega0, self.damping
-        Ac = np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]])
-        F = expm(Ac * dt)
-        P = np.diag([1.0, w0 * w0])
-        Q = P - F @ P @ F.T
-        return F, 0.5 * (Q + Q.T)
+        Parameters
+        ----------
+        dt : float
+            Sample interval [s].
+
+        Returns
+        -------
+        F, Qd : ndarray
+            Transition and process-noise covariance (``scipy.linalg.expm``).
+        """
+        F, Q = _discretise(self.omega0, self.damping, positive(dt, "dt"))
+        return F.copy(), Q.copy()
 
     def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
         """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s].
 
-        With ``dt=None`` the samples are independent draws from the stationary
-        (Gaussian) distribution.
+        Parameters
+        ----------
+        rng : Generator | SeedSequence | int | None
+            Random stream.
+        n_trials : int
+            Independent records.
+        n_steps : int
+            Samples per record.
+        dt : float or None
+            Sample interval [s]; None: independent draws from the stationary
+            (Gaussian) distribution.
+
+        Returns
+        -------
+        xi, eta : ndarray
         """
         n_trials, n_steps = _shape(n_trials, n_steps)
         dt = _dt(dt)
@@ -250,6 +361,11 @@ class NarrowbandRocking:
         gives the same Gaussian process with one normal draw per sample instead
         of two.
 
+        Parameters
+        ----------
+        dt : float
+            Sample interval [s].
+
         Returns
         -------
         t, d, theta, s2 : float
@@ -272,10 +388,31 @@ class NarrowbandRocking:
         if scale is not None:
             z0 *= scale[:, None]
             z *= scale[:, None]
-        return self._series_from_normals(z0, z, n_steps, dt, overwrite=True)
+        return self.series_from_normals(z0, z, n_steps, dt, overwrite=True)
 
-    def _series_from_normals(self, z0, z, n_steps: int, dt: float, *, overwrite: bool = False) -> np.ndarray:
-        """Series from standard normals: ``z0`` (n, 3) for the start, ``z`` (n, n_steps − 2) after.
+    def series_from_normals(self, z0, z, n_steps: int, dt: float, *, overwrite: bool = False) -> np.ndarray:
+        """Unit-variance series from standard normals (the generator is linear in them).
+
+        Parameters
+        ----------
+        z0 : ndarray
+            ``(n, 3)`` normals for the start.
+        z : ndarray
+            ``(n, n_steps − 2)`` normals after.
+        n_steps : int
+            Samples per series.
+        dt : float
+            Sample interval [s].
+        overwrite : bool
+            Scale ``z`` in place.
+
+        Returns
+        -------
+        ndarray
+            ``(n, n_steps)``.
+
+        Notes
+        -----
 
         ``(x_0, x_1, e_1)`` are drawn from their stationary joint law
         (``Cov(x_0, x_1) = F_00``, ``Cov(x_1, e_1) = s²``, ``Cov(x_0, e_1) = 0``),
@@ -283,6 +420,8 @@ class NarrowbandRocking:
         :func:`scipy.signal.lfilter`, so every sample has exactly the
         stationary law of the shaping-filter output.
         """
+        from scipy import signal
+
         t, d, theta, s2 = self.innovations(dt)
         F, _ = self.discretisation(dt)
         cov = np.array([[1.0, F[0, 0], 0.0], [F[0, 0], 1.0, s2], [0.0, s2, s2]])
@@ -298,10 +437,20 @@ class NarrowbandRocking:
             z *= math.sqrt(s2)
         else:
             z = math.sqrt(s2) * z
-        from scipy import signal
-
         x[:, 2:], _ = signal.lfilter([1.0, theta], [1.0, -t, d], z, axis=-1, zi=zi)
         return x
+
+
+@functools.lru_cache(maxsize=64)
+def _discretise(w0: float, z: float, dt: float):
+    """``(F, Qd)`` of the unit-variance shaping-filter state, cached (a Monte Carlo asks for it per block)."""
+    from scipy.linalg import expm
+
+    Ac = np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]])
+    F = expm(Ac * dt)
+    P = np.diag([1.0, w0 * w0])
+    Q = P - F @ P @ F.T
+    return F, 0.5 * (Q + Q.T)
 
 
 MODELS = {"normal": GaussianRocking, "sine": SineRocking, "narrowband": NarrowbandRocking}
@@ -312,10 +461,18 @@ def rocking_model(name: str, sigma_xi: float, sigma_eta: float, *, period: float
 
     Parameters
     ----------
-    name : str — model name
-    sigma_xi, sigma_eta : float — standard deviations of ξ, η [rad]
-    period : float — rocking period [s] (sine and narrowband)
-    damping : float — damping ratio (narrowband)
+    name : str
+        Model name.
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad].
+    period : float
+        Rocking period [s] (sine and narrowband).
+    damping : float
+        Damping ratio (narrowband).
+
+    Returns
+    -------
+    GaussianRocking | SineRocking | NarrowbandRocking
 
     Raises
     ------
@@ -342,6 +499,21 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
     how well the sample means (16) of Hrechka & Koroliov estimate β0, γ0 under
     correlated rocking.
 
+    Parameters
+    ----------
+    model : rocking model
+        Supplies the autocorrelation.
+    n_steps : int
+        Samples averaged.
+    dt : float or None
+        Sample interval [s]; None for independent samples.
+    axis : str
+        ``"xi"`` or ``"eta"``.
+
+    Returns
+    -------
+    float
+
     >>> round(mean_variance_factor(SineRocking(1.0, 1.0, 10.0, 10.0), 100, 0.1), 12)
     0.0
     >>> mean_variance_factor(GaussianRocking(1.0, 1.0), 4, 0.1)
@@ -357,3 +529,29 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
     else:
         rho = model.autocorrelation(k * dt)
     return max(float((1.0 + 2.0 * np.sum((1.0 - k / n) * rho)) / n), 0.0)
+
+
+def tilt_domain_limit(model, beta0: float, gamma0: float) -> float:
+    """Largest rocking standard deviation [rad] for which the tilts stay within ±90°.
+
+    The model is defined for tilts in (−π/2, π/2): the peak excursion
+    ``|β0| + k σ`` (``k = √2`` for a sinusoid, 4 for a Gaussian process, whose
+    excursions beyond 4σ have probability 6e-5) must stay below π/2 on both axes.
+
+    Parameters
+    ----------
+    model : rocking model or type
+        Supplies ``peak_factor``.
+    beta0, gamma0 : float
+        Stable tilts [rad].
+
+    Returns
+    -------
+    float
+        The limit [rad]; not positive when the stable tilts alone leave the domain.
+
+    >>> round(math.degrees(tilt_domain_limit(SineRocking, 0.0, 0.0)), 3)
+    63.64
+    """
+    worst = max(abs(as_float(beta0, "beta0")), abs(as_float(gamma0, "gamma0")))
+    return (0.5 * math.pi - worst) / model.peak_factor

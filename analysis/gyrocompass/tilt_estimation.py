@@ -23,7 +23,7 @@ from scipy import stats
 
 from ..core import kalman
 from ..core.validation import as_array, as_int, nonnegative, positive
-from .azimuth import _components, _error, check_latitude
+from .azimuth import check_latitude, relative_angle, tilt_components
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking, as_generator
 
 __all__ = ["TiltFilterModel", "tilt_filter_model", "EstimatorComparison", "compare_estimators"]
@@ -31,7 +31,21 @@ __all__ = ["TiltFilterModel", "tilt_filter_model", "EstimatorComparison", "compa
 
 @dataclass(frozen=True)
 class TiltFilterModel:
-    """Linear model of one tilt channel for the Kalman filter (per sample step)."""
+    """Linear model of one tilt channel for the Kalman filter (per sample step).
+
+    Attributes
+    ----------
+    F : ndarray
+        State transition per step.
+    Q : ndarray
+        Process noise covariance per step [rad², (rad/s)²].
+    H : ndarray
+        Measurement matrix.
+    R : ndarray
+        Measurement noise covariance [rad²].
+    P0 : ndarray
+        Prior covariance.
+    """
 
     F: np.ndarray
     Q: np.ndarray
@@ -45,15 +59,25 @@ def tilt_filter_model(rocking, dt, *, axis: str = "xi", prior_sigma: float, nois
 
     Parameters
     ----------
-    rocking : rocking model — supplies the rocking dynamics and variance
-    dt : float — sample interval [s]
-    axis : str — ``"xi"`` or ``"eta"``
-    prior_sigma : float — prior standard deviation of the stable tilt [rad]
-    noise_sigma : float — accelerometer tilt noise v [rad], > 0
+    rocking : rocking model
+        Supplies the rocking dynamics and variance.
+    dt : float
+        Sample interval [s].
+    axis : str
+        ``"xi"`` or ``"eta"``.
+    prior_sigma : float
+        Prior standard deviation of the stable tilt [rad].
+    noise_sigma : float
+        Accelerometer tilt noise v [rad], > 0.
 
     Returns
     -------
     TiltFilterModel
+
+    Raises
+    ------
+    TypeError
+        For an unknown rocking model.
     """
     dt = positive(dt, "dt")
     prior = positive(prior_sigma, "prior_sigma")
@@ -86,10 +110,25 @@ def tilt_filter_model(rocking, dt, *, axis: str = "xi", prior_sigma: float, nois
 class EstimatorComparison:
     """Alignment errors against averaging time for the sample mean and the Kalman filter.
 
-    All angles in rad; ``times`` in s.  ``nees_mean`` is the NEES of the β
-    filter averaged over trials, ``nees_band`` the two-sided 95 % band of that
-    average for a consistent filter (χ² with ``dim·n_trials`` degrees of
-    freedom, divided by ``n_trials``).
+    Attributes
+    ----------
+    times : ndarray
+        Averaging times [s].
+    rms_mean, rms_kalman : ndarray
+        rms alignment error of the sample mean (16) and of the Kalman filter [rad].
+    rms_tilt_mean, rms_tilt_kalman : ndarray
+        rms error of the estimated β0 [rad].
+    kalman_sigma_tilt : ndarray
+        The filter's own standard deviation of β0 [rad].
+    nees_mean : ndarray
+        NEES of the β0 estimate averaged over trials.
+    nees_band : tuple
+        Two-sided 95 % band of that average for a consistent filter (χ² with
+        ``dim·n_trials`` degrees of freedom, divided by ``n_trials``).
+    dim : int
+        Degrees of freedom of one NEES.
+    n_trials : int
+        Trials.
     """
 
     times: np.ndarray
@@ -119,14 +158,22 @@ def compare_estimators(
 
     Parameters
     ----------
-    latitude : float — latitude φ [rad]
-    rocking : rocking model — the simulated rocking (and the filter's model of it)
-    dt : float — sample interval [s]
-    averaging_times : array_like — averaging times to report [s], each ≥ dt
-    n_trials : int — Monte Carlo trials, at least 2
-    rng : Generator | int | None — random stream
-    prior_sigma : float — spread of the true stable tilts and the filter prior [rad]
-    noise_sigma : float — accelerometer tilt noise [rad]
+    latitude : float
+        Latitude φ [rad].
+    rocking : rocking model
+        The simulated rocking (and the filter's model of it).
+    dt : float
+        Sample interval [s].
+    averaging_times : array_like
+        Averaging times to report [s], each ≥ dt.
+    n_trials : int
+        Monte Carlo trials, at least 2.
+    rng : Generator | int | None
+        Random stream.
+    prior_sigma : float
+        Spread of the true stable tilts and the filter prior [rad].
+    noise_sigma : float
+        Accelerometer tilt noise [rad].
 
     Returns
     -------
@@ -166,9 +213,9 @@ def compare_estimators(
             err = x[:, idx, :1] - truth[0][:, None, None]
             nees_vals = np.array([kalman.nees(err[:, j, :], np.broadcast_to(covs[idx[j], :1, :1], (n_trials, 1, 1))).mean() for j in range(len(idx))])
     sphi, cphi = math.sin(latitude), math.cos(latitude)
-    As, Bs = _components(truth[0][:, None], truth[1][:, None], sphi, cphi)
-    d_mean = _error(means[0], means[1], sphi, cphi, As, Bs)
-    d_kf = _error(est[0], est[1], sphi, cphi, As, Bs)
+    A_ref, B_ref = tilt_components(truth[0][:, None], truth[1][:, None], sphi, cphi)
+    d_mean = relative_angle(*tilt_components(means[0], means[1], sphi, cphi), A_ref, B_ref)
+    d_kf = relative_angle(*tilt_components(est[0], est[1], sphi, cphi), A_ref, B_ref)
     band = tuple(stats.chi2.ppf([0.025, 0.975], dim * n_trials) / n_trials)
     rms = lambda e: np.sqrt(np.mean(e * e, axis=0))  # noqa: E731
     return EstimatorComparison(

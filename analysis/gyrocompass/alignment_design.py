@@ -1,0 +1,406 @@
+"""The designer's answer: admissible rocking amplitude against frequency, for each alignment method.
+
+Given an azimuth budget, the latitude, the alignment time and the sensors,
+find at each rocking frequency the largest rocking amplitude ``a`` (applied to
+the axes in the proportions ``pattern`` = (yaw, β, γ)) for which
+
+* the rms azimuth error stays within the budget, and
+* the azimuth error stays within the budget with probability ``level``
+  (a percentile of |error|).
+
+To first order the rocking term is linear in ``a`` and independent of the
+sensor errors, ``e(a) = e_0 + a u``:
+
+``analytic``
+    ``u`` and the sensor part ``e_0`` come from the first-order theory
+    (:func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`);
+    for a sinusoid the residues are bounded sinusoids, and the envelope over
+    phase (the worst alignment time in ``[T, T + period]``) smooths the
+    whole-period zeros;
+``inertial``, ``kalman``
+    the response is not linear over the range that matters (the Kalman filter
+    models the lever-arm motion to first order, and breaks down at a few
+    degrees), so the amplitude is found by a root search on the Monte Carlo
+    itself: the rms (and the percentile) of the azimuth error of the same
+    trials — common random numbers: the same rocking phases or amplitudes,
+    biases, noise and initial errors at every amplitude — bracketed by steps
+    of ×4 from ``reference_amplitude`` and bisected in log a to ``rtol``.  The
+    filter knows the rocking (its model is rebuilt at each amplitude).  The
+    interval of the amplitude maps the 95 % interval of the rms at the root
+    through the local slope of log rms against log a, and
+    :func:`design_check` runs an independent Monte Carlo there.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..core import montecarlo
+from ..core.validation import as_array, as_int, in_open_interval, positive
+from .alignment_monte_carlo import METHODS, AlignmentKernel, AlignmentOptions, alignment_monte_carlo
+from .alignment_theory import analytic_theory
+from .base_motion import NarrowbandMotion, SineMotion
+from .error_distribution import abs_error_quantile
+from .fine_alignment import assumed_disturbance, filter_model
+from .imu import Scenario, SensorErrors
+
+__all__ = ["AdmissibleAlignment", "admissible_rocking", "DesignCheckPoint", "design_check", "ROCKINGS"]
+
+ROCKINGS = ("sine", "narrowband")
+
+
+@dataclass(frozen=True)
+class AdmissibleAlignment:
+    """Admissible rocking amplitude against frequency for one method.
+
+    Attributes
+    ----------
+    method : str
+        The alignment method.
+    rocking : str
+        ``"sine"`` or ``"narrowband"``.
+    frequency : ndarray
+        ``(K,)`` rocking frequencies [Hz].
+    amplitude : ndarray
+        ``(K,)`` admissible amplitude by the rms criterion [rad] (0 where the
+        sensors alone exceed the budget, ``max_amplitude`` where the rocking does not matter).
+    amplitude_ci : ndarray
+        ``(K, 2)`` 95 % interval of ``amplitude`` (Monte Carlo methods; equal bounds for the analytic theory).
+    amplitude_percentile : ndarray
+        ``(K,)`` admissible amplitude by ``P(|error| ≤ budget) ≥ level`` [rad].
+    floor : float
+        rms azimuth error without rocking [rad].
+    unit_rms : ndarray
+        ``(K,)`` rms of the rocking term per unit amplitude [rad/rad] (Monte Carlo
+        methods: at the admissible amplitude, NaN at the ends).
+    budget : float
+        The budget [rad].
+    level : float
+        The percentile level.
+    pattern : ndarray
+        ``(3,)`` relative amplitudes (yaw, β, γ).
+    envelope : bool
+        Sine, analytic method: envelope over phase.
+    n_trials : int
+        Monte Carlo trials per frequency (0 for the analytic theory).
+    max_amplitude : float
+        Cap of the reported amplitudes [rad].
+    """
+
+    method: str
+    rocking: str
+    frequency: np.ndarray
+    amplitude: np.ndarray
+    amplitude_ci: np.ndarray
+    amplitude_percentile: np.ndarray
+    floor: float
+    unit_rms: np.ndarray
+    budget: float
+    level: float
+    pattern: np.ndarray
+    envelope: bool
+    n_trials: int
+    max_amplitude: float
+
+
+def _motion(rocking: str, amplitude, frequency: float, damping: float):
+    if rocking == "sine":
+        return SineMotion(amplitude, 1.0 / frequency)
+    return NarrowbandMotion(amplitude, 1.0 / frequency, damping)
+
+
+def _trial_errors(scenario, errors, method, options, n_trials, seed):
+    kernel = AlignmentKernel(scenario, errors, method, options, (), _sequence(scenario, method, options))
+    e, _ = kernel(n_trials, np.random.default_rng(seed))
+    return e[:, 0]
+
+
+def _sequence(scenario, method, options):
+    if method != "kalman":
+        return None
+    from ..core import kalman
+
+    m = filter_model(scenario, options.tuning)
+    return kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, scenario.n_samples // m.samples_per_epoch)
+
+
+def _with_motion(scenario, motion, options, method):
+    sc = replace(scenario, motion=motion)
+    if method == "kalman" and options.tuning.disturbance.kind != "none":
+        kind = options.tuning.disturbance.kind
+        options = replace(options, tuning=replace(options.tuning, disturbance=assumed_disturbance(motion, sc, kind=kind)))
+    return sc, options
+
+
+def admissible_rocking(
+    method: str,
+    budget,
+    scenario: Scenario,
+    frequencies,
+    errors: SensorErrors | None = None,
+    *,
+    rocking: str = "narrowband",
+    pattern=(0.0, 1.0, 1.0),
+    damping: float = 0.1,
+    level: float = 0.95,
+    envelope: bool = True,
+    options: AlignmentOptions | None = None,
+    n_trials: int = 128,
+    reference_amplitude: float = math.radians(1.0),
+    max_amplitude: float = math.radians(20.0),
+    rtol: float = 0.05,
+    rng=None,
+) -> AdmissibleAlignment:
+    """Admissible rocking amplitude against frequency for an azimuth budget.
+
+    Parameters
+    ----------
+    method : str
+        ``"analytic"``, ``"inertial"`` or ``"kalman"``.
+    budget : float
+        Azimuth error budget [rad], > 0.
+    scenario : Scenario
+        Latitude, stable attitude, lever arm, sampling and alignment time (its motion is replaced).
+    frequencies : array_like
+        Rocking frequencies [Hz].
+    errors : SensorErrors, optional
+        Sensor errors (default ideal).
+    rocking : str
+        ``"sine"`` or ``"narrowband"``.
+    pattern : array_like
+        Relative amplitudes (yaw, β, γ); the amplitude a multiplies it.
+    damping : float
+        Damping ratio of narrow-band rocking.
+    level : float
+        Percentile level.
+    envelope : bool
+        Analytic method, sine: envelope over phase.
+    options : AlignmentOptions, optional
+        Method options (a Kalman disturbance model other than ``"none"`` is
+        rebuilt for each rocking: a filter that knows the rocking).
+    n_trials : int
+        Monte Carlo trials per frequency (inertial, Kalman).
+    reference_amplitude : float
+        First amplitude of the root search [rad].
+    max_amplitude : float
+        Cap of the reported amplitude [rad].
+    rtol : float
+        Relative width of the final bracket of the root search.
+    rng : Generator | SeedSequence | int | None
+        Root of the per-frequency streams.
+
+    Returns
+    -------
+    AdmissibleAlignment
+
+    Raises
+    ------
+    ValueError
+        For an unknown method or rocking, or a bad size.
+
+    Examples
+    --------
+    >>> sc = Scenario(math.radians(60.0), duration=60.0, sample_rate=10.0)
+    >>> d = admissible_rocking("analytic", math.radians(0.1), sc, [0.1, 0.2])
+    >>> bool(np.all(d.amplitude < math.radians(0.001)))  # the gyros see the rocking: arc-seconds
+    True
+    """
+    if method not in METHODS:
+        raise ValueError(f"Expected `method` in {METHODS}, got {method!r}")
+    if rocking not in ROCKINGS:
+        raise ValueError(f"Expected `rocking` in {ROCKINGS}, got {rocking!r}")
+    budget = positive(budget, "budget")
+    level = in_open_interval(level, "level", 0.0, 1.0)
+    f = as_array(frequencies, "frequencies").ravel()
+    if f.size == 0 or np.any(f <= 0) or np.any(f >= scenario.sample_rate / 8):
+        raise ValueError(f"Expected `frequencies` in (0, sample_rate/8) = (0, {scenario.sample_rate / 8:g}) Hz")
+    pat = as_array(pattern, "pattern").ravel()
+    if pat.size != 3 or np.any(pat < 0) or not np.any(pat):
+        raise ValueError(f"Expected `pattern` as three relative amplitudes >= 0, not all 0, got {pat.tolist()}")
+    errors = SensorErrors() if errors is None else errors
+    options = AlignmentOptions() if options is None else options
+    cap = positive(max_amplitude, "max_amplitude")
+    K = f.size
+    amp, amp_p, unit = np.empty(K), np.empty(K), np.empty(K)
+    ci = np.empty((K, 2))
+    if method == "analytic":
+        floor_t = analytic_theory(replace(scenario, motion=SineMotion(0.0, 8.0)), errors, formula=options.formula)
+        floor = floor_t.rms
+        for i, fi in enumerate(f):
+            th = analytic_theory(replace(scenario, motion=_motion(rocking, pat, fi, damping)), errors, formula=options.formula, envelope=envelope and rocking == "sine")
+            unit[i] = th.rocking
+            spare = budget * budget - floor * floor
+            amp[i] = 0.0 if spare <= 0 else (cap if unit[i] == 0 else min(cap, math.sqrt(spare) / unit[i]))
+            ci[i] = amp[i]
+            amp_p[i] = _analytic_percentile(th, budget, level, cap, rocking)
+        return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, bool(envelope and rocking == "sine"), 0, cap)
+    n_trials = as_int(n_trials, "n_trials", minimum=8)
+    root = montecarlo.root_seed_sequence(rng)
+    a_ref = positive(reference_amplitude, "reference_amplitude")
+    floors = []
+    for i, fi in enumerate(f):
+        seed = montecarlo.block_seed(root, i)
+        cache = {}
+
+        def errors_at(a, fi=fi, seed=seed, cache=cache):
+            if a not in cache:
+                sc1, opt1 = _with_motion(scenario, _motion(rocking, a * pat, fi, damping), options, method)
+                cache[a] = _trial_errors(sc1, errors, method, opt1, n_trials, seed)
+            return cache[a]
+
+        def rms(a):
+            e = errors_at(a)
+            return math.sqrt(float(np.mean(e * e)))
+
+        def pct(a):
+            return float(np.quantile(np.abs(errors_at(a)), level))
+
+        e0 = errors_at(0.0)
+        floors.append(float(np.mean(e0 * e0)))
+        amp[i], (lo, hi) = _search(rms, budget, a_ref, cap, rtol)
+        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol)
+        unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
+        ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, budget, cap)
+    floor = math.sqrt(float(np.mean(floors)))
+    return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, False, n_trials, cap)
+
+
+def _search(fn, budget, start, cap, rtol):
+    """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: bracket by ×4, bisect in log a.
+
+    Returns the root and its bracket (0, 0) or (cap, cap) at the ends."""
+    if fn(0.0) > budget:
+        return 0.0, (0.0, 0.0)
+    a = min(start, cap)
+    if fn(a) <= budget:
+        lo = a
+        while fn(a) <= budget:
+            lo, a = a, 4.0 * a
+            if a >= cap:
+                if fn(cap) <= budget:
+                    return cap, (cap, cap)
+                a = cap
+                break
+        hi = a
+    else:
+        hi = a
+        while fn(a) > budget:
+            hi, a = a, a / 4.0
+            if a < cap * 1e-9:
+                return 0.0, (0.0, 0.0)
+        lo = a
+    while hi / lo > 1.0 + rtol:
+        mid = math.sqrt(lo * hi)
+        if fn(mid) <= budget:
+            lo = mid
+        else:
+            hi = mid
+    return lo, (lo, hi)
+
+
+def _amplitude_interval(errors_at, a, lo, hi, budget, cap):
+    """95 % interval of the amplitude: the rms interval at the root through the local slope."""
+    if not 0.0 < a < cap or hi <= lo:
+        return np.array([a, a])
+    e_lo, e_hi = errors_at(lo), errors_at(hi)
+    r_lo, r_hi = math.sqrt(float(np.mean(e_lo**2))), math.sqrt(float(np.mean(e_hi**2)))
+    slope = math.log(r_hi / r_lo) / math.log(hi / lo) if r_hi > r_lo else math.inf
+    m = e_lo * e_lo
+    se = float(np.std(m, ddof=1)) / math.sqrt(m.size) / (2.0 * math.sqrt(float(np.mean(m))))  # SE of the rms
+    rel = 1.96 * se / max(r_lo, 1e-300)
+    if not math.isfinite(slope) or slope <= 0:
+        return np.array([lo, hi])
+    return np.array([a * (1.0 - rel) ** (1.0 / slope), min(cap, a * (1.0 + rel) ** (1.0 / slope))])
+
+
+def _analytic_percentile(th, budget, level, cap, rocking):
+    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a)."""
+    from scipy.optimize import brentq
+
+    if rocking == "sine" and th.rocking_sine_amplitudes.size:
+        unit_sines, gauss = th.rocking_sine_amplitudes, th.sensor_sigma
+
+        def q(a):
+            return abs_error_quantile(a * unit_sines, gauss, level, mean=th.mean).value - budget
+    else:
+
+        def q(a):
+            return abs_error_quantile([], math.hypot(th.sensor_sigma, a * th.rocking), level, mean=th.mean).value - budget
+
+    if q(0.0) >= 0:
+        return 0.0
+    if q(cap) <= 0:
+        return cap
+    return brentq(q, 0.0, cap, xtol=1e-6 * cap)
+
+
+@dataclass(frozen=True)
+class DesignCheckPoint:
+    """An independent Monte Carlo at an admissible amplitude.
+
+    Attributes
+    ----------
+    frequency : float
+        Rocking frequency [Hz].
+    amplitude : float
+        The admissible amplitude (rms criterion) [rad].
+    result : MonteCarloResult
+        The azimuth error there [rad]; its rms should equal the budget.
+    """
+
+    frequency: float
+    amplitude: float
+    result: montecarlo.MonteCarloResult
+
+
+def design_check(
+    design: AdmissibleAlignment,
+    scenario: Scenario,
+    errors: SensorErrors | None = None,
+    *,
+    indices=(0, -1),
+    damping: float = 0.1,
+    options: AlignmentOptions | None = None,
+    n_trials: int = 200,
+    rng=None,
+) -> tuple:
+    """Monte Carlo at some admissible amplitudes of a design (independent streams).
+
+    Parameters
+    ----------
+    design : AdmissibleAlignment
+        The chart to check.
+    scenario : Scenario
+        The scenario it was computed for.
+    errors : SensorErrors, optional
+        Its sensor errors.
+    indices : sequence of int
+        Frequencies to check.
+    damping : float
+        Damping ratio of narrow-band rocking.
+    options : AlignmentOptions, optional
+        Method options.
+    n_trials : int
+        Trials per check.
+    rng : Generator | SeedSequence | int | None
+        Root of the per-check streams.
+
+    Returns
+    -------
+    tuple of DesignCheckPoint
+    """
+    options = AlignmentOptions() if options is None else options
+    root = montecarlo.root_seed_sequence(rng)
+    out = []
+    for k, i in enumerate(indices):
+        i = int(i) % design.frequency.size
+        a = float(design.amplitude[i])
+        if not 0.0 < a < design.max_amplitude:
+            continue
+        sc, opt = _with_motion(scenario, _motion(design.rocking, a * design.pattern, float(design.frequency[i]), damping), options, design.method)
+        mc = alignment_monte_carlo(sc, errors, method=design.method, n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opt)
+        out.append(DesignCheckPoint(float(design.frequency[i]), a, mc.result))
+    return tuple(out)

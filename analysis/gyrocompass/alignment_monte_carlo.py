@@ -1,0 +1,319 @@
+"""Monte Carlo of self-alignment on a rocking base: the three methods against their theory.
+
+One trial is one rocking record (its phases or Gaussian amplitudes, random
+biases, noise, quantisation residues and, for the Kalman filter, the initial
+attitude error drawn from the filter's prior).  Trials run in blocks through
+:func:`strapdown.analysis.core.montecarlo.run`, block ``i`` from the ``i``-th
+child of the root SeedSequence, so the statistics are bit-identical for any
+chunking, number of workers or executor.  Within a block every method is
+vectorised over trials; the Kalman filter loops over epochs only, with gains
+computed once by filterpy.
+
+The result carries the theory that applies to the method:
+
+``analytic``
+    :func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`,
+    term by term;
+``inertial``
+    the first-order bias floors (:func:`strapdown.analysis.gyrocompass.alignment_theory.bias_floor`);
+``kalman``
+    the bias floors, the linear filter's own response to the fixed biases and
+    its posterior standard deviation
+    (:func:`strapdown.analysis.gyrocompass.alignment_theory.kalman_theory`),
+    with the NEES and NIS averaged over trials at a few epochs against their χ²
+    bands.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core import kalman, montecarlo
+from ..core.validation import as_int
+from .alignment_theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
+from .analytic_alignment import analytic_alignment
+from .fine_alignment import FilterTuning, filter_model, fine_alignment, simulate_epoch_record
+from .imu import Scenario, SensorErrors, simulate_imu
+from .inertial_alignment import inertial_alignment
+
+__all__ = ["METHODS", "AlignmentOptions", "AlignmentKernel", "KalmanConsistency", "AlignmentMonteCarlo", "alignment_monte_carlo"]
+
+METHODS = ("analytic", "inertial", "kalman")
+
+
+@dataclass(frozen=True)
+class AlignmentOptions:
+    """Options of the three methods.
+
+    Parameters
+    ----------
+    formula : str
+        Analytic: ``"levelled"`` or ``"paper"``.
+    observation : str
+        Inertial: ``"position"`` or ``"velocity"``.
+    inertial_epoch : float
+        Inertial: spacing of the vector observations [s].
+    tuning : FilterTuning
+        Kalman: what the filter assumes.
+    velocity_noise : float or None
+        Kalman: true noise of the zero-velocity reference [m/s] (None: the tuning's).
+    """
+
+    formula: str = "levelled"
+    observation: str = "position"
+    inertial_epoch: float = 1.0
+    tuning: FilterTuning = field(default_factory=FilterTuning)
+    velocity_noise: float | None = None
+
+
+@dataclass(frozen=True)
+class AlignmentKernel:
+    """Monte Carlo kernel: the azimuth errors of one block of trials.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The configuration.
+    errors : SensorErrors
+        Sensor errors.
+    method : str
+        ``"analytic"``, ``"inertial"`` or ``"kalman"``.
+    options : AlignmentOptions
+        Method options.
+    check_epochs : tuple of int
+        Kalman: epochs whose NEES and NIS are returned.
+    sequence : object
+        Kalman: the filter's gains and covariances (computed once).
+    chunk : int
+        Trials simulated at once (memory).
+
+    Notes
+    -----
+    Returns ``(errors, aux)``: the azimuth error ``(n, 1)`` [rad] and per trial
+    the squared tilt errors, then (Kalman) the NEES and NIS at ``check_epochs``
+    and the NIS averaged over all epochs.
+    """
+
+    scenario: Scenario
+    errors: SensorErrors
+    method: str
+    options: AlignmentOptions
+    check_epochs: tuple = ()
+    sequence: object = None
+    chunk: int = 32
+
+    def __call__(self, n_trials: int, rng):
+        if self.method == "kalman":
+            M = filter_model(self.scenario, self.options.tuning).samples_per_epoch
+            rec = simulate_epoch_record(self.scenario, self.errors, M, n_trials=n_trials, rng=rng, chunk=self.chunk)
+            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence)
+            est = res.estimate
+            idx = list(self.check_epochs)
+            aux = [est.tilt_error**2, res.nees[:, idx], res.nis[:, idx], res.nis.mean(axis=1, keepdims=True)]
+            return est.heading_error[:, None], np.concatenate(aux, axis=1)
+        parts = []
+        left = int(n_trials)
+        while left > 0:
+            k = min(self.chunk, left)
+            rec = simulate_imu(self.scenario, self.errors, n_trials=k, rng=rng)
+            if self.method == "analytic":
+                parts.append(analytic_alignment(rec, formula=self.options.formula))
+            else:
+                parts.append(inertial_alignment(rec, epoch=self.options.inertial_epoch, observation=self.options.observation))
+            left -= k
+        e = np.concatenate([p.heading_error for p in parts])
+        t = np.concatenate([p.tilt_error for p in parts])
+        return e[:, None], t**2
+
+
+@dataclass(frozen=True)
+class KalmanConsistency:
+    """NEES and NIS of the fine-alignment filter averaged over trials.
+
+    Attributes
+    ----------
+    times : ndarray
+        ``(K,)`` epoch ends checked [s].
+    nees : ndarray
+        ``(K,)`` mean NEES.
+    nis : ndarray
+        ``(K,)`` mean NIS.
+    nis_all : float
+        Mean NIS over all epochs and trials.
+    nees_band : tuple
+        95 % band of the mean NEES of a consistent filter.
+    nis_band : tuple
+        95 % band of the mean NIS at one epoch.
+    dim : int
+        State dimension.
+    meas_dim : int
+        Measurement dimension.
+    heading_sigma : float
+        The filter's standard deviation of the azimuth error at the end [rad].
+    """
+
+    times: np.ndarray
+    nees: np.ndarray
+    nis: np.ndarray
+    nis_all: float
+    nees_band: tuple
+    nis_band: tuple
+    dim: int
+    meas_dim: int
+    heading_sigma: float
+
+    @property
+    def nees_inside(self) -> np.ndarray:
+        """Whether each mean NEES lies in its band."""
+        lo, hi = self.nees_band
+        return (self.nees >= lo) & (self.nees <= hi)
+
+    @property
+    def nis_inside(self) -> np.ndarray:
+        """Whether each mean NIS lies in its band."""
+        lo, hi = self.nis_band
+        return (self.nis >= lo) & (self.nis <= hi)
+
+
+@dataclass(frozen=True)
+class AlignmentMonteCarlo:
+    """Monte Carlo of one method in one scenario, with the theory that applies [rad].
+
+    Attributes
+    ----------
+    method : str
+        The method.
+    scenario : Scenario
+        The configuration.
+    errors : SensorErrors
+        Sensor errors.
+    result : MonteCarloResult
+        Statistics of the azimuth error.
+    tilt_rms : ndarray
+        ``(2,)`` rms errors of β̂, γ̂.
+    bias_floor : tuple
+        ``(gyro, accel)``: first-order azimuth errors of the fixed biases, the floor of every method.
+    theory : AnalyticTheory or None
+        The analytic method's first-order theory.
+    kalman : KalmanConsistency or None
+        Kalman: NEES and NIS.
+    kalman_theory : KalmanTheory or None
+        Kalman: the linear filter's own prediction.
+    """
+
+    method: str
+    scenario: Scenario
+    errors: SensorErrors
+    result: montecarlo.MonteCarloResult
+    tilt_rms: np.ndarray
+    bias_floor: tuple
+    theory: AnalyticTheory | None = None
+    kalman: KalmanConsistency | None = None
+    kalman_theory: KalmanTheory | None = None
+
+
+def _check_epochs(n_epochs: int, k: int = 8) -> tuple:
+    e = np.unique(np.round(np.geomspace(1, n_epochs, k)).astype(int)) - 1
+    return tuple(int(x) for x in e)
+
+
+def alignment_monte_carlo(
+    scenario: Scenario,
+    errors: SensorErrors | None = None,
+    *,
+    method: str,
+    n_trials: int,
+    rng=None,
+    options: AlignmentOptions | None = None,
+    executor=None,
+    progress: bool = False,
+    trials_per_block: int | None = None,
+) -> AlignmentMonteCarlo:
+    """Monte Carlo of the azimuth error of one alignment method.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Place, stable attitude, rocking, lever arm, sampling and alignment time.
+    errors : SensorErrors, optional
+        Sensor errors (default ideal).
+    method : str
+        ``"analytic"``, ``"inertial"`` or ``"kalman"``.
+    n_trials : int
+        Trials, at least 2.
+    rng : Generator | SeedSequence | int | None
+        Root of the block streams.
+    options : AlignmentOptions, optional
+        Method options.
+    executor : Executor | dask Client | None
+        Where blocks run (the result does not depend on it).
+    progress : bool
+        tqdm bar on stderr.
+    trials_per_block : int, optional
+        Trials per block (the unit of randomness; default 32, Kalman 128).
+
+    Returns
+    -------
+    AlignmentMonteCarlo
+
+    Raises
+    ------
+    ValueError
+        For an unknown method or fewer than 2 trials.
+
+    Examples
+    --------
+    The gyro-bias floor of the analytic method at rest:
+
+    >>> sc = Scenario(math.radians(45.0), duration=30.0, sample_rate=10.0)
+    >>> b = math.radians(0.01) / 3600.0
+    >>> mc = alignment_monte_carlo(sc, SensorErrors(gyro_bias=[0.0, b, 0.0], gyro_noise=1e-6), method="analytic", n_trials=64, rng=1)
+    >>> lo, hi = mc.result.mean_ci
+    >>> bool(lo < mc.theory.mean < hi)
+    True
+    """
+    if method not in METHODS:
+        raise ValueError(f"Expected `method` in {METHODS}, got {method!r}")
+    errors = SensorErrors() if errors is None else errors
+    options = AlignmentOptions() if options is None else options
+    n_trials = as_int(n_trials, "n_trials", minimum=2)
+    root = montecarlo.root_seed_sequence(rng)
+    floor = bias_floor(scenario, errors)
+    theory = analytic_theory(scenario, errors, formula=options.formula) if method == "analytic" else None
+    sequence, checks, model = None, (), None
+    if method == "kalman":
+        model = filter_model(scenario, options.tuning)
+        n_epochs = scenario.n_samples // model.samples_per_epoch
+        if n_epochs < 1:
+            raise ValueError(f"Expected `duration` of at least one filter epoch ({model.epoch:g} s), got {scenario.duration:g}")
+        sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, n_epochs)
+        checks = _check_epochs(n_epochs)
+    kernel = AlignmentKernel(scenario, errors, method, options, checks, sequence)
+    per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else (128 if method == "kalman" else 32)
+    per_block = min(per_block, n_trials)
+    # histogram scale from a pilot block on its own stream (not one of the run's blocks)
+    pilot, _ = kernel(min(8, n_trials), np.random.default_rng(montecarlo.block_seed(root, 2**31)))
+    scale = float(np.sqrt(np.mean(pilot**2))) or 1e-12
+    result = montecarlo.run(kernel, n_trials, rng=root, trials_per_block=per_block, blocks_per_chunk=1, executor=executor, scale=2.0 * scale, progress=progress)
+    aux = np.asarray(result.aux_mean)
+    tilt_rms = np.sqrt(aux[:2])
+    consistency, kth = None, None
+    if method == "kalman":
+        k = len(checks)
+        times = model.epoch * (np.asarray(checks) + 1)
+        consistency = KalmanConsistency(
+            times,
+            aux[2 : 2 + k],
+            aux[2 + k : 2 + 2 * k],
+            float(aux[2 + 2 * k]),
+            kalman.chi2_band(model.dim, n_trials),
+            kalman.chi2_band(3, n_trials),
+            model.dim,
+            3,
+            float(math.sqrt(sequence.posterior[-1, 2, 2])),
+        )
+        kth = kalman_theory(scenario, errors, model, sequence)
+    return AlignmentMonteCarlo(method, scenario, errors, result, tilt_rms, floor, theory, consistency, kth)

@@ -1,0 +1,531 @@
+"""Rocking of the base in three axes, as smooth random functions of time.
+
+The rocking adds ``θ_r(t) = (ψ_r, β_r, γ_r)(t)`` to the stable attitude
+``(ψ0, β0, γ0)`` of :mod:`strapdown.analysis.gyrocompass.tilt_attitude` (ψ_r is yaw; β_r,
+γ_r are the paper's ξ, η).  Every model is a sum of sinusoids per axis,
+
+    θ_a(t) = Σ_m Re[c_am e^{iω_m t}],
+
+so that angles, rates and angular accelerations exist at every instant and a
+kinematically consistent sensor record can be integrated from them
+(:mod:`strapdown.analysis.gyrocompass.imu`).  The axes are independent.
+
+:class:`StillBase`
+    no rocking.
+:class:`SineMotion`
+    one sinusoid per axis, amplitude ``a_a``, common period, independent
+    uniform phases: ``|c| = a``.
+:class:`MultiSineMotion`
+    a sum of sines (several periods, amplitudes per axis), random phases.
+:class:`NarrowbandMotion`
+    a stationary Gaussian process with the spectrum of the shaping filter
+    ``θ'' + 2ζω0 θ' + ω0² θ = w`` (the narrow-band model of
+    :class:`strapdown.analysis.gyrocompass.rocking.NarrowbandRocking`), cut off
+    at ``cutoff`` times ω0 so that the angular acceleration (and the lever-arm
+    acceleration) has a finite variance.
+:class:`WhiteMotion`
+    band-limited white rocking: a flat spectrum up to ``bandwidth``; with the
+    default bandwidth, the Nyquist frequency, the samples are (nearly) independent,
+    the white rocking of the paper.
+
+The Gaussian models use the spectral representation on a frequency grid
+``ω_m = 2π m / (L)``, ``L = n_fft dt`` at least twice the record and forty
+envelope correlation times, with independent complex Gaussian coefficients
+(``E|c_m|² = 2 P_m``), evaluated by an inverse FFT.  The process is then
+exactly Gaussian and stationary with the discrete spectrum ``P_m``, which the
+theory (:meth:`Spectrum.covariance`) uses as it is, so theory and simulation
+share the same second-order statistics to rounding.
+
+Amplitudes: ``amplitude`` is the sine amplitude; for the Gaussian models it is
+``σ√2`` with σ the standard deviation, as in
+:mod:`strapdown.analysis.gyrocompass.admissible_rocking`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.validation import as_array, as_float, as_int, positive
+from .rocking import as_generator
+
+__all__ = ["Spectrum", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS"]
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """Discrete spectrum of a rocking model: power of each axis at each frequency.
+
+    Attributes
+    ----------
+    omega : ndarray
+        ``(M,)`` angular frequencies [rad/s].
+    power : ndarray
+        ``(3, M)`` variance contributed by each frequency to each axis [rad²]
+        (``Σ_m power[a, m] = σ_a²``).
+    gaussian : bool
+        Gaussian coefficients (narrow-band, white) or fixed amplitudes with random phases (sines).
+    n_fft : int or None
+        FFT length of the grid ``ω_m = 2π m/(n_fft dt)`` (Gaussian models).
+    """
+
+    omega: np.ndarray
+    power: np.ndarray
+    gaussian: bool
+    n_fft: int | None = None
+
+    @property
+    def sigma(self) -> np.ndarray:
+        """Standard deviation of each axis [rad]."""
+        return np.sqrt(self.power.sum(axis=1))
+
+    def covariance(self, transfer_a, transfer_b=None) -> np.ndarray:
+        """``Cov(L_a θ, L_b θ)`` per axis for linear functionals with transfer functions ``L(e^{iωt})``.
+
+        A linear functional L of ``θ_a(t) = Σ Re[c_m e^{iω_m t}]`` is
+        ``Σ Re[c_m H(ω_m)]`` with ``H(ω) = L[e^{iωt}]``; with independent
+        uniform phases its covariance with another is ``Σ_m P_m Re[H_a H_b*]``.
+
+        Parameters
+        ----------
+        transfer_a : array_like
+            ``(M,)`` or ``(3, M)`` complex ``H(ω_m)`` (per axis if 2-D).
+        transfer_b : array_like, optional
+            The other functional (default ``transfer_a``: the variance).
+
+        Returns
+        -------
+        ndarray
+            ``(3,)`` per axis.
+        """
+        ha = np.asarray(transfer_a, dtype=complex)
+        hb = ha if transfer_b is None else np.asarray(transfer_b, dtype=complex)
+        return np.sum(self.power * np.real(ha * np.conj(hb)), axis=-1)
+
+
+@dataclass(frozen=True)
+class MotionRealisation:
+    """Rocking of ``n`` trials: ``θ_a(t) = Σ_m Re[c[t, a, m] e^{iω_m t}]``.
+
+    Attributes
+    ----------
+    spectrum : Spectrum
+        The model's discrete spectrum.
+    coefficients : ndarray
+        ``(n_trials, 3, M)`` complex coefficients [rad].
+    dt : float
+        Sample interval of the FFT grid [s].
+    """
+
+    spectrum: Spectrum
+    coefficients: np.ndarray
+    dt: float
+
+    @property
+    def n_trials(self) -> int:
+        """Trials."""
+        return self.coefficients.shape[0]
+
+    def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
+        """Angles, rates and angular accelerations at ``t_k = offset + k dt``, ``k < n_samples``.
+
+        Parameters
+        ----------
+        n_samples : int
+            Time points.
+        offset : float
+            Time of the first point [s], in [0, dt].
+        derivatives : int
+            Highest derivative returned, 0 to 2 (the accelerations cost an FFT more).
+
+        Returns
+        -------
+        tuple of ndarray
+            ``angles, rates, accelerations`` (up to ``derivatives``), each
+            ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
+        """
+        n = as_int(n_samples, "n_samples", minimum=1)
+        k = as_int(derivatives, "derivatives", minimum=0)
+        if k > 2:
+            raise ValueError(f"Expected `derivatives` in 0..2, got {k}")
+        shape = (self.n_trials, n, 3)
+        if self.coefficients.shape[-1] == 0:
+            return tuple(np.zeros(shape) for _ in range(k + 1))
+        w = self.spectrum.omega
+        c = self.coefficients * np.exp(1j * w * offset)
+        if self.spectrum.n_fft is not None:
+            return tuple(self._fft(c * (1j * w) ** d, n) for d in range(k + 1))
+        t = np.arange(n) * self.dt
+        out = [np.zeros((self.n_trials, 3, n)) for _ in range(k + 1)]
+        for m in range(w.size):  # a few sinusoids
+            e = np.exp(1j * w[m] * t)
+            for d in range(k + 1):
+                out[d] += np.real(((1j * w[m]) ** d * c[:, :, m])[:, :, None] * e)
+        return tuple(np.ascontiguousarray(np.swapaxes(x, 1, 2)) for x in out)
+
+    def _fft(self, c, n):
+        nfft = self.spectrum.n_fft
+        X = np.zeros(c.shape[:-1] + (nfft // 2 + 1,), dtype=complex)
+        X[..., 1 : 1 + c.shape[-1]] = c * (nfft / 2.0)
+        x = np.fft.irfft(X, n=nfft, axis=-1)[..., :n]
+        return np.ascontiguousarray(np.swapaxes(x, 1, 2))
+
+
+def _amplitude3(value, name) -> np.ndarray:
+    a = as_array(value, name).ravel()
+    if a.size == 1:
+        a = np.repeat(a, 3)
+    if a.size != 3:
+        raise ValueError(f"Expected `{name}` as one value or three (yaw, beta, gamma), got {a.size}")
+    if np.any(a < 0):
+        raise ValueError(f"Expected `{name}` >= 0, got {a.tolist()}")
+    return a
+
+
+class _Model:
+    """Common behaviour: drawing coefficients from the spectrum."""
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def draw(self, rng, n_trials: int, n_samples: int, dt: float) -> MotionRealisation:
+        """Draw the rocking of ``n_trials`` records of ``n_samples`` samples every ``dt`` [s].
+
+        Parameters
+        ----------
+        rng : Generator | SeedSequence | int | None
+            Random stream.
+        n_trials : int
+            Trials.
+        n_samples : int
+            Samples per record (the realisation covers ``[0, (n_samples + 1) dt]``).
+        dt : float
+            Sample interval [s].
+
+        Returns
+        -------
+        MotionRealisation
+        """
+        n_trials = as_int(n_trials, "n_trials", minimum=1)
+        dt = positive(dt, "dt")
+        s = self.spectrum(as_int(n_samples, "n_samples", minimum=1), dt)
+        g = as_generator(rng)
+        m = s.omega.size
+        if s.gaussian:
+            z = g.standard_normal((n_trials, 3, m, 2))
+            c = (z[..., 0] + 1j * z[..., 1]) * np.sqrt(s.power)
+        else:
+            phase = g.random((n_trials, 3, m)) * (2.0 * math.pi)
+            c = np.sqrt(2.0 * s.power) * np.exp(1j * phase)
+        return MotionRealisation(s, c, dt)
+
+    @property
+    def sigma(self) -> np.ndarray:
+        """Standard deviation per axis (yaw, β, γ) [rad]."""
+        return self.amplitude / math.sqrt(2.0)
+
+
+@dataclass(frozen=True)
+class StillBase(_Model):
+    """No rocking."""
+
+    name = "none"
+    kappa = 3.0
+
+    @property
+    def amplitude(self) -> np.ndarray:
+        """Zero amplitudes [rad]."""
+        return np.zeros(3)
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:
+        """The empty spectrum.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per record (unused).
+        dt : float
+            Sample interval [s] (unused).
+
+        Returns
+        -------
+        Spectrum
+        """
+        return Spectrum(np.zeros(0), np.zeros((3, 0)), False)
+
+
+@dataclass(frozen=True)
+class SineMotion(_Model):
+    """One sinusoid per axis with a common period and independent uniform phases.
+
+    Parameters
+    ----------
+    amplitude : array_like
+        Amplitudes (yaw, β, γ) [rad]; one value for all three axes.
+    period : float
+        Rocking period [s].
+    """
+
+    amplitude: np.ndarray
+    period: float = 8.0
+
+    name = "sine"
+    kappa = 1.5
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", _amplitude3(self.amplitude, "amplitude"))
+        object.__setattr__(self, "period", positive(self.period, "period"))
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:
+        """The single line at ``2π/period``.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per record (unused).
+        dt : float
+            Sample interval [s] (unused).
+
+        Returns
+        -------
+        Spectrum
+        """
+        return Spectrum(np.array([2.0 * math.pi / self.period]), (self.amplitude**2 / 2.0)[:, None], False)
+
+
+@dataclass(frozen=True)
+class MultiSineMotion(_Model):
+    """A sum of sines: ``θ_a = Σ_k a_ka sin(2π t / T_k + θ_ka)``, phases uniform and independent.
+
+    Parameters
+    ----------
+    amplitudes : array_like
+        ``(K, 3)`` amplitudes (yaw, β, γ) of each component [rad] (``(K,)``: the same on all axes).
+    periods : array_like
+        ``(K,)`` periods [s].
+    """
+
+    amplitudes: np.ndarray
+    periods: np.ndarray
+
+    name = "multisine"
+
+    def __post_init__(self):
+        p = as_array(self.periods, "periods").ravel()
+        a = as_array(self.amplitudes, "amplitudes")
+        if a.ndim == 1:
+            a = np.repeat(a[:, None], 3, axis=1)
+        if a.shape != (p.size, 3):
+            raise ValueError(f"Expected `amplitudes` of shape ({p.size}, 3) for {p.size} periods, got {a.shape}")
+        if np.any(p <= 0) or np.any(a < 0):
+            raise ValueError("Expected `periods` > 0 and `amplitudes` >= 0")
+        object.__setattr__(self, "periods", p)
+        object.__setattr__(self, "amplitudes", a)
+
+    @property
+    def amplitude(self) -> np.ndarray:
+        """``σ√2`` per axis [rad] (the amplitude of one sine of the same variance)."""
+        return np.sqrt(np.sum(self.amplitudes**2, axis=0))
+
+    @property
+    def kappa(self) -> float:
+        """``E θ⁴/(E θ²)²`` of the β axis (3/2 for one sine, towards 3 for many)."""
+        a2 = self.amplitudes[:, 1] ** 2 / 2.0
+        s2 = a2.sum()
+        if s2 == 0:
+            return 1.5
+        # sum of independent sines: E x⁴ = 3 (Σ a²/2)² − (3/8) Σ a⁴
+        return float(3.0 - 1.5 * np.sum(a2**2) / s2**2)
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:
+        """The lines at ``2π/T_k``.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per record (unused).
+        dt : float
+            Sample interval [s] (unused).
+
+        Returns
+        -------
+        Spectrum
+        """
+        return Spectrum(2.0 * math.pi / self.periods, (self.amplitudes**2 / 2.0).T, False)
+
+
+def _grid(n_samples: int, dt: float, correlation_time: float):
+    from scipy.fft import next_fast_len
+
+    n_fft = next_fast_len(int(max(2 * (n_samples + 2), math.ceil(40.0 * correlation_time / dt))), real=True)
+    n_fft += n_fft % 2
+    m = np.arange(1, n_fft // 2)
+    return n_fft, 2.0 * math.pi * m / (n_fft * dt)
+
+
+@dataclass(frozen=True)
+class NarrowbandMotion(_Model):
+    """Gaussian narrow-band rocking: the shaping-filter spectrum, cut off at ``cutoff·ω0``.
+
+    Parameters
+    ----------
+    amplitude : array_like
+        ``σ√2`` per axis (yaw, β, γ) [rad]; one value for all three.
+    period : float
+        Natural period ``2π/ω0`` [s].
+    damping : float
+        Damping ratio ζ in (0, 1).
+    cutoff : float
+        Highest frequency over ω0 (default 4; the filter spectrum is 1/225 of its
+        low-frequency level there for small ζ).
+    """
+
+    amplitude: np.ndarray
+    period: float = 8.0
+    damping: float = 0.1
+    cutoff: float = 4.0
+
+    name = "narrowband"
+    kappa = 3.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", _amplitude3(self.amplitude, "amplitude"))
+        object.__setattr__(self, "period", positive(self.period, "period"))
+        d = as_float(self.damping, "damping")
+        if not 0.0 < d < 1.0:
+            raise ValueError(f"Expected `damping` in (0, 1), got {d:g}")
+        object.__setattr__(self, "damping", d)
+        c = positive(self.cutoff, "cutoff")
+        if c <= 1.0:
+            raise ValueError(f"Expected `cutoff` > 1 (a multiple of ω0), got {c:g}")
+        object.__setattr__(self, "cutoff", c)
+
+    @property
+    def omega0(self) -> float:
+        """Natural frequency ω0 [rad/s]."""
+        return 2.0 * math.pi / self.period
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:
+        """The filter spectrum on the FFT grid, normalised to ``σ²`` per axis.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per record.
+        dt : float
+            Sample interval [s].
+
+        Returns
+        -------
+        Spectrum
+
+        Raises
+        ------
+        ValueError
+            If the cut-off is beyond the Nyquist frequency of ``dt``.
+        """
+        w0, z = self.omega0, self.damping
+        if self.cutoff * w0 >= math.pi / dt:
+            raise ValueError(f"Expected the narrow-band cut-off {self.cutoff:g}·ω0 = {self.cutoff * w0 / (2 * math.pi):g} Hz below the Nyquist frequency {0.5 / dt:g} Hz")
+        n_fft, w = _grid(n_samples, dt, 1.0 / (z * w0))
+        w = w[w <= self.cutoff * w0]
+        s = 1.0 / ((w0 * w0 - w * w) ** 2 + 4.0 * z * z * w0 * w0 * w * w)
+        p = s / s.sum()
+        return Spectrum(w, (self.amplitude[:, None] ** 2 / 2.0) * p[None, :], True, n_fft)
+
+
+@dataclass(frozen=True)
+class WhiteMotion(_Model):
+    """Band-limited white Gaussian rocking: flat spectrum up to ``bandwidth``.
+
+    Parameters
+    ----------
+    amplitude : array_like
+        ``σ√2`` per axis (yaw, β, γ) [rad]; one value for all three.
+    bandwidth : float or None
+        Highest frequency [Hz]; None: the Nyquist frequency of the sampling,
+        which makes the samples nearly independent (white).
+    """
+
+    amplitude: np.ndarray
+    bandwidth: float | None = None
+
+    name = "white"
+    kappa = 3.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", _amplitude3(self.amplitude, "amplitude"))
+        if self.bandwidth is not None:
+            object.__setattr__(self, "bandwidth", positive(self.bandwidth, "bandwidth"))
+
+    def spectrum(self, n_samples: int, dt: float) -> Spectrum:
+        """The flat spectrum on the FFT grid up to the bandwidth.
+
+        Parameters
+        ----------
+        n_samples : int
+            Samples per record.
+        dt : float
+            Sample interval [s].
+
+        Returns
+        -------
+        Spectrum
+
+        Raises
+        ------
+        ValueError
+            If the bandwidth is beyond the Nyquist frequency or too narrow for the record.
+        """
+        nyquist = 0.5 / dt
+        bw = nyquist if self.bandwidth is None else self.bandwidth
+        if bw > nyquist * (1 + 1e-12):
+            raise ValueError(f"Expected `bandwidth` <= the Nyquist frequency {nyquist:g} Hz, got {bw:g}")
+        n_fft, w = _grid(n_samples, dt, 1.0 / (2.0 * math.pi * bw))
+        w = w[w <= 2.0 * math.pi * bw * (1 + 1e-12)]
+        if w.size == 0:
+            raise ValueError(f"Expected `bandwidth` above the record's frequency resolution, got {bw:g} Hz")
+        p = np.full(w.size, 1.0 / w.size)
+        return Spectrum(w, (self.amplitude[:, None] ** 2 / 2.0) * p[None, :], True, n_fft)
+
+
+#: Model names of the command line.
+MOTIONS = {"none": StillBase, "sine": SineMotion, "narrowband": NarrowbandMotion, "white": WhiteMotion}
+
+
+def motion_model(name: str, amplitude=0.0, *, period: float = 8.0, damping: float = 0.1, bandwidth: float | None = None):
+    """A rocking model by name.
+
+    Parameters
+    ----------
+    name : str
+        ``none``, ``sine``, ``narrowband`` or ``white``.
+    amplitude : array_like
+        Amplitudes (yaw, β, γ) [rad] (``σ√2`` for the Gaussian models).
+    period : float
+        Period [s] (sine, narrowband).
+    damping : float
+        Damping ratio (narrowband).
+    bandwidth : float or None
+        Bandwidth [Hz] (white).
+
+    Returns
+    -------
+    StillBase | SineMotion | NarrowbandMotion | WhiteMotion
+
+    Raises
+    ------
+    ValueError
+        For an unknown name or a bad parameter.
+    """
+    if name == "none":
+        return StillBase()
+    if name == "sine":
+        return SineMotion(amplitude, period)
+    if name == "narrowband":
+        return NarrowbandMotion(amplitude, period, damping)
+    if name == "white":
+        return WhiteMotion(amplitude, bandwidth)
+    raise ValueError(f"Expected `rocking` among {', '.join(MOTIONS)}, got {name!r}")

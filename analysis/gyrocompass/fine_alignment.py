@@ -1,0 +1,633 @@
+"""Kalman fine alignment on a rocking base, with NEES and NIS consistency.
+
+A strapdown navigator runs in the NED frame from an initial attitude with an
+error drawn from the filter's prior (the accuracy of a coarse alignment), and
+its velocity is compared, every epoch, with the zero velocity of the rocking
+centre.  A closed-loop error-state Kalman filter estimates
+
+    x = (φ, δv, ε^n, ∇^n[, θ_r, θ_r'])
+
+the attitude error φ (``C̃ = (I − [φ×]) C``; φ_N, φ_E are the tilt errors,
+``−φ_D`` the azimuth error), the velocity error δv, the gyro and accelerometer
+biases resolved in the navigation frame (constants while the attitude is), and
+optionally the rocking itself: the angles and rates of the three axes as the
+states of the second-order shaping filter ``θ'' + 2ζω0 θ' + ω0² θ = w`` per
+axis, the *rocking model the filter assumes* (:class:`Disturbance`).  A block
+at the lever arm r from the rocking centre moves with ``v_r = C (ω × r)
+≈ L θ_r'``, ``L = −C0 [r×] J0``, which the velocity measurement sees.  The
+error dynamics are
+
+    φ' = −ω_ie × φ − ε^n,   δv' = f^n × φ − 2 ω_ie × δv + ∇^n,
+
+discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r' + v``.
+
+The model does not depend on the trial, so filterpy computes the gains and
+covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
+they are applied to every trial at once; the navigator integrates the epoch
+increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
+step per epoch vectorised over trials.  After every update the attitude and
+velocity estimates are fed back and the bias estimates compensate the sensors.
+
+Consistency: the normalised estimation error squared (NEES, the whole state,
+against the truth of the simulation) and the normalised innovation squared
+(NIS = yᵀ S⁻¹ y) averaged over trials, against their two-sided χ² bands.
+
+References
+----------
+Bar-Shalom, Y., Li, X. R., Kirubarajan, T., *Estimation with Applications to
+Tracking and Navigation*, Wiley, 2001, sec. 5.4 (NEES and NIS tests).
+Savage, P. G., *Strapdown Analytics*, 2nd ed., 2007, ch. 12 (the φ-angle error model).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core import kalman
+from ..core.validation import as_array, as_float, nonnegative, positive
+from .alignment_estimate import AlignmentEstimate
+from .earth import earth_rate_ned, gravity_ned
+from .imu import ImuRecord, Scenario, SensorErrors, simulate_imu
+from .preintegration import EpochIncrements, preintegrate
+from .tilt_attitude import angles_from_matrix, attitude_matrix, euler_rate_matrix
+
+__all__ = [
+    "Disturbance",
+    "FilterTuning",
+    "FineAlignmentModel",
+    "FineAlignmentResult",
+    "EpochRecord",
+    "epoch_record",
+    "simulate_epoch_record",
+    "filter_model",
+    "fine_alignment",
+    "lever_velocity_sigma",
+    "lever_matrix",
+    "assumed_disturbance",
+    "DISTURBANCE_KINDS",
+    "MIN_DAMPING",
+]
+
+DISTURBANCE_KINDS = ("none", "white", "shaping")
+#: Smallest damping of the assumed shaping filter: a sinusoid is modelled as a lightly damped
+#: oscillator, so that the filter keeps following the harmonics a rocking block adds to it.
+MIN_DAMPING = 0.02
+
+
+def _skew(w):
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+@dataclass(frozen=True)
+class Disturbance:
+    """The rocking as the filter models it (it reaches the measurement through the lever arm).
+
+    Parameters
+    ----------
+    kind : str
+        ``"none"`` (ignored), ``"white"`` (the lever-arm velocity added to the
+        measurement noise) or ``"shaping"`` (the rocking angles and rates of a
+        second-order shaping filter per axis, six more states).
+    sigma : array_like
+        Standard deviation of the rocking angle per axis (yaw, β, γ) [rad].
+    period : float
+        Natural period of the shaping filter [s].
+    damping : float
+        Damping ratio of the shaping filter, in [0, 1) (0: a sinusoid of random phase).
+    """
+
+    kind: str = "none"
+    sigma: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    period: float = 8.0
+    damping: float = 0.1
+
+    def __post_init__(self):
+        if self.kind not in DISTURBANCE_KINDS:
+            raise ValueError(f"Expected `kind` in {DISTURBANCE_KINDS}, got {self.kind!r}")
+        s = as_array(self.sigma, "sigma").ravel()
+        s = np.repeat(s, 3) if s.size == 1 else s
+        if s.size != 3 or np.any(s < 0):
+            raise ValueError(f"Expected `sigma` as three values >= 0 (yaw, beta, gamma) [rad], got {s.tolist()}")
+        object.__setattr__(self, "sigma", s)
+        object.__setattr__(self, "period", positive(self.period, "period"))
+        d = as_float(self.damping, "damping")
+        if not 0.0 <= d < 1.0:
+            raise ValueError(f"Expected `damping` in [0, 1), got {d:g}")
+        object.__setattr__(self, "damping", d)
+
+
+@dataclass(frozen=True)
+class FilterTuning:
+    """What the filter assumes: prior, sensor noise, the disturbance model, the epoch.
+
+    Parameters
+    ----------
+    epoch : float
+        Measurement interval [s] (rounded to whole samples).
+    prior_tilt : float
+        Prior standard deviation of the tilt errors φ_N, φ_E [rad].
+    prior_heading : float
+        Prior standard deviation of the azimuth error [rad].
+    prior_velocity : float
+        Prior standard deviation of the velocity error [m/s] (besides the disturbance).
+    gyro_bias : float
+        Prior standard deviation of each gyro bias [rad/s].
+    accel_bias : float
+        Prior standard deviation of each accelerometer bias [m/s²].
+    gyro_noise : float
+        Angle random walk assumed [rad/√s].
+    accel_noise : float
+        Velocity random walk assumed [m/s/√s].
+    measurement_noise : float
+        Standard deviation of the zero-velocity measurement [m/s].
+    disturbance : Disturbance
+        The rocking model the filter assumes for the lever-arm velocity.
+    lever_arm_known : bool
+        Compensate the lever-arm velocity with the measured rate and the known lever arm.
+    """
+
+    epoch: float = 0.1
+    prior_tilt: float = math.radians(0.1)
+    prior_heading: float = math.radians(1.0)
+    prior_velocity: float = 1e-3
+    gyro_bias: float = math.radians(0.01) / 3600.0
+    accel_bias: float = 1e-3
+    gyro_noise: float = 0.0
+    accel_noise: float = 0.0
+    measurement_noise: float = 1e-3
+    disturbance: Disturbance = field(default_factory=Disturbance)
+    lever_arm_known: bool = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "epoch", positive(self.epoch, "epoch"))
+        for name in ("prior_tilt", "prior_heading", "prior_velocity", "measurement_noise"):
+            object.__setattr__(self, name, positive(getattr(self, name), name))
+        for name in ("gyro_bias", "accel_bias", "gyro_noise", "accel_noise"):
+            object.__setattr__(self, name, nonnegative(getattr(self, name), name))
+        if not isinstance(self.disturbance, Disturbance):
+            raise TypeError(f"Expected `disturbance` to be a Disturbance, got {type(self.disturbance).__name__}")
+
+
+@dataclass(frozen=True)
+class FineAlignmentModel:
+    """The discrete error model of the filter.
+
+    Attributes
+    ----------
+    F, Q, H, R, P0 : ndarray
+        Transition, process noise, measurement matrix, measurement noise and prior per epoch.
+    epoch : float
+        Epoch length [s].
+    samples_per_epoch : int
+        Samples per epoch.
+    names : tuple of str
+        State names.
+    rocking_axes : tuple of int
+        Axes (0 yaw, 1 β, 2 γ) whose angle and rate are states (12 + 2k, 13 + 2k).
+    """
+
+    F: np.ndarray
+    Q: np.ndarray
+    H: np.ndarray
+    R: np.ndarray
+    P0: np.ndarray
+    epoch: float
+    samples_per_epoch: int
+    names: tuple
+    rocking_axes: tuple = ()
+
+    @property
+    def dim(self) -> int:
+        """State dimension."""
+        return self.F.shape[0]
+
+    @property
+    def has_rocking_states(self) -> bool:
+        """Whether the rocking angles and rates are states (``"shaping"``)."""
+        return bool(self.rocking_axes)
+
+
+def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel:
+    """Discretise the error model of :mod:`strapdown.analysis.gyrocompass.fine_alignment` for a scenario.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Latitude and sampling.
+    tuning : FilterTuning
+        What the filter assumes.
+
+    Returns
+    -------
+    FineAlignmentModel
+    """
+    M = max(1, int(round(tuning.epoch / scenario.dt)))
+    dt = M * scenario.dt
+    W = earth_rate_ned(scenario.latitude)
+    fn = -gravity_ned(scenario.latitude)
+    dist = tuning.disturbance
+    axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.kind == "shaping" else ()
+    n = 12 + 2 * len(axes)
+    A = np.zeros((n, n))
+    A[0:3, 0:3] = -_skew(W)
+    A[0:3, 6:9] = -np.eye(3)
+    A[3:6, 0:3] = _skew(fn)
+    A[3:6, 3:6] = -2.0 * _skew(W)
+    A[3:6, 9:12] = np.eye(3)
+    Qc = np.zeros((n, n))
+    Qc[0:3, 0:3] = tuning.gyro_noise**2 * np.eye(3)
+    Qc[3:6, 3:6] = tuning.accel_noise**2 * np.eye(3)
+    P0 = np.zeros((n, n))
+    P0[0:3, 0:3] = np.diag([tuning.prior_tilt**2, tuning.prior_tilt**2, tuning.prior_heading**2])
+    P0[3:6, 3:6] = tuning.prior_velocity**2 * np.eye(3)
+    P0[6:9, 6:9] = tuning.gyro_bias**2 * np.eye(3)
+    P0[9:12, 9:12] = tuning.accel_bias**2 * np.eye(3)
+    H = np.zeros((3, n))
+    H[:, 3:6] = np.eye(3)
+    R = tuning.measurement_noise**2 * np.eye(3)
+    names = ("phi_N", "phi_E", "phi_D", "dv_N", "dv_E", "dv_D", "eps_N", "eps_E", "eps_D", "acc_N", "acc_E", "acc_D")
+    w = 2.0 * math.pi / dist.period
+    s2 = dist.sigma**2
+    L = lever_matrix(scenario)
+    if dist.kind == "white" and not tuning.lever_arm_known:
+        Pv = L @ np.diag(w * w * s2) @ L.T  # the lever-arm velocity of the assumed rocking
+        R = R + np.diag(np.diag(Pv))
+        P0[3:6, 3:6] += Pv
+    elif axes:
+        z = dist.damping
+        for k, i in enumerate(axes):
+            a, b = 12 + 2 * k, 13 + 2 * k
+            A[a, b] = 1.0
+            A[b, a], A[b, b] = -w * w, -2.0 * z * w
+            Qc[b, b] = 4.0 * z * w**3 * s2[i]
+            P0[a, a], P0[b, b] = s2[i], (w * w) * s2[i]
+        rates = slice(13, n, 2)
+        if not tuning.lever_arm_known:
+            La = L[:, list(axes)]
+            H[:, rates] = La
+            # v_INS(0) = 0, so δv(0) = −L θ_r'(0)
+            Pr = np.diag(w * w * s2[list(axes)])
+            P0[3:6, 3:6] += La @ Pr @ La.T
+            P0[3:6, rates] = -La @ Pr
+            P0[rates, 3:6] = -(La @ Pr).T
+        labels = ("psi_r", "beta_r", "gamma_r")
+        names = names + tuple(x for i in axes for x in (labels[i], labels[i] + "'"))
+    F, Q = kalman.discretise(A, Qc, dt)
+    return FineAlignmentModel(F, Q, H, R, P0, dt, M, names, axes)
+
+
+def lever_matrix(scenario: Scenario) -> np.ndarray:
+    """``L = −C0 [r×] J0``: the lever-arm velocity per unit rocking rate, ``v_r ≈ L θ_r'`` [m/rad].
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Stable attitude and lever arm.
+
+    Returns
+    -------
+    ndarray
+        ``(3, 3)``: NED velocity per (ψ', β', γ').
+    """
+    C0 = attitude_matrix(scenario.stable_angles)
+    return -C0 @ _skew(scenario.lever_arm) @ euler_rate_matrix(scenario.stable_angles)
+
+
+def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
+    """Standard deviation of the lever-arm velocity per NED axis [m/s], to first order in the rocking.
+
+    ``v = C0 (J0 θ_r' × r)`` with C0 the stable attitude and J0 the Euler-rate
+    matrix there; the rate variances come from the motion's spectrum.
+
+    Parameters
+    ----------
+    motion : rocking model
+        From :mod:`strapdown.analysis.gyrocompass.base_motion`.
+    scenario : Scenario
+        Stable attitude, lever arm and sampling.
+
+    Returns
+    -------
+    ndarray
+        ``(3,)``.
+    """
+    s = motion.spectrum(scenario.n_samples, scenario.dt)
+    rate_var = np.sum(s.power * s.omega**2, axis=1)
+    L = lever_matrix(scenario)
+    return np.sqrt((L * L) @ rate_var)
+
+
+def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") -> Disturbance:
+    """The disturbance model a filter that assumes ``motion`` would use.
+
+    Parameters
+    ----------
+    motion : rocking model
+        The rocking model the filter assumes (the true one for a filter that knows it).
+    scenario : Scenario
+        Stable attitude, lever arm and sampling.
+    kind : str
+        ``"white"`` or ``"shaping"`` (``"none"`` when the lever arm is zero).  The
+        shaping filter takes the rocking's period and damping (at least
+        :data:`MIN_DAMPING`; 0.7 for white rocking).
+
+    Returns
+    -------
+    Disturbance
+    """
+    if kind == "none" or not np.any(lever_velocity_sigma(motion, scenario)):
+        return Disturbance("none")
+    s = motion.spectrum(scenario.n_samples, scenario.dt)
+    sigma = s.sigma
+    rate = np.sqrt(np.sum(s.power * s.omega**2, axis=1))
+    # the period whose oscillator has the rate variance of the rocking
+    period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
+    damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))
+    return Disturbance(kind, sigma, period, max(damping, MIN_DAMPING))
+
+
+@dataclass(frozen=True)
+class FineAlignmentResult:
+    """Estimates at the end of the alignment and the consistency of the filter over time.
+
+    Attributes
+    ----------
+    estimate : AlignmentEstimate
+        Heading and tilts at the end, against the truth there.
+    times : ndarray
+        ``(E,)`` epoch ends [s].
+    nees : ndarray
+        ``(n, E)`` NEES of the whole state per trial and epoch.
+    nis : ndarray
+        ``(n, E)`` NIS per trial and epoch.
+    heading_error : ndarray
+        ``(n, E)`` azimuth error of the corrected navigator [rad].
+    heading_sigma : ndarray
+        ``(E,)`` the filter's standard deviation of the azimuth error [rad].
+    dim : int
+        State dimension (degrees of freedom of one NEES).
+    meas_dim : int
+        Measurement dimension (of one NIS).
+    """
+
+    estimate: AlignmentEstimate
+    times: np.ndarray
+    nees: np.ndarray
+    nis: np.ndarray
+    heading_error: np.ndarray
+    heading_sigma: np.ndarray
+    dim: int
+    meas_dim: int
+
+
+@dataclass(frozen=True)
+class EpochRecord:
+    """Epoch increments of ``n`` trials with the truth at the epoch boundaries.
+
+    Attributes
+    ----------
+    scenario : Scenario
+        The configuration.
+    increments : EpochIncrements
+        Rotation, velocity and moment of every epoch.
+    truth_angles : ndarray
+        ``(n, E + 1, 3)`` true (ψ, β, γ) at the epoch boundaries [rad].
+    truth_velocity : ndarray
+        ``(n, E + 1, 3)`` true velocity of the block, NED [m/s].
+    truth_rates : ndarray
+        ``(n, E + 1, 3)`` time derivatives of the true angles [rad/s].
+    end_rate : ndarray
+        ``(n, E + 1, 3)`` gyro rate of the sample ending at each boundary (the first sample's at 0) [rad/s].
+    gyro_bias, accel_bias : ndarray
+        ``(n, 3)`` true biases [rad/s, m/s²].
+    """
+
+    scenario: Scenario
+    increments: EpochIncrements
+    truth_angles: np.ndarray
+    truth_velocity: np.ndarray
+    truth_rates: np.ndarray
+    end_rate: np.ndarray
+    gyro_bias: np.ndarray
+    accel_bias: np.ndarray
+
+    @property
+    def n_trials(self) -> int:
+        """Trials."""
+        return self.truth_angles.shape[0]
+
+
+def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
+    """Condense a sample record (with its truth every ``samples_per_epoch`` samples) into epochs.
+
+    Parameters
+    ----------
+    record : ImuRecord
+        Increments with ``truth_stride = samples_per_epoch``.
+    samples_per_epoch : int
+        M.
+
+    Returns
+    -------
+    EpochRecord
+
+    Raises
+    ------
+    ValueError
+        If the truth is not at every epoch boundary.
+    """
+    M = int(samples_per_epoch)
+    sc = record.scenario
+    ep = preintegrate(record.dtheta, record.dv, sc.dt, M)
+    E = ep.n_epochs
+    if record.truth_angles.shape[1] < E + 1 or not np.allclose(record.truth_times[: E + 1], M * sc.dt * np.arange(E + 1)):
+        raise ValueError(f"Expected the record's truth every {M} samples (simulate_imu(..., truth_stride={M}))")
+    rate = np.concatenate([record.dtheta[:, :1], record.dtheta[:, M - 1 :: M][:, :E]], axis=1) / sc.dt
+    return EpochRecord(sc, ep, record.truth_angles[:, : E + 1], record.truth_velocity[:, : E + 1], record.truth_rates[:, : E + 1], rate, record.gyro_bias, record.accel_bias)
+
+
+def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32) -> EpochRecord:
+    """Simulate ``n_trials`` records in chunks and keep only their epoch increments (bounded memory).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The configuration.
+    errors : SensorErrors or None
+        Sensor errors.
+    samples_per_epoch : int
+        M.
+    n_trials : int
+        Trials.
+    rng : Generator | SeedSequence | int | None
+        Random stream (consumed chunk after chunk).
+    chunk : int
+        Trials simulated at once.
+
+    Returns
+    -------
+    EpochRecord
+    """
+    from .rocking import as_generator
+
+    g = as_generator(rng)
+    parts = []
+    left = int(n_trials)
+    while left > 0:
+        k = min(int(chunk), left)
+        parts.append(epoch_record(simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=samples_per_epoch), samples_per_epoch))
+        left -= k
+    cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+    inc = EpochIncrements(*(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment")), parts[0].increments.epoch, samples_per_epoch)
+    return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
+
+
+def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None) -> FineAlignmentResult:
+    """Run the fine-alignment filter on every trial of a record.
+
+    Parameters
+    ----------
+    record : EpochRecord or ImuRecord
+        Epoch increments with the truth at the boundaries, or a sample record with
+        its truth every epoch (``truth_stride`` = samples per epoch).
+    tuning : FilterTuning, optional
+        What the filter assumes (default :class:`FilterTuning`).
+    rng : Generator | SeedSequence | int | None
+        Stream of the initial attitude errors (drawn from the prior) and of the
+        measurement noise.
+    velocity_noise : float, optional
+        True standard deviation of the zero-velocity reference [m/s] (default:
+        the filter's ``measurement_noise``, a filter that knows it).
+    sequence : FilterSequence, optional
+        Gains and covariances computed before for the same model (saves the filterpy run).
+
+    Returns
+    -------
+    FineAlignmentResult
+
+    Raises
+    ------
+    ValueError
+        If the record's truth is not at every epoch, or it is shorter than one epoch.
+    """
+    from .rocking import as_generator
+
+    tuning = FilterTuning() if tuning is None else tuning
+    sc = record.scenario
+    model = filter_model(sc, tuning)
+    M, D = model.samples_per_epoch, model.epoch
+    if isinstance(record, ImuRecord):
+        record = epoch_record(record, M)
+    if not isinstance(record, EpochRecord):
+        raise TypeError(f"Expected `record` to be an EpochRecord or ImuRecord, got {type(record).__name__}")
+    ep = record.increments
+    if ep.samples_per_epoch != M:
+        raise ValueError(f"Expected epochs of {M} samples (the tuning's epoch), got {ep.samples_per_epoch}")
+    n, E = record.n_trials, ep.n_epochs
+    seq = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, E) if sequence is None else sequence
+    noise = tuning.measurement_noise if velocity_noise is None else nonnegative(velocity_noise, "velocity_noise")
+    g = as_generator(rng)
+    W, gn = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude)
+    Wx = _skew(W)
+    E_earth = _rodrigues(-W * D)
+    # everything that does not depend on the filter, for all epochs at once
+    dR = _quat_to_matrix(ep.rotation)  # (n, E, 3, 3)
+    C_true = attitude_matrix(record.truth_angles[:, : E + 1])
+    v_true = record.truth_velocity[:, : E + 1]
+    eps_true = np.einsum("nkij,nj->nki", C_true, record.gyro_bias)
+    acc_true = np.einsum("nkij,nj->nki", C_true, record.accel_bias)
+    r = sc.lever_arm
+    w_end = record.end_rate[:, 1:]  # gyro rate at each epoch end
+    phi0 = g.standard_normal((n, 3)) * np.sqrt(np.diag(model.P0)[0:3])
+    meas_noise = noise * g.standard_normal((n, E, 3))
+    C = _rodrigues(-phi0) @ C_true[:, 0]  # C̃ = (I − [φ×]) C
+    v = tuning.prior_velocity * g.standard_normal((n, 3))  # the zero-velocity start, its error drawn from the prior
+    if tuning.lever_arm_known:
+        v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
+    eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
+    shaping = model.has_rocking_states
+    ax = list(model.rocking_axes)
+    xd = np.zeros((n, 2 * len(ax)))
+    rock_true = np.empty((n, E + 1, 2 * len(ax)))
+    rock_true[:, :, 0::2] = (record.truth_angles - sc.stable_angles)[:, :, ax]
+    rock_true[:, :, 1::2] = record.truth_rates[:, :, ax]
+    FddT = model.F[12:, 12:].T if shaping else None
+    nees = np.empty((n, E))
+    nis = np.empty((n, E))
+    heading_error = np.empty((n, E))
+    Sinv = np.linalg.inv(seq.innovation)
+    Pinv = np.linalg.inv(seq.posterior)
+    KT = np.swapaxes(seq.gains, 1, 2)
+    HT = model.H.T
+    err = np.empty((n, model.dim))
+    for j in range(E):  # one step per epoch, vectorised over trials
+        eb = np.einsum("nji,nj->ni", C, eps)  # C̃ᵀ ε̂^n
+        ab = np.einsum("nji,nj->ni", C, acc)
+        dV = np.einsum("nij,nj->ni", C, ep.velocity[:, j] - ab * D) - np.einsum("nij,nj->ni", C, ep.moment[:, j]) @ Wx.T
+        v = v + dV + gn * D - 2.0 * D * (v @ Wx.T)
+        C = E_earth @ C @ dR[:, j] @ _rodrigues(-eb * D)
+        z = v + meas_noise[:, j]
+        if tuning.lever_arm_known:
+            z = z - np.einsum("nij,nj->ni", C, _cross(w_end[:, j] - eb, r))
+        pred = np.zeros((n, model.dim))
+        if shaping:
+            xd = xd @ FddT
+            pred[:, 12:] = xd
+        y = z - pred @ HT
+        x = pred + y @ KT[j]
+        C = _rodrigues(x[:, 0:3]) @ C
+        v = v - x[:, 3:6]
+        eps, acc = eps + x[:, 6:9], acc + x[:, 9:12]
+        if shaping:
+            xd = x[:, 12:]
+        # consistency against the truth of the simulation
+        err[:, 0:3] = _small_rotation(np.einsum("nij,nkj->nik", C, C_true[:, j + 1]))
+        err[:, 3:6] = v - v_true[:, j + 1]
+        err[:, 6:9] = eps_true[:, j + 1] - eps
+        err[:, 9:12] = acc_true[:, j + 1] - acc
+        if shaping:
+            err[:, 12:] = rock_true[:, j + 1] - xd
+        nees[:, j] = np.sum((err @ Pinv[j]) * err, axis=1)
+        nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
+        heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
+    a = angles_from_matrix(C)
+    t = record.truth_angles[:, E]
+    est = AlignmentEstimate("kalman", a.heading, a.beta, a.gamma, t[:, 0], t[:, 1], t[:, 2], "end")
+    return FineAlignmentResult(est, D * np.arange(1, E + 1), nees, nis, heading_error, np.sqrt(seq.posterior[:, 2, 2]), model.dim, 3)
+
+
+def _cross(a, b):
+    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1], a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2], a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
+
+
+def _rodrigues(phi):
+    """Rotation matrices ``exp([φ×])`` of rotation vectors ``(..., 3)``."""
+    phi = np.asarray(phi, dtype=float)
+    th2 = np.sum(phi * phi, axis=-1)[..., None, None]
+    small = th2 < 1e-12
+    th = np.sqrt(np.where(small, 1.0, th2))
+    a = np.where(small, 1.0 - th2 / 6.0, np.sin(th) / th)
+    b = np.where(small, 0.5 - th2 / 24.0, (1.0 - np.cos(th)) / np.where(small, 1.0, th2))
+    K = np.zeros(phi.shape[:-1] + (3, 3))
+    K[..., 0, 1], K[..., 0, 2], K[..., 1, 2] = -phi[..., 2], phi[..., 1], -phi[..., 0]
+    K[..., 1, 0], K[..., 2, 0], K[..., 2, 1] = phi[..., 2], -phi[..., 1], phi[..., 0]
+    return np.eye(3) + a * K + b * (K @ K)
+
+
+def _small_rotation(Er):
+    """φ with ``Er = C̃ Cᵀ = exp(−[φ×])``, from the antisymmetric part (angles below 90°)."""
+    s = 0.5 * np.stack([Er[..., 2, 1] - Er[..., 1, 2], Er[..., 0, 2] - Er[..., 2, 0], Er[..., 1, 0] - Er[..., 0, 1]], axis=-1)
+    sn = np.linalg.norm(s, axis=-1, keepdims=True)
+    scale = np.where(sn > 1e-15, np.arcsin(np.minimum(sn, 1.0)) / np.where(sn > 1e-15, sn, 1.0), 1.0)
+    return -s * scale
+
+
+def _quat_to_matrix(q):
+    """Rotation matrices of scalar-first unit quaternions ``(..., 4)`` (scipy)."""
+    from scipy.spatial.transform import Rotation
+
+    q = np.asarray(q, dtype=float)
+    return Rotation.from_quat(q.reshape(-1, 4), scalar_first=True).as_matrix().reshape(q.shape[:-1] + (3, 3))

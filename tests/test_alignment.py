@@ -1,0 +1,295 @@
+"""Self-alignment on a rocking base: kinematics, sensor record, the three methods against theory.
+
+Every Monte Carlo check has a fixed seed and compares a theory with a 95 %
+interval built from the batch standard error; where a check is deterministic
+(no randomness in the trial) the tolerance is the size of the neglected
+second-order term.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from strapdown.analysis.core import montecarlo
+from strapdown.analysis.gyrocompass.alignment_monte_carlo import AlignmentKernel, AlignmentOptions, alignment_monte_carlo
+from strapdown.analysis.gyrocompass.alignment_theory import analytic_theory
+from strapdown.analysis.gyrocompass.analytic_alignment import analytic_alignment
+from strapdown.analysis.gyrocompass.azimuth import azimuth_error, second_order_theory
+from strapdown.analysis.gyrocompass.base_motion import NarrowbandMotion, SineMotion, WhiteMotion
+from strapdown.analysis.gyrocompass.earth import EARTH_RATE, earth_rate_ned, gravity_ned, normal_gravity
+from strapdown.analysis.gyrocompass.imu import Scenario, SensorErrors, simulate_imu
+from strapdown.analysis.gyrocompass.inertial_alignment import inertial_alignment, wahba_rotation
+from strapdown.analysis.gyrocompass.preintegration import preintegrate
+from strapdown.analysis.gyrocompass.tilt_attitude import attitude_matrix, body_acceleration, body_rate, tilts_from_specific_force
+
+R = np.radians
+B_001 = R(0.01) / 3600.0  # 0.01 deg/h [rad/s]
+
+
+def _inside(ci, value):
+    return ci[0] <= value <= ci[1]
+
+
+# ---------------------------------------------------------------- kinematics
+def test_attitude_is_the_composition_of_elementary_rotations():
+    a = np.array([0.7, -0.3, 0.4])
+    C = Rotation.from_euler("z", a[0]) * Rotation.from_euler("x", -a[1]) * Rotation.from_euler("y", a[2])
+    np.testing.assert_allclose(attitude_matrix(a), C.as_matrix(), atol=1e-15)
+
+
+def test_body_rate_and_acceleration_are_the_derivatives_of_the_attitude():
+    f = lambda t: np.array([0.7 + 0.3 * np.sin(t), -0.3 + 0.2 * np.cos(2 * t), 0.4 + 0.1 * t**2])  # noqa: E731
+    df = lambda t: np.array([0.3 * np.cos(t), -0.4 * np.sin(2 * t), 0.2 * t])  # noqa: E731
+    ddf = lambda t: np.array([-0.3 * np.sin(t), -0.8 * np.cos(2 * t), 0.2])  # noqa: E731
+    t, h = 0.3, 1e-6
+    C = attitude_matrix(f(t))
+    W = C.T @ (attitude_matrix(f(t + h)) - attitude_matrix(f(t - h))) / (2 * h)
+    np.testing.assert_allclose(body_rate(f(t), df(t)), [W[2, 1], W[0, 2], W[1, 0]], atol=1e-9)
+    wd = (body_rate(f(t + h), df(t + h)) - body_rate(f(t - h), df(t - h))) / (2 * h)
+    np.testing.assert_allclose(body_acceleration(f(t), df(t), ddf(t)), wd, atol=1e-8)
+
+
+def test_two_gyros_read_the_papers_A_and_B_at_zero_heading():
+    """At ψ = 0 the horizontal gyros read Ω (A, B) of Hrechka & Koroliov (after eq. (2))."""
+    phi, b, g = 1.0, 0.05, -0.03
+    w = attitude_matrix([0.0, b, g]).T @ earth_rate_ned(phi)
+    A = math.cos(phi) * math.cos(g) + math.sin(phi) * math.cos(b) * math.sin(g)
+    assert w[:2] / EARTH_RATE == pytest.approx([A, math.sin(phi) * math.sin(b)], abs=1e-15)
+    f = attitude_matrix([0.4, b, g]).T @ -gravity_ned(phi)
+    assert tilts_from_specific_force(f) == pytest.approx([b, g], abs=1e-15)
+
+
+def test_normal_gravity_wgs84():
+    assert normal_gravity(0.0) == pytest.approx(9.7803253359, abs=1e-10)
+    assert normal_gravity(math.pi / 2) == pytest.approx(9.8321849378, abs=1e-9)  # NIMA TR8350.2, table 3.4
+
+
+# ---------------------------------------------------------------- base motion
+def test_fft_evaluation_equals_the_sum_of_sinusoids():
+    m = NarrowbandMotion(0.02, 8.0, 0.1)
+    r = m.draw(1, 2, 400, 0.05)
+    a, d, _ = r.evaluate(400, 0.013)
+    t = 0.013 + np.arange(400) * 0.05
+    s = r.spectrum
+    direct = np.real(r.coefficients[1, 2, :, None] * np.exp(1j * np.outer(s.omega, t))).sum(axis=0)
+    rate = np.real(1j * s.omega[:, None] * r.coefficients[1, 2, :, None] * np.exp(1j * np.outer(s.omega, t))).sum(axis=0)
+    np.testing.assert_allclose(a[1, :, 2], direct, atol=1e-15)
+    np.testing.assert_allclose(d[1, :, 2], rate, atol=1e-14)
+
+
+def test_rocking_statistics():
+    m = NarrowbandMotion([0.01, 0.02, 0.03], 8.0, 0.1)
+    (a,) = m.draw(2, 1000, 3, 0.1).evaluate(1, derivatives=0)
+    # Gaussian coefficients: the value at an instant is N(0, σ²); SE of a std from 1000 draws ≈ 2.2 %
+    np.testing.assert_allclose(m.spectrum(3, 0.1).sigma, m.sigma, rtol=1e-12)
+    np.testing.assert_allclose(a[:, 0].std(axis=0), m.sigma, rtol=0.08)
+    w = WhiteMotion(0.01)
+    x = w.draw(3, 200, 400, 0.01).evaluate(400, derivatives=0)[0][:, :, 1]
+    assert abs(np.mean(x[:, :-1] * x[:, 1:]) / np.mean(x * x)) < 0.02  # white at the sample rate
+    s = SineMotion([0.01, 0.02, 0.03], 5.0).draw(4, 64, 100, 0.1).evaluate(100)[0]
+    np.testing.assert_allclose(np.abs(s).max(axis=(0, 1)), [0.01, 0.02, 0.03], rtol=2e-3)
+
+
+# ---------------------------------------------------------------- sensor record
+def test_increments_reproduce_the_true_attitude_and_velocity():
+    """An independent navigator (scipy rotations) integrates the record back to the truth."""
+    lat = R(50.0)
+    sc = Scenario(lat, heading=0.4, beta0=0.01, gamma0=-0.02, motion=SineMotion(R(np.array([1.0, 2.0, 3.0])), 6.0), lever_arm=[0.5, -0.3, 1.0], sample_rate=100.0, duration=20.0)
+    rec = simulate_imu(sc, n_trials=2, rng=1)
+    ep = preintegrate(rec.dtheta, rec.dv, sc.dt, 10)
+    W, g = earth_rate_ned(lat), gravity_ned(lat)
+    Wx = np.array([[0, -W[2], W[1]], [W[2], 0, -W[0]], [-W[1], W[0], 0]])
+    att = Rotation.from_matrix(attitude_matrix(rec.truth_angles[:, 0]))
+    v = rec.truth_velocity[:, 0].copy()
+    turn = Rotation.from_rotvec(-W * ep.epoch)
+    for j in range(ep.n_epochs):
+        C = att.as_matrix()
+        v = v + np.einsum("nij,nj->ni", C, ep.velocity[:, j]) - np.einsum("nij,nj->ni", C, ep.moment[:, j]) @ Wx.T + g * ep.epoch - 2 * np.cross(W, v) * ep.epoch
+        att = turn * att * Rotation.from_quat(ep.rotation[:, j], scalar_first=True)
+    err = (att * Rotation.from_matrix(attitude_matrix(rec.truth_angles[:, -1])).inv()).magnitude()
+    assert np.max(err) < 1e-9
+    assert np.max(np.abs(v - rec.truth_velocity[:, -1])) < 1e-6  # against 0.05 m/s of lever-arm velocity
+
+
+def test_quantised_increments_sum_to_within_one_quantum():
+    sc = Scenario(R(45.0), duration=10.0, sample_rate=50.0)
+    q = R(1.0 / 3600.0)
+    ideal = simulate_imu(sc, n_trials=3, rng=5)
+    quant = simulate_imu(sc, SensorErrors(gyro_quantum=q), n_trials=3, rng=5)
+    assert np.all(np.abs(quant.dtheta.sum(axis=1) - ideal.dtheta.sum(axis=1)) <= q)
+    np.testing.assert_allclose(np.round(quant.dtheta / q), quant.dtheta / q, atol=1e-6)
+
+
+# ---------------------------------------------------------------- the analytic method
+@pytest.mark.parametrize("lat_deg", [0.0, 30.0, 60.0, 75.0])
+def test_gyro_bias_floor(lat_deg):
+    """East gyro bias b alone: mean azimuth error −b/(Ω cos φ) (deterministic: to (b/Ω cos φ)² relative)."""
+    lat = R(lat_deg)
+    sc = Scenario(lat, duration=60.0, sample_rate=10.0)
+    b = B_001
+    floor = -b / (EARTH_RATE * math.cos(lat))
+    mc = alignment_monte_carlo(sc, SensorErrors(gyro_bias=[0.0, b, 0.0]), method="analytic", n_trials=4, rng=1)
+    assert mc.result.mean == pytest.approx(floor, rel=10 * (b / (EARTH_RATE * math.cos(lat))) ** 2 + 1e-12)
+    assert mc.theory.gyro_bias == pytest.approx(floor, rel=1e-12)
+    # with white gyro noise the interval is real: the floor lies inside it
+    noisy = alignment_monte_carlo(sc, SensorErrors(gyro_bias=[0.0, b, 0.0], gyro_noise=R(0.0005) / 60.0), method="analytic", n_trials=256, rng=2)
+    assert _inside(noisy.result.mean_ci, floor)
+    assert _inside(noisy.result.rms_ci, noisy.theory.rms)
+
+
+def test_accelerometer_bias_tilt_and_azimuth_terms():
+    """East accelerometer bias a: azimuth tan φ · a/g and tilt a/g; north bias: tilt only."""
+    lat = R(60.0)
+    sc = Scenario(lat, duration=30.0, sample_rate=10.0)
+    g = normal_gravity(lat)
+    a = 1e-3
+    noise = SensorErrors(accel_bias=[0.0, a, 0.0], accel_noise=2e-4, gyro_noise=R(0.0002) / 60.0)
+    mc = alignment_monte_carlo(sc, noise, method="analytic", n_trials=256, rng=3)
+    assert mc.theory.accel_bias == pytest.approx(math.tan(lat) * a / g, rel=1e-9)
+    assert _inside(mc.result.mean_ci, math.tan(lat) * a / g)
+    north = alignment_monte_carlo(sc, SensorErrors(accel_bias=[a, 0.0, 0.0]), method="analytic", n_trials=2, rng=3)
+    assert abs(north.result.mean) < 1e-9 and north.theory.accel_bias == pytest.approx(0.0, abs=1e-15)
+    assert north.tilt_rms[1] == pytest.approx(a / g, rel=1e-6)  # γ̂ − γ = a_N / g
+
+
+@pytest.mark.parametrize("duration", [20.0, 80.0])
+def test_white_noise_against_alignment_time(duration):
+    """ARW N and VRW: rms azimuth error √(|G_ω|² N_g² + |G_a|² N_a²)/√T, checked at two T."""
+    sc = Scenario(R(45.0), duration=duration, sample_rate=10.0)
+    e = SensorErrors(gyro_noise=R(0.003) / 60.0, accel_noise=5e-4)
+    mc = alignment_monte_carlo(sc, e, method="analytic", n_trials=400, rng=4)
+    assert _inside(mc.result.rms_ci, mc.theory.rms)
+    assert mc.theory.rms == pytest.approx(analytic_theory(Scenario(R(45.0), duration=20.0, sample_rate=10.0), e).rms * math.sqrt(20.0 / duration), rel=1e-12)
+
+
+def test_quantisation_and_scale_factor_terms():
+    sc = Scenario(R(40.0), heading=R(30.0), duration=20.0, sample_rate=10.0)
+    e = SensorErrors(gyro_quantum=R(2.0 / 3600.0), accel_quantum=1e-3, gyro_noise=R(0.0001) / 60.0)
+    mc = alignment_monte_carlo(sc, e, method="analytic", n_trials=400, rng=5)
+    assert _inside(mc.result.rms_ci, mc.theory.rms)
+    s = SensorErrors(gyro_scale=[300e-6, -200e-6, 0.0])
+    mc = alignment_monte_carlo(sc, s, method="analytic", n_trials=2, rng=5)
+    # (s_y − s_x) sin 2ψ / 2 for a level block at heading ψ; the simulation to second order in s
+    first = (-200e-6 - 300e-6) * math.sin(2 * R(30.0)) / 2
+    assert mc.theory.gyro_scale == pytest.approx(first, rel=1e-9)
+    assert mc.result.mean == pytest.approx(first, rel=1e-3)
+
+
+def test_paper_formula_is_exact_at_zero_heading_only():
+    for heading, exact in ((0.0, True), (R(90.0), False)):
+        sc = Scenario(R(60.0), heading=heading, beta0=R(1.0), gamma0=R(-0.5), duration=5.0, sample_rate=10.0)
+        e = analytic_alignment(simulate_imu(sc, n_trials=1, rng=0), formula="paper").heading_error[0]
+        assert (abs(e) < 1e-12) == exact
+    # at 90° the error is of the order of tan φ · β0 (the correction σ belongs to zero heading)
+    assert 0.5 < abs(e) / (math.tan(R(60.0)) * R(1.0)) < 2.0
+
+
+def test_paper_tilt_channel_is_the_special_case():
+    """Gyros at the stable attitude, ideal sensors: the analytic error is σ(β̂, γ̂) − σ(β0, γ0) of (16), and
+    its Monte Carlo rms matches the paper's tilt-channel theory with the variance of the mean."""
+    lat, b0, g0 = R(70.0), R(2.0), R(-1.0)
+    motion = NarrowbandMotion(R(np.array([0.0, 1.0, 1.0])) * math.sqrt(2.0), 8.0, 0.1)
+    sc = Scenario(lat, beta0=b0, gamma0=g0, motion=motion, sample_rate=10.0, duration=30.0, rocking_in_gyros=False)
+    rec = simulate_imu(sc, n_trials=50, rng=6)
+    est = analytic_alignment(rec, formula="paper")
+    tilts = np.stack([est.beta - b0, est.gamma - g0])
+    np.testing.assert_allclose(est.heading_error, azimuth_error(tilts[0], tilts[1], latitude=lat, beta0=b0, gamma0=g0), atol=1e-12)
+    mc = alignment_monte_carlo(sc, method="analytic", n_trials=800, rng=7, options=AlignmentOptions(formula="paper"))
+    s = motion.spectrum(sc.n_samples, sc.dt)
+    T = sc.n_samples * sc.dt
+    mean = (np.exp(1j * s.omega * T) - 1) / (1j * s.omega * T)
+    sd = np.sqrt(s.covariance(mean))  # standard deviation of the continuous mean per axis
+    th = second_order_theory(lat, b0, g0, sd[1], sd[2])
+    assert _inside(mc.result.rms_ci, th.rms)
+    assert mc.theory.rocking == pytest.approx(th.rms_first_order, rel=1e-9)
+
+
+@pytest.mark.parametrize("motion", [SineMotion(R(np.array([0.005, 0.01, 0.01])), 7.0), NarrowbandMotion(R(np.array([0.005, 0.01, 0.01])), 8.0, 0.1)])
+def test_rocking_in_the_gyros_against_theory(motion):
+    sc = Scenario(R(50.0), heading=0.4, beta0=0.01, gamma0=-0.02, motion=motion, lever_arm=[0.3, 0.2, 1.0], sample_rate=10.0, duration=60.0)
+    mc = alignment_monte_carlo(sc, method="analytic", n_trials=600, rng=8)
+    assert _inside(mc.result.rms_ci, mc.theory.rocking)
+    tilt_only = analytic_theory(Scenario(R(50.0), heading=0.4, beta0=0.01, gamma0=-0.02, motion=motion, lever_arm=[0.3, 0.2, 1.0], sample_rate=10.0, duration=60.0, rocking_in_gyros=False))
+    assert mc.theory.rocking > 1e3 * tilt_only.rocking  # orders of magnitude above the tilt channel
+
+
+# ---------------------------------------------------------------- inertial frame
+def test_wahba_rotation_agrees_with_scipy():
+    rng = np.random.default_rng(0)
+    b = rng.normal(size=(3, 6, 3))
+    r = b @ Rotation.from_rotvec([0.2, -0.1, 0.4]).as_matrix().T + 1e-3 * rng.normal(size=(3, 6, 3))
+    C = wahba_rotation(r, b)
+    for k in range(3):
+        ref, _ = Rotation.align_vectors(r[k], b[k])
+        np.testing.assert_allclose(C[k], ref.as_matrix(), atol=1e-12)
+
+
+def test_inertial_alignment_integrates_the_rocking_out():
+    sc = Scenario(R(50.0), heading=2.0, motion=SineMotion(R(np.array([0.5, 1.0, 1.5])), 7.0), sample_rate=20.0, duration=60.0)
+    est = inertial_alignment(simulate_imu(sc, n_trials=4, rng=9))
+    assert np.max(np.abs(est.heading_error)) < 1e-6  # against degrees for the analytic method
+    b = B_001
+    mc = alignment_monte_carlo(Scenario(R(60.0), duration=60.0, sample_rate=10.0), SensorErrors(gyro_bias=[0.0, b, 0.0]), method="inertial", n_trials=2, rng=1)
+    assert mc.result.mean == pytest.approx(mc.bias_floor[0], rel=1e-4)
+
+
+# ---------------------------------------------------------------- Kalman fine alignment
+def _kalman_options(gb, ab, **kw):
+    from strapdown.analysis.gyrocompass.fine_alignment import FilterTuning
+
+    return AlignmentOptions(tuning=FilterTuning(epoch=0.2, prior_heading=R(0.5), gyro_bias=gb, accel_bias=ab, **kw))
+
+
+def test_kalman_is_consistent_when_the_truth_follows_its_prior():
+    gb, ab = B_001, 5e-4
+    sc = Scenario(R(50.0), heading=0.5, duration=60.0, sample_rate=10.0)
+    e = SensorErrors(gyro_bias_sigma=gb, accel_bias_sigma=ab, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
+    mc = alignment_monte_carlo(sc, e, method="kalman", n_trials=128, rng=10, options=_kalman_options(gb, ab, gyro_noise=e.gyro_noise, accel_noise=e.accel_noise))
+    k = mc.kalman
+    lo, hi = k.nees_band
+    # 8 checked epochs at 95 % each, the bands widened by 10 %
+    assert np.all((k.nees > 0.9 * lo) & (k.nees < 1.1 * hi)), k.nees
+    lo, hi = k.nis_band
+    assert np.all((k.nis > 0.9 * lo) & (k.nis < 1.1 * hi)), k.nis
+    assert _inside(mc.result.rms_ci, k.heading_sigma)
+
+
+def test_kalman_bias_response_matches_its_linear_theory():
+    b = B_001
+    sc = Scenario(R(60.0), duration=60.0, sample_rate=10.0)
+    e = SensorErrors(gyro_bias=[0.0, b, 0.0], gyro_noise=R(0.0005) / 60.0)
+    mc = alignment_monte_carlo(sc, e, method="kalman", n_trials=128, rng=11, options=_kalman_options(b, 1e-4, gyro_noise=e.gyro_noise))
+    assert _inside(mc.result.mean_ci, mc.kalman_theory.gyro_bias)
+
+
+def test_alignment_statistics_do_not_depend_on_chunking():
+    sc = Scenario(R(45.0), motion=SineMotion(R(0.01), 5.0), duration=10.0, sample_rate=10.0)
+    kernel = AlignmentKernel(sc, SensorErrors(gyro_noise=1e-6), "analytic", AlignmentOptions())
+    a = montecarlo.run(kernel, 40, rng=3, trials_per_block=8, blocks_per_chunk=1)
+    b = montecarlo.run(kernel, 40, rng=3, trials_per_block=8, blocks_per_chunk=5)
+    assert (a.mean, a.mse, a.rms_ci) == (b.mean, b.mse, b.rms_ci)
+
+
+# ---------------------------------------------------------------- the designer's answer
+def test_admissible_rocking_meets_the_budget():
+    """Analytic: the first-order rms at the admissible amplitude is the budget; inertial: the root search's own
+    Monte Carlo at its root is within the budget and one bracket step above it is not."""
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass.alignment_design import admissible_rocking
+
+    sc = Scenario(R(60.0), heading=R(30.0), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=60.0)
+    e = SensorErrors(gyro_noise=R(0.002) / 60.0)
+    budget = R(0.2)
+    d = admissible_rocking("analytic", budget, sc, [0.1], e, rocking="narrowband")
+    th = analytic_theory(replace(sc, motion=NarrowbandMotion(d.amplitude[0] * d.pattern, 10.0, 0.1)), e)
+    assert th.rms == pytest.approx(budget, rel=1e-9)
+    assert d.amplitude_percentile[0] < d.amplitude[0]  # 95 % of a Gaussian error needs 1.96 rms
+    env = admissible_rocking("analytic", budget, sc, [0.1, 0.15], e, rocking="sine")
+    exact = admissible_rocking("analytic", budget, sc, [0.1, 0.15], e, rocking="sine", envelope=False)
+    assert np.all(env.amplitude <= exact.amplitude * (1 + 1e-12))  # the envelope is the worst case
+    mc = admissible_rocking("inertial", budget, sc, [0.1], e, rocking="sine", n_trials=16, rtol=0.2, rng=5)
+    assert 0.0 < mc.amplitude[0] < mc.max_amplitude
+    assert mc.amplitude_ci[0, 0] <= mc.amplitude[0] <= mc.amplitude_ci[0, 1]
