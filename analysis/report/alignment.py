@@ -1,10 +1,9 @@
-"""The whole-system self-alignment part of the ``azimuth`` report page (formatted here, listed under that section).
+"""Report section ``alignment.md``: self-alignment of the whole system on a rocking base.
 
-Self-alignment on a rocking base: the rocking in the gyros and the
-accelerometers, sensor errors, three methods, the admissible rocking.
-:func:`alignment_lines` returns the Markdown (and writes the figures) that
-:mod:`strapdown.analysis.report.azimuth` appends to its page;
-:func:`alignment_errata` the interpretations it finds.  Formatting only:
+The rocking in the gyros and the accelerometers, sensor errors, three
+methods, the admissible rocking.  :func:`alignment_lines` returns the Markdown
+(and writes the figures); :func:`alignment_errata` the interpretations it
+finds.  Formatting only:
 every number and curve comes from :mod:`strapdown.analysis.gyrocompass` (the
 studies of :mod:`strapdown.analysis.gyrocompass.alignment_studies`, the design
 of :mod:`strapdown.analysis.gyrocompass.alignment_design`).
@@ -18,12 +17,20 @@ import numpy as np
 
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import deg_per_h, rad
-from . import Erratum
+from . import Erratum, Section
 
-__all__ = ["alignment_lines", "alignment_errata", "TITLE"]
+__all__ = ["SECTION", "build", "errata", "alignment_lines", "alignment_errata", "TITLE"]
 
-#: Heading of the part on the page.
+#: Heading of the page.
 TITLE = "Self-alignment on a rocking base: the whole system"
+
+SECTION = Section(
+    "alignment",
+    TITLE,
+    order=55,
+    summary="Rocking in the gyros and accelerometers, sensor errors, analytic, inertial-frame and Kalman alignment checked against "
+    "their theory by Monte Carlo; NEES/NIS; the admissible rocking for an azimuth budget, per method.",
+)
 
 METHOD_NAMES = {"analytic": "analytic (2)+(16)", "inertial": "inertial frame", "kalman": "Kalman"}
 
@@ -123,7 +130,7 @@ def _noise_lines(rows) -> list:
     lines = [
         "### White noise against alignment time (ARW 0.003 deg/√h, VRW 0.03 m/s/√h, φ = 45°)",
         "",
-        "The analytic theory is $\\sqrt{|G_\\omega|^2 N_g^2 + |G_tT_f|^2 N_a^2}/\\sqrt T$: the error falls as $1/\\sqrt T$.",
+        "The analytic theory is $\\sqrt{|G_\\omega|^2 N_g^2 + |G_tT_f|^2 N_a^2}/\\sqrt{T}$: the error falls as $1/\\sqrt{T}$.",
         "",
         "| T [s] | analytic theory rms [°] | " + " | ".join(f"{METHOD_NAMES[m]} MC rms [°] (95 % CI)" for m in methods) + " | theory inside (analytic) |",
         "|---|---|" + "---|" * len(methods) + "---|",
@@ -359,15 +366,13 @@ def _finite_lines(table, coverage, required) -> list:
 
 
 # ---------------------------------------------------------------- build
-def alignment_lines(ctx, number: int = 7) -> list:
-    """The Markdown lines of the part (its figures written through ``ctx``).
+def alignment_lines(ctx) -> list:
+    """The Markdown lines of the page (its figures written through ``ctx``).
 
     Parameters
     ----------
     ctx : Context
         Report context (output, sizes, seed).
-    number : int
-        Number of the part on the page; its sections become ``number.k``.
 
     Returns
     -------
@@ -385,7 +390,7 @@ def alignment_lines(ctx, number: int = 7) -> list:
 
     q = ctx.quick
     lines = [
-        f"## {number}. {TITLE}",
+        f"# {TITLE}",
         "",
         "Hrechka & Koroliov bound the azimuth error of a self-aligning SINS through the tilt channel only and leave open the",
         "admissible rocking (conclusion 4). This section simulates the whole system — the rocking in the gyros and the accelerometers,",
@@ -439,19 +444,35 @@ def alignment_lines(ctx, number: int = 7) -> list:
         for b in (0.1, 0.02)
     ]
     lines += _finite_lines(table, coverage, required)
-    return [_renumber(line, number) for line in lines]
+    return lines
 
 
-def _renumber(line: str, number: int) -> str:
-    """``## k. title`` → ``### number.k title`` and ``### title`` → ``#### title`` (the part's own heading kept)."""
-    if line.startswith(f"## {number}. {TITLE}"):
-        return line
-    if line.startswith("### "):
-        return "#" + line
-    if line.startswith("## "):
-        head, _, rest = line[3:].partition(". ")
-        return f"### {number}.{head} {rest}"
-    return line
+def build(ctx) -> None:
+    """Write ``alignment.md`` and its figures.
+
+    Parameters
+    ----------
+    ctx : Context
+        Report context (output, sizes, seed).
+    """
+    lines = alignment_lines(ctx)
+    lines.append(f"Mode: {'quick' if ctx.quick else 'full'}; root seed {ctx.seed}.")
+    ctx.write_text("alignment.md", "\n".join(lines))
+
+
+def errata(ctx) -> list:
+    """The interpretations of Hrechka & Koroliov that the whole-system model finds.
+
+    Parameters
+    ----------
+    ctx : Context
+        Report context.
+
+    Returns
+    -------
+    list of Erratum
+    """
+    return alignment_errata(ctx)
 
 
 def alignment_errata(ctx) -> list:
