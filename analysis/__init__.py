@@ -9,15 +9,23 @@ Installed as ``strapdown.analysis``, beside the symbolic side
 subpackage         analysis (numerics)                         derivations (SymPy)
 =================  ==========================================  ===================================
 ``core``           quaternions, dual numbers, validation,      reproducible SymPy runs
-                   units, Monte Carlo, filterpy adapter        (``derivations.reproducible``)
-``coning``         algorithm evaluation, exact motions,        algorithms as data, the registry,
-                   simulator, drift theory, sampling design    error series, drift, optimal coning
+                   units, Monte Carlo, filterpy adapter,       (``derivations.reproducible``)
+                   cache of generated code
+``coning``         algorithm evaluation (real and dual),       algorithms as data (cross-step
+                   regular precession and classical sculling,  indices), the registry of published
+                   simulator (numpy and compiled kernels,      algorithms, error series to any
+                   batches, streaming), drift theory, error    weight, drift, coning drift in
+                   against frequency, computational load,      closed form, optimal coning,
+                   the papers' tables reproduced               published data
 ``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data
                    statistics, readings of section 5
-``gyrocompass``    rocking models, azimuth Monte Carlo,        azimuth-error series, bounds
-                   bound sweeps, admissible rocking            (14)–(15)
+``gyrocompass``    tilt channel: rocking models, azimuth       azimuth-error series, bounds
+                   Monte Carlo, bound sweeps, finite-sample    (14)–(15), published formulas
+                   statistics of (16); whole system: rocking
+                   base and IMU model, analytic, inertial and
+                   Kalman alignment, admissible rocking
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================
