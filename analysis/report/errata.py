@@ -15,7 +15,7 @@ from ..core import quaternion as quat
 from ..core.dual import Dual
 from . import Erratum, Section
 
-SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.")
+SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.", gathers=True)
 
 
 # ---------------------------------------------------------------------------

@@ -31,7 +31,7 @@ from pathlib import Path
 
 from . import Section
 
-SECTION = Section("html", "HTML edition", order=110, summary="The whole report as one self-contained web page.", page="index.html")
+SECTION = Section("html", "HTML edition", order=110, summary="The whole report as one self-contained web page.", page="index.html", gathers=True)
 
 __all__ = ["SECTION", "build", "render_site", "MathRenderer"]
 
@@ -374,9 +374,14 @@ def _toc_html(pages: dict, math: MathRenderer) -> str:
 
 
 def build(ctx) -> None:
-    from . import discover
+    """Write ``index.html``, the HTML edition of every Markdown page already in ``ctx.out_dir``.
 
-    sections = [m.SECTION for m in discover()]
+    Parameters
+    ----------
+    ctx : strapdown.analysis.report.Context
+        The report context; pages follow the order of its ``sections``.
+    """
+    sections = [m.SECTION for m in ctx.sections]
     doc, errors = render_site(ctx.out_dir, sections)
     ctx.write_text(OUTPUT, doc)
     if errors:
