@@ -80,11 +80,46 @@ class Result:
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors are one line on stderr and exit status 2."""
+    """ArgumentParser whose errors are one line on stderr and exit status 2.
+
+    A value such as ``-1e-3`` or ``-inf`` is read as a (negative) number, not as
+    an option: ``--eps -1e-3`` works as typed.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
     def error(self, message):  # noqa: D401 - argparse API
         _say(self.prog, "error: " + _one_line(message))
         sys.exit(EXIT_USAGE)
+
+
+class _Given:
+    """Default of an option declared with :meth:`Commands.only_with`: tells a default from a value typed."""
+
+    def __init__(self, value):
+        self.value = value
+
+    def __repr__(self):
+        return repr(self.value)
+
+    def __str__(self):
+        return str(self.value)
+
+    def __format__(self, spec):
+        return format(self.value, spec)
+
+
+def _apply_rules(args) -> None:
+    """Refuse options given where they do not apply; replace untouched defaults by their values."""
+    for dest, option, other_dest, other, values in getattr(args, "only_with_", None) or ():
+        value = getattr(args, dest)
+        if isinstance(value, _Given):
+            setattr(args, dest, value.value)
+        elif getattr(args, other_dest) not in values:
+            allowed = " or ".join(str(v) for v in values)
+            raise UsageError(f"{option} applies only to {other} {allowed}, got {other} {getattr(args, other_dest)}")
 
 
 @dataclass
@@ -101,7 +136,7 @@ class Commands:
 
     root: Any
     listing: list = field(default_factory=list)
-    _groups: dict = field(default_factory=dict)
+    _groups: dict = field(default_factory=dict, init=False, repr=False)
 
     def add(
         self,
@@ -146,6 +181,34 @@ class Commands:
         parser.set_defaults(func_=func, parser_=parser, command_=name if group is None else f"{group} {name}", progress_mode_=progress)
         self.listing.append((name if group is None else f"{group} {name}", help))
         return parser
+
+    def only_with(self, parser, option: str, other: str, values) -> None:
+        """Declare that ``option`` applies only when ``other`` takes one of ``values``.
+
+        Giving ``option`` explicitly with another value of ``other`` is then
+        refused with a one-line error (``--period-s applies only to --rocking
+        sine or narrowband, got --rocking normal``) instead of being ignored.
+
+        Parameters
+        ----------
+        parser : argparse.ArgumentParser
+            The command's parser (from :meth:`add`), on which both options are defined.
+        option : str
+            The option that may not apply, e.g. ``"--period-s"``.
+        other : str
+            The option that decides, e.g. ``"--rocking"``.
+        values : iterable of str
+            Values of ``other`` with which ``option`` applies.
+        """
+        actions = {s: a for a in parser._actions for s in a.option_strings}
+        if option not in actions or other not in actions:
+            raise ValueError(f"Expected options of this parser, got {option!r} and {other!r}")
+        action = actions[option]
+        if not isinstance(action.default, _Given):
+            action.default = _Given(action.default)
+        rules = list(parser.get_default("only_with_") or [])
+        rules.append((action.dest, option, actions[other].dest, other, tuple(values)))
+        parser.set_defaults(only_with_=rules)
 
     def _group(self, group: str):
         if group not in self._groups:
@@ -254,43 +317,82 @@ def _option_strings(parser) -> dict:
     return out
 
 
-def _blame(message: str, args) -> str:
-    """Put the option a library message is about in front of it: ``argument --duration: ...``.
+_UNIT_SUFFIXES = ("s", "m", "hz", "deg", "rad", "deg_per_h", "m_s", "m_s2", "mb", "per_s", "per_s2")
+
+
+def _option_for(name: str, args) -> str | None:
+    """The option a Python argument name of a library message refers to (None if unclear).
+
+    By dest (``duration`` → ``--duration``), by dest with a unit suffix
+    (``averaging_time`` → ``--averaging-time-s``), then by the words of the name
+    in exactly one option's help (``earth_radius`` → ``--R``, "Earth radius R [m]").
+    """
+    parser = getattr(args, "parser_", None)
+    options = _option_strings(parser)
+    dest = name.lstrip("-").replace("-", "_")
+    if dest in options:
+        return options[dest]
+    suffixed = [options[d] for d in options if any(d == f"{dest}_{u}" for u in _UNIT_SUFFIXES)]
+    if len(suffixed) == 1:
+        return suffixed[0]
+    words = dest.replace("_", " ").lower()
+    if len(words) > 3:
+        helped = [a for a in getattr(parser, "_actions", ()) if a.help and words in a.help.lower() and any(o.startswith("--") for o in a.option_strings)]
+        if len(helped) == 1:
+            return [o for o in helped[0].option_strings if o.startswith("--")][0]
+    return None
+
+
+def _blame(message: str, args, argv=()) -> str:
+    """Name the option a library message is about: ``argument --duration: ...``.
 
     The library names the Python argument (``duration``); the user typed
     ``--duration``.  The option is found from a backticked name in the message
-    or from an option value (a file name) that the message quotes.
+    (:func:`_option_for`) or from an option value (a file name) that the message
+    quotes.  A message that names no option gets the options given on the
+    command line appended, so that the user sees what was refused.
     """
     options = _option_strings(getattr(args, "parser_", None))
-    if not options or re.search(r"(^|\s|`)--[a-z]", message):
-        return message
+    flag = None
     for name in _TICKED.findall(message):
-        dest = name.lstrip("-").replace("-", "_")
-        if dest in options:
-            return f"argument {options[dest]}: {message}"
-    for dest, flag in options.items():
-        value = getattr(args, dest, None)
-        if isinstance(value, str) and len(value) > 1 and value in message:
-            return f"argument {flag}: {message}"
-    return message
+        flag = _option_for(name, args)
+        if flag:
+            break
+    if flag is None:
+        for dest, option in options.items():
+            value = getattr(args, dest, None)
+            if isinstance(value, str) and len(value) > 1 and value in message:
+                flag = option
+                break
+    if flag is not None:
+        return message if re.search(rf"(^|[\s`(]){re.escape(flag)}(?![\w-])", message) else f"argument {flag}: {message}"
+    if re.search(r"(^|[\s`(])--[a-z]", message):
+        return message
+    given = _given(argv)
+    return f"{message} (given: {given})" if given else message
+
+
+#: Options that set how a command runs, not what it computes (left out of "given: ..." lists).
+_QUIET = {"--json", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
 
 
 def _given(argv) -> str:
-    """The numeric options of the command line, for messages that cannot name one argument."""
-    pairs, it = [], iter(argv or [])
-    for token in it:
+    """The options given on the command line, for messages that cannot name one argument."""
+    pairs, tokens, i = [], list(argv or []), 0
+    while i < len(tokens):
+        token = tokens[i]
         if token.startswith("--") and "=" in token:
             flag, value = token.split("=", 1)
-        elif token.startswith("--"):
-            flag, value = token, next(it, "")
+            i += 1
+        elif token.startswith("--") and i + 1 < len(tokens) and not tokens[i + 1].startswith("--"):
+            flag, value = token, tokens[i + 1]
+            i += 2
         else:
+            i += 1
             continue
-        try:
-            float(value)
-        except ValueError:
-            continue
-        pairs.append(f"{flag} {value}")
-    return ", ".join(pairs) if pairs else "the defaults"
+        if flag not in _QUIET:
+            pairs.append(f"{flag} {value[:40]}")
+    return ", ".join(pairs)
 
 
 def _budget_message(exc: BudgetExceeded, args) -> str:
@@ -308,25 +410,30 @@ def _budget_message(exc: BudgetExceeded, args) -> str:
     )
 
 
+#: numpy's ValueErrors for an array too large to allocate: treated like MemoryError.
+_TOO_LARGE = ("Maximum allowed size exceeded", "array is too big")
+
+
 def _message(exc: BaseException, args, argv) -> tuple[str, int]:
     """The one-line message and the exit status for an exception raised by a command."""
+    given = _given(argv) or "the defaults"
     if isinstance(exc, BudgetExceeded):
         return _budget_message(exc, args), EXIT_USAGE
+    if isinstance(exc, MemoryError) or (isinstance(exc, ValueError) and str(exc).startswith(_TOO_LARGE)):
+        return f"out of memory: the request is too large for this machine (given: {given})", EXIT_USAGE
     if isinstance(exc, UnicodeDecodeError):
-        return _blame(f"expected UTF-8 text, got undecodable bytes ({exc.reason} at byte {exc.start})", args), EXIT_USAGE
+        return _blame(f"expected UTF-8 text, got undecodable bytes ({exc.reason} at byte {exc.start})", args, argv), EXIT_USAGE
     if isinstance(exc, (ValueError, TypeError, UsageError)):
-        return _blame(_one_line(str(exc)) or type(exc).__name__, args), EXIT_USAGE
+        return _blame(_one_line(str(exc)) or type(exc).__name__, args, argv), EXIT_USAGE
     if isinstance(exc, OSError):
         what = exc.strerror or _one_line(str(exc)) or type(exc).__name__
         target = exc.filename if exc.filename is not None else ""
-        return _blame(f"{what}: {target!r}" if target else what, args), EXIT_USAGE
-    if isinstance(exc, MemoryError):
-        return f"out of memory: the request is too large for this machine (given: {_given(argv)})", EXIT_USAGE
+        return _blame(f"{what}: {target!r}" if target else what, args, argv), EXIT_USAGE
     if isinstance(exc, RecursionError):
-        return f"input nested too deeply to process (given: {_given(argv)})", EXIT_USAGE
+        return f"input nested too deeply to process (given: {given})", EXIT_USAGE
     if isinstance(exc, ArithmeticError):
         detail = _one_line(str(exc)) or type(exc).__name__
-        return f"arithmetic error ({detail}): the arguments lie outside the range the computation supports (given: {_given(argv)})", EXIT_USAGE
+        return f"arithmetic error ({detail}): the arguments lie outside the range the computation supports (given: {given})", EXIT_USAGE
     detail = _one_line(str(exc))
     return f"internal error ({type(exc).__name__}{': ' + detail if detail else ''}); please report it with the command line (STRAPDOWN_DEBUG=1 shows the traceback)", EXIT_SOFTWARE
 
@@ -355,6 +462,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         if _debug():
             raise
+        if wanted(None):  # a terminal: clear what a progress bar left on the line
+            sys.stderr.write("\r\033[K")
         _say("strapdown", "interrupted")
         return EXIT_INTERRUPTED
 
@@ -369,6 +478,7 @@ def _main(argv: list[str]) -> int:
         try:
             show = wanted(None if not args.no_progress else False)
             args.progress = getattr(args, "progress", False) or show
+            _apply_rules(args)
             with activity(prog, enabled=show and args.progress_mode_ == "activity"):
                 result = args.func_(args)
             if isinstance(result, dict):
@@ -376,7 +486,7 @@ def _main(argv: list[str]) -> int:
             data = _jsonable(result.data)
             bad = _non_finite(data)
             if bad:
-                raise ValueError(f"the result `{bad[0]}` came out {bad[1]}: the arguments lie outside the range where the model is defined")
+                raise ValueError(f"the result {bad[0]} came out {bad[1]}: the arguments lie outside the range where the model is defined")
         except KeyboardInterrupt:
             raise
         except Exception as exc:  # the edge of the contract: every exception becomes one line

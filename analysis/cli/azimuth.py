@@ -6,7 +6,9 @@ import math
 
 import numpy as np
 
+from ..core import budget
 from . import Result
+from ._options import add_limits, check_work, count
 
 
 def _rad(value, name):
@@ -34,16 +36,19 @@ def _azimuth(args) -> Result:
     model = rocking_model(args.rocking, sx, se, period=args.period_s, damping=args.damping)
     executor = None
     workers = as_int(args.workers, "workers", minimum=1)
+    check_work(args, budget.monte_carlo(n, workers=workers, what=f"{n:.3g} rocking samples (--samples) on {workers} worker(s) (--workers)"))
     if workers > 1:
-        from concurrent.futures import ProcessPoolExecutor
+        from ..core.montecarlo import process_pool
 
-        executor = ProcessPoolExecutor(workers)
+        executor = process_pool(workers)
     try:
         mc = azimuth_monte_carlo(lat, _rad(args.beta0_deg, "beta0-deg"), _rad(args.gamma0_deg, "gamma0-deg"), model, n, rng=seed, executor=executor, progress=args.progress)
     finally:
         if executor is not None:
             executor.shutdown()
     data = {"rocking": args.rocking, "seed": seed, **mc.as_dict(degrees=True)}
+    # a quantile outside the histogram is unknown: null in JSON, never NaN
+    data["quantiles_deg"] = {k: (v if math.isfinite(v) else None) for k, v in data["quantiles_deg"].items()}
     text = (
         f"rms azimuth error {data['rms_error_deg']:.6g} deg (95 % CI {data['rms_ci_deg'][0]:.6g} .. {data['rms_ci_deg'][1]:.6g}), "
         f"mean {data['mean_error_deg']:.3g} deg; bound (14) {data['bound14_deg']:.6g} deg [{data['bound14_holds']}], "
@@ -62,10 +67,15 @@ def _design(args) -> Result:
     if fmax <= fmin:
         raise ValueError(f"Expected `freq-max-hz` > freq-min-hz = {fmin:g}, got {fmax:g}")
     points = as_int(args.points, "points", minimum=2)
-    budget = math.radians(positive(args.budget_deg, "budget-deg"))
+    allowed = math.radians(positive(args.budget_deg, "budget-deg"))
+    averaging, rate = positive(args.averaging_time_s, "averaging-time-s"), positive(args.sample_rate_hz, "sample-rate-hz")
+    if averaging * rate < 1.0:
+        raise ValueError(f"Expected `--averaging-time-s` at least one sample interval 1/--sample-rate-hz = {1.0 / rate:.3g} s, got {averaging:g} s")
+    lags = averaging * rate
+    check_work(args, budget.autocorrelation_sums(points, lags, what=f"{points} frequencies (--points) × {lags:.3g} samples (--averaging-time-s × --sample-rate-hz)"))
     freqs = np.geomspace(fmin, fmax, points)
     d = admissible_amplitude(
-        budget,
+        allowed,
         lat,
         args.averaging_time_s,
         freqs,
@@ -92,7 +102,7 @@ def _design(args) -> Result:
 
 
 def register(commands) -> None:
-    p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)")
+    p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)", progress="own")
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
@@ -101,10 +111,13 @@ def register(commands) -> None:
     p.add_argument("--rocking", choices=["normal", "sine", "narrowband"], default="normal", help="rocking model (default normal)")
     p.add_argument("--period-s", type=float, default=8.0, help="rocking period [s] (sine, narrowband)")
     p.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking")
-    p.add_argument("--samples", type=int, default=1_000_000, help="rocking samples N (default 1e6)")
-    p.add_argument("--seed", type=int, default=0, help="root seed (default 0)")
-    p.add_argument("--workers", type=int, default=1, help="worker processes (the result does not depend on it)")
+    p.add_argument("--samples", type=count, default=1_000_000, help="rocking samples N (default 1e6)")
+    p.add_argument("--seed", type=count, default=0, help="root seed (default 0)")
+    p.add_argument("--workers", type=count, default=1, help="worker processes (the result does not depend on it)")
     p.add_argument("--progress", action="store_true", help="progress bar on stderr")
+    add_limits(p)
+    commands.only_with(p, "--period-s", "--rocking", ("sine", "narrowband"))
+    commands.only_with(p, "--damping", "--rocking", ("narrowband",))
 
     d = commands.add("azimuth-design", _design, "largest admissible rocking amplitude against rocking frequency for an azimuth budget")
     d.add_argument("--budget-deg", type=float, required=True, help="rms azimuth error budget [deg]")
@@ -115,7 +128,9 @@ def register(commands) -> None:
     d.add_argument("--sample-rate-hz", type=float, default=10.0, help="accelerometer sample rate [Hz]")
     d.add_argument("--freq-min-hz", type=float, default=0.02, help="lowest rocking frequency [Hz]")
     d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz]")
-    d.add_argument("--points", type=int, default=12, help="frequencies (log-spaced)")
+    d.add_argument("--points", type=count, default=12, help="frequencies (log-spaced)")
     d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg]")
     d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg]")
     d.add_argument("--max-amplitude-deg", type=float, default=20.0, help="cap of the reported amplitude [deg]")
+    add_limits(d)
+    commands.only_with(d, "--damping", "--rocking", ("narrowband",))

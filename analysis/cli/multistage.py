@@ -4,16 +4,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import budget
+from ..core.validation import as_int, in_open_interval, positive
 from . import Result
+from ._options import add_limits, check_work, count
 
 
 def _run(args) -> Result:
     from ..multistage.stages import plotnikov_1999_stages, simulate
     from ..multistage.trajectory import Scenario
 
-    scenario = Scenario(duration=args.duration, accel=args.accel, accel_duration=args.accel_duration, latitude=np.radians(args.latitude))
+    latitude = in_open_interval(args.latitude, "--latitude", -90.0, 90.0, text="(-90, 90) degrees")
+    scenario = Scenario(duration=args.duration, accel=args.accel, accel_duration=args.accel_duration, latitude=np.radians(latitude))
+    steps = scenario.duration / positive(args.step, "step")
+    check_work(args, budget.multistage(steps, what=f"{steps:.3g} integration steps (--duration / --step)"))
     stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius)
-    result = simulate(scenario, stages, step=args.step, rng=args.seed)
+    result = simulate(scenario, stages, step=args.step, rng=as_int(args.seed, "seed", minimum=0))
     peak = result.peak()
     tilt = result.tilt().max(axis=1)
     data = {
@@ -51,4 +57,5 @@ def register(commands) -> None:
     p.add_argument("--accel", type=float, default=20.0, help="northward acceleration [m/s²] (default 20)")
     p.add_argument("--accel-duration", type=float, default=20.0, help="its duration [s] (default 20)")
     p.add_argument("--latitude", type=float, default=45.0, help="initial latitude [deg] (default 45)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the sensor noise (default 0)")
+    p.add_argument("--seed", type=count, default=0, help="seed of the sensor noise (default 0)")
+    add_limits(p)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from . import Result
 
 
@@ -16,7 +18,10 @@ def _run(args) -> Result:
         if args.k is None or args.l is None:
             raise ValueError("Expected `--k` and `--l` (or `--schuler`), got " + ("neither" if args.k is None and args.l is None else "only one"))
         loop = StageLoop(args.k, args.l, args.g, args.R)
+    _refuse_runaway(loop, args)
     data = loop.summary(args.accel, args.accel_duration, horizon=args.horizon)
+    if data["stability"] == "unstable" and not math.isfinite(data["peak_tilt_error_rad"]):
+        _refuse_runaway(loop, args, force=True)
     data["schuler_tuning"] = bool(args.schuler)
     poles = ", ".join(f"{re:+.4g}{im:+.4g}j" for re, im in data["poles"])
     text = "\n".join(
@@ -32,6 +37,19 @@ def _run(args) -> Result:
         ]
     )
     return Result(data, text)
+
+
+def _refuse_runaway(loop, args, *, force: bool = False) -> None:
+    """Refuse gains whose tilt error grows beyond float range over the horizon (say they are unstable)."""
+    _, _, poles = loop.damp()
+    growth = max(float(p.real) for p in poles)
+    horizon = args.horizon if args.horizon is not None else args.accel_duration + 2.0 * loop.schuler_period
+    if force or (growth > 0 and growth * horizon > 700.0):  # e^700: beyond float range
+        shown = ", ".join(f"{complex(p).real:+.3g}{complex(p).imag:+.3g}j" for p in poles)
+        raise ValueError(
+            f"Expected gains `--k`, `--l` of a stable loop, got an unstable one (k = {loop.k:g} 1/s, l = {loop.l:g} 1/s², poles {shown}): "
+            f"its tilt error grows as e^({growth:.3g} t) without bound over the {horizon:.3g} s horizon"
+        )
 
 
 def register(commands) -> None:

@@ -11,14 +11,14 @@ from ._options import add_algorithm, add_motion, algorithm_from, floats, motion_
 
 def _run(args) -> Result:
     alg = algorithm_from(args)
-    params = motion_parameters(args)
+    params = motion_parameters(args, alg, velocity=True)
     nu_dual = as_float(args.nu_dual, "--nu-dual")
     nutation_dual = as_float(args.nutation_dual, "--nutation-dual")
     w0 = floats(args.w0, "--w0", 3)
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"], nu_dual, nutation_dual)
     r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
-    data, header = run_summary(alg, r)
+    data, header = run_summary(alg, r, params)
     data |= {
         "dW_E": float(r.final_dw_body),
         "dW_I": float(r.final_dw_inertial),

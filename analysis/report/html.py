@@ -84,7 +84,21 @@ class MathRenderer:
         self.errors: list = []
 
     def render(self, tex: str, *, display: bool = False) -> str:
-        """HTML for the TeX expression ``tex`` (without dollar signs)."""
+        """HTML for the TeX expression ``tex`` (without dollar signs).
+
+        Parameters
+        ----------
+        tex : str
+            The expression, e.g. ``r"\\frac{1}{12}"``.
+        display : bool, keyword-only
+            Display math (``$$...$$``) rather than inline math.
+
+        Returns
+        -------
+        str
+            An inline ``<span>`` with the SVG, or a ``<code class="math-error">``
+            with the source when mathtext cannot parse it.
+        """
         tex = " ".join(tex.split())
         key = tex
         if key not in self._cache:

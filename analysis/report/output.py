@@ -363,7 +363,7 @@ def lock(dest: Destination):
         try:
             fd = os.open(path, os.O_RDWR | os.O_CREAT | (os.O_EXCL if fcntl is None else 0), 0o644)
         except FileExistsError:  # pragma: no cover - not POSIX
-            raise OutputError(f"Expected no other `strapdown report` writing {str(dest.path)!r}, got its lock {str(path)!r} (remove it if no run is active)") from None
+            raise OutputError(f"Expected `out` free, got another `strapdown report` writing {str(dest.path)!r} (its lock {str(path)!r}; remove it if no run is active)") from None
         except OSError as exc:
             raise OutputError(f"Expected a writable directory for `out`, got {str(dest.parent)!r} ({exc.strerror})") from None
         if fcntl is None:  # pragma: no cover
@@ -372,7 +372,7 @@ def lock(dest: Destination):
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             os.close(fd)
-            raise OutputError(f"Expected no other `strapdown report` writing {str(dest.path)!r}, got one holding {str(path)!r}; wait for it to finish") from None
+            raise OutputError(f"Expected `out` free, got another `strapdown report` writing {str(dest.path)!r} (it holds {str(path)!r}); wait for it to finish") from None
         # The file may have been removed by the run that held it just before: lock the current one.
         try:
             same = os.path.samestat(os.fstat(fd), os.stat(path))
