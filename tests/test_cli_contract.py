@@ -1,6 +1,6 @@
 """The command-line contract at the edge: every exception class, work limits, counts, signals, progress, help.
 
-See ``tests/_contract.py`` for the contract itself and ``tests/test_cli_fuzz.py``
+See ``tests/cli_contract.py`` for the contract itself and ``tests/test_cli_fuzz.py``
 for the fuzzing over every option.
 """
 
@@ -21,14 +21,15 @@ import time
 from pathlib import Path
 
 import pytest
-from _contract import leaf_parsers, run, violations
+from cli_contract import leaf_parsers, run, violations, warm_up
 
 from strapdown.analysis import cli
-from strapdown.analysis.cli import _options
+from strapdown.analysis.cli import _options, derive_local_error
 from strapdown.analysis.core import budget
 
 DRIFT = ["drift", "--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "1"]
 VELOCITY = ["velocity-error"] + DRIFT[1:]
+LOCAL_ERROR = ["derive", "local-error", "--algorithm", "two-sample"]
 AZIMUTH = ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1"]
 
 #: (class, argv, expect, names): cases beyond the one-option mutations of the fuzz table.
@@ -58,8 +59,9 @@ EXTRA_CASES = [
     ("physically meaningless input", ["stability", "--k", "1", "--l", "-1", "--json"], "either", ("--l", "unstable")),
     ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--g", "-9.81", "--json"], "either", ("--g",)),
     ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--R", "0", "--json"], "refuse", ("--R",)),
-    ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--beta0-deg", "95", "--samples", "2e4", "--json"], "either", ("--beta0-deg",)),
-    ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "400", "--sigma-eta-deg", "1", "--samples", "2e4", "--json"], "either", ("--sigma-xi-deg",)),
+    ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--beta0-deg", "95", "--samples", "2e4", "--json"], "refuse", ("--beta0-deg",)),
+    ("physically meaningless input", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--gamma0-deg", "-90", "--json"], "refuse", ("--gamma0-deg",)),
+    ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "400", "--sigma-eta-deg", "1", "--samples", "2e4", "--json"], "refuse", ("--sigma-xi-deg",)),
     ("physically meaningless input", ["azimuth", "--lat-deg", "89.9999999", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--samples", "2e4", "--json"], "either", ("--lat-deg",)),
     ("physically meaningless input", DRIFT[:6] + ["179.999999"] + DRIFT[7:] + ["--json"], "either", ("--nutation-deg",)),
     ("physically meaningless input", DRIFT[:4] + ["1e6"] + DRIFT[5:] + ["--json"], "either", ("--eps",)),
@@ -85,9 +87,17 @@ EXTRA_CASES = [
 ]
 
 
+@pytest.fixture(scope="module", autouse=True)
+def warm():
+    """Imports and per-process caches are paid once, untimed (see test_cli_fuzz.baseline_invocations)."""
+    from test_cli_fuzz import baseline_invocations
+
+    warm_up(baseline_invocations())
+
+
 @pytest.mark.parametrize("kind, argv, expect, names", EXTRA_CASES, ids=[f"{c[0]}: {' '.join(c[1])[:70]}" for c in EXTRA_CASES])
 def test_extra_cases(kind, argv, expect, names):
-    outcome = run(argv)
+    outcome = run(argv, timeout=120.0)
     assert not violations(outcome, expect=expect, names=names, limit=5.0, json_out="--json" in argv, argv=argv), (argv, outcome)
 
 
@@ -121,30 +131,24 @@ EXCEPTIONS = [
 
 @pytest.mark.parametrize("exc, code, text", EXCEPTIONS, ids=[type(e[0]).__name__ + ":" + e[2][:20] for e in EXCEPTIONS])
 def test_every_exception_class_is_one_line(monkeypatch, capsys, exc, code, text):
-    from strapdown.analysis.cli import lyapunov
-
-    monkeypatch.setattr(lyapunov, "_run", _raising(exc))
-    assert cli.main(["derive", "lyapunov", "--json"]) == code
+    monkeypatch.setattr(derive_local_error, "local_error_command", _raising(exc))
+    assert cli.main(LOCAL_ERROR + ["--json"]) == code
     out, err = capsys.readouterr()
     assert out == ""
     assert err.count("\n") == 1 and "Traceback" not in err, err
     assert text in err, err
     if code == 2:
-        assert err.startswith("strapdown derive lyapunov: error: ")
+        assert err.startswith("strapdown derive local-error: error: ")
 
 
 def test_debug_environment_shows_the_traceback(monkeypatch):
-    from strapdown.analysis.cli import lyapunov
-
-    monkeypatch.setattr(lyapunov, "_run", _raising(RuntimeError("shown")))
+    monkeypatch.setattr(derive_local_error, "local_error_command", _raising(RuntimeError("shown")))
     monkeypatch.setenv("STRAPDOWN_DEBUG", "1")
     with pytest.raises(RuntimeError, match="shown"):
-        cli.main(["derive", "lyapunov"])
+        cli.main(LOCAL_ERROR)
 
 
 def test_os_error_names_the_option_whose_value_it_quotes(monkeypatch, capsys, tmp_path):
-    from strapdown.analysis.cli import derive_local_error
-
     path = str(tmp_path / "alg.toml")
     monkeypatch.setattr(derive_local_error, "local_error_command", _raising(PermissionError(13, "Permission denied", path)))
     assert cli.main(["derive", "local-error", "--algorithm-file", path]) == 2
@@ -179,11 +183,9 @@ def _returning(data):
 
 @pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf"), [1.0, float("nan")], {"deep": {"x": float("inf")}}])
 def test_non_finite_results_are_refused(monkeypatch, capsys, value):
-    from strapdown.analysis.cli import lyapunov
-
-    monkeypatch.setattr(lyapunov, "_run", _returning({"x": value}))
+    monkeypatch.setattr(derive_local_error, "local_error_command", _returning({"x": value}))
     for extra in (["--json"], []):
-        assert cli.main(["derive", "lyapunov", *extra]) == 2
+        assert cli.main(LOCAL_ERROR + extra) == 2
         out, err = capsys.readouterr()
         assert out == "" and err.count("\n") == 1 and "came out" in err
 
@@ -191,10 +193,8 @@ def test_non_finite_results_are_refused(monkeypatch, capsys, value):
 def test_numpy_values_and_none_are_plain_json(monkeypatch, capsys):
     import numpy as np
 
-    from strapdown.analysis.cli import lyapunov
-
-    monkeypatch.setattr(lyapunov, "_run", _returning({"a": np.float64(1.5), "b": np.arange(3), "c": None, "d": (np.int64(2),)}))
-    assert cli.main(["derive", "lyapunov", "--json"]) == 0
+    monkeypatch.setattr(derive_local_error, "local_error_command", _returning({"a": np.float64(1.5), "b": np.arange(3), "c": None, "d": (np.int64(2),)}))
+    assert cli.main(LOCAL_ERROR + ["--json"]) == 0
     assert json.loads(capsys.readouterr().out) == {"a": 1.5, "b": [0, 1, 2], "c": None, "d": [2]}
 
 
@@ -203,16 +203,14 @@ def test_runtime_warnings_never_reach_stderr(monkeypatch, capsys):
 
     import numpy as np
 
-    from strapdown.analysis.cli import lyapunov
-
     def noisy(args):
         with np.errstate(all="warn"):
             value = float(np.exp(np.array([1000.0]))[0] * 0.0 + np.log(np.array([2.0]))[0])  # overflow warning, finite result
         warnings.warn("something to know", UserWarning, stacklevel=1)
         return {"x": value}
 
-    monkeypatch.setattr(lyapunov, "_run", noisy)
-    assert cli.main(["derive", "lyapunov", "--json"]) == 2  # inf * 0 = nan: refused, and still no warning text
+    monkeypatch.setattr(derive_local_error, "local_error_command", noisy)
+    assert cli.main(LOCAL_ERROR + ["--json"]) == 2  # inf * 0 = nan: refused, and still no warning text
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "RuntimeWarning" not in err and "overflow" not in err
 
@@ -222,9 +220,9 @@ def test_runtime_warnings_never_reach_stderr(monkeypatch, capsys):
         warnings.warn("something to know", UserWarning, stacklevel=1)
         return {"x": 1.0}
 
-    monkeypatch.setattr(lyapunov, "_run", fine)
-    assert cli.main(["derive", "lyapunov", "--json"]) == 0
-    assert capsys.readouterr().err == "strapdown derive lyapunov: warning: something to know\n"
+    monkeypatch.setattr(derive_local_error, "local_error_command", fine)
+    assert cli.main(LOCAL_ERROR + ["--json"]) == 0
+    assert capsys.readouterr().err == "strapdown derive local-error: warning: something to know\n"
 
 
 def test_counts_accept_scientific_notation():
@@ -283,6 +281,15 @@ def test_options_that_do_not_apply_are_refused(capsys):
     assert cli.main(AZIMUTH + ["--rocking", "sine", "--damping", "0.2", "--samples", "2e4"]) == 2
     assert "--damping applies only to --rocking narrowband" in capsys.readouterr().err
     assert cli.main(AZIMUTH + ["--rocking", "sine", "--period-s", "5", "--samples", "2e4", "--json"]) == 0
+
+
+def test_ranges_are_stated_in_the_unit_typed(capsys):
+    assert cli.main(AZIMUTH + ["--beta0-deg", "95"]) == 2
+    assert capsys.readouterr().err == "strapdown azimuth: error: argument --beta0-deg: Expected `beta0-deg` in (-90, 90) degrees, got 95\n"
+    assert cli.main(["multistage", "--latitude", "90"]) == 2
+    assert capsys.readouterr().err == "strapdown multistage: error: Expected `--latitude` in (-90, 90) degrees, got 90\n"
+    assert cli.main(DRIFT[:6] + ["200"] + DRIFT[7:]) == 2
+    assert capsys.readouterr().err == "strapdown drift: error: Expected `--nutation-deg` in (0, 180) degrees, got 200\n"
 
 
 def test_unstable_gains_say_so(capsys):

@@ -28,7 +28,7 @@ import math
 import re
 
 import pytest
-from _contract import leaf_parsers
+from cli_contract import leaf_parsers
 
 from strapdown.analysis.report import section_names
 from strapdown.derivations.coning.registry import names as algorithm_names

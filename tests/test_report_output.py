@@ -153,6 +153,10 @@ def test_earlier_report_without_manifest(tmp_path):
     out.mkdir()
     (out / "README.md").write_text(output.LEGACY_SIGNATURE + "\n\nold\n")
     (out / "first.md").write_text("old\n")
+    before = _snapshot(out)
+    with pytest.raises(output.OutputError, match="regenerate it whole once"):  # --only cannot tell its files from a user's
+        generate(out, sections=fake_sections(), only=["first"], show_progress=False)
+    assert _snapshot(out) == before
     generate(out, sections=fake_sections(), show_progress=False)  # every old file is replaced: accepted
     assert (out / output.MANIFEST).is_file() and _versions(out) == {"1"}
     legacy = tmp_path / "legacy"

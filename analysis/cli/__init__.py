@@ -174,8 +174,10 @@ class Commands:
         """
         if progress not in ("activity", "own"):
             raise ValueError(f"Expected `progress` in ('activity', 'own'), got {progress!r}")
-        subparsers = self.root if group is None else self._group(group)
-        parser = subparsers.add_parser(name, help=help, description=description or help)
+        if group is None:  # `strapdown --help` lists the commands itself, one line each (build_parser)
+            parser = self.root.add_parser(name, description=description or help)
+        else:
+            parser = self._group(group).add_parser(name, help=help, description=description or help)
         parser.add_argument("--json", action="store_true", help="print exactly one JSON object on stdout")
         parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="no progress display on stderr (shown only when stderr is a terminal)")
         parser.set_defaults(func_=func, parser_=parser, command_=name if group is None else f"{group} {name}", progress_mode_=progress)

@@ -170,7 +170,7 @@ def motion_parameters(args, algorithm=None, *, velocity: bool = False) -> dict:
     algorithm : Algorithm, optional
         The algorithm to be run (for the work estimate).
     velocity : bool, keyword-only
-        The run is a dual (apparent-velocity) run (about ten times the work per step).
+        The run is a dual (apparent-velocity) run (about four times the work per step).
 
     Returns
     -------

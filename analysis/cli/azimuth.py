@@ -12,9 +12,20 @@ from ._options import add_limits, check_work, count
 
 
 def _rad(value, name):
-    from ..core.validation import as_float
+    """A stable tilt typed in degrees, in radians; a tilt of ±90° or more is no tilt of a level platform."""
+    from ..core.validation import in_open_interval
 
-    return math.radians(as_float(value, name))
+    return math.radians(in_open_interval(value, name, -90.0, 90.0, text="(-90, 90) degrees"))
+
+
+def _sigma(value, name):
+    """A rocking standard deviation typed in degrees, in radians, in [0, 90) degrees."""
+    from ..core.validation import nonnegative
+
+    sigma = nonnegative(value, name)
+    if sigma >= 90.0:
+        raise ValueError(f"Expected `{name}` below 90 degrees, got {sigma:g} degrees")
+    return math.radians(sigma)
 
 
 def _latitude(value) -> float:
@@ -24,13 +35,13 @@ def _latitude(value) -> float:
 
 
 def _azimuth(args) -> Result:
-    from ..core.validation import as_int, nonnegative
+    from ..core.validation import as_int
     from ..gyrocompass.azimuth import azimuth_monte_carlo
     from ..gyrocompass.rocking import rocking_model
 
     lat = _latitude(args.lat_deg)
-    sx = math.radians(nonnegative(args.sigma_xi_deg, "sigma-xi-deg"))
-    se = math.radians(nonnegative(args.sigma_eta_deg, "sigma-eta-deg"))
+    sx = _sigma(args.sigma_xi_deg, "sigma-xi-deg")
+    se = _sigma(args.sigma_eta_deg, "sigma-eta-deg")
     n = as_int(args.samples, "samples", minimum=2)
     seed = as_int(args.seed, "seed", minimum=0)
     model = rocking_model(args.rocking, sx, se, period=args.period_s, damping=args.damping)

@@ -253,7 +253,7 @@ class CostModel:
 CONING_STEP = CostModel(seconds_per_unit=6e-7, bytes_per_unit=96.0, fixed_seconds=0.5)
 #: Azimuth Monte Carlo, per rocking sample (chunked: the working set does not grow with the run); the
 #: fixed time is the symbolic second-order theory derived once per process.
-MONTE_CARLO_SAMPLE = CostModel(seconds_per_unit=1.2e-7, bytes_per_unit=0.0, fixed_seconds=4.0, fixed_bytes=2.5e8)
+MONTE_CARLO_SAMPLE = CostModel(seconds_per_unit=1.2e-7, bytes_per_unit=0.0, fixed_seconds=6.0, fixed_bytes=2.5e8)
 #: Multistage cascade (section 5 of Plotnikov 1999), per integration step (a Python loop per step).
 MULTISTAGE_STEP = CostModel(seconds_per_unit=3e-5, bytes_per_unit=1.2e3, fixed_seconds=0.5)
 #: Autocorrelation sum of a sample mean's variance, per lag term (arrays of the lags).
@@ -265,7 +265,7 @@ def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, ch
 
     Time grows with the samples per step (the increment window) and with the
     total degree of the algorithm's terms; dual numbers (velocity runs) cost about
-    ten times more per step and keep three times more per step.  The increments
+    four times more per step (five is assumed) and keep three times more per step.  The increments
     of one chunk of ``chunk_steps`` steps are held at once.
 
     Parameters
@@ -288,7 +288,7 @@ def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, ch
     Estimate
     """
     per_step = 1.0 + window / 6.0 + degree_sum / 60.0
-    dual = 10.0 if velocity else 1.0
+    dual = 5.0 if velocity else 1.0
     chunk = min(float(steps), float(chunk_steps)) * window * 3 * 8 * 4 * (2 if velocity else 1)
     return CONING_STEP.estimate(steps, what=what, seconds_factor=per_step * dual, bytes_factor=3.0 if velocity else 1.0, extra_bytes=chunk)
 

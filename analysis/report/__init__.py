@@ -349,10 +349,16 @@ def generate(
         raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(unknown) or 'nothing'}")
     selected = set(requested) | {m.SECTION.name for m in modules if m.SECTION.gathers}
     todo = [m for m in modules if m.SECTION.name in selected]
-    dest = output.prepare(out)
+    dest = output.prepare(out)  # refuse early, before the lock and any work
     configure_matplotlib()
     with output.lock(dest):
         output.clean(dest)
+        dest = output.prepare(out)  # again under the lock: another run may have replaced it meanwhile
+        if dest.legacy and only is not None:
+            raise output.OutputError(
+                f"Expected `out` with a report manifest for --only, got {str(dest.path)!r} written before manifests existed: "
+                "regenerate it whole once, then sections one by one"
+            )
         staged = output.stage(dest)
         try:
             output.fault("staged")
@@ -385,21 +391,13 @@ def generate(
 
 
 def _carry_over(dest: output.Destination, staged: Path, rebuilt: set) -> dict:
-    """Copy the files of the sections not rebuilt from the previous report into ``staged``.
-
-    A pre-manifest report has no record of which section wrote what: all its
-    files are carried over (those of the rebuilt sections are then overwritten)
-    and recorded as ``"earlier-report"``, which the next full run drops.
-    """
+    """Copy the files of the sections not rebuilt from the previous report into ``staged``."""
     import shutil
 
     kept = {}
-    if dest.previous is not None:
-        sections = {k: v for k, v in dest.previous.sections.items() if k not in rebuilt}
-    elif dest.legacy:
-        sections = {"earlier-report": tuple(sorted(dest.present))}
-    else:
+    if dest.previous is None:  # new, empty (a pre-manifest report is refused for partial runs)
         return kept
+    sections = {k: v for k, v in dest.previous.sections.items() if k not in rebuilt}
     for name, files in sections.items():
         present = []
         for rel in files:

@@ -10,9 +10,10 @@ Ownership
     DIR, a regular file given as DIR, or an unreadable manifest is refused
     with :class:`OutputError` before any work starts.  A directory written
     before manifests existed (its ``README.md`` starts with the report
-    signature :data:`LEGACY_SIGNATURE`) is accepted if every file in it is one
-    the new run writes; that is checked once the new report is complete, before
-    anything is replaced.
+    signature :data:`LEGACY_SIGNATURE`) is accepted by a full run if every file
+    in it is one the new run writes; that is checked once the new report is
+    complete, before anything is replaced.  A partial run (``--only``) on it is
+    refused: without a manifest it cannot tell the report's files from a user's.
 Staging
     The new report is written into a staging directory next to DIR
     (``.DIR.strapdown-stage-*``, same file system), never into DIR itself.

@@ -165,6 +165,18 @@ def violations(outcome: Outcome, *, expect: str = "either", names=(), json_out: 
     return problems
 
 
+_WARMED: set = set()
+
+
+def warm_up(invocations) -> None:
+    """Run each invocation once, untimed, in this process (imports and per-process caches are then paid)."""
+    for argv in invocations:
+        key = " ".join(argv)
+        if key not in _WARMED:
+            run(argv, timeout=600.0)
+            _WARMED.add(key)
+
+
 # --------------------------------------------------------------------------- the argparse tree
 def leaf_parsers():
     """``{"derive local-error": parser, ...}`` for every command of ``strapdown``."""
