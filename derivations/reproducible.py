@@ -23,7 +23,27 @@ SEED = 20261122
 
 @contextmanager
 def reproducible(seed: int = SEED):
-    """Context in which SymPy's internal generator is seeded with ``seed`` (state restored on exit)."""
+    """Context in which SymPy's internal generator is seeded with ``seed`` (state restored on exit).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``sympy.core.random.rng`` inside the block.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> from sympy.core.random import rng
+    >>> with reproducible():
+    ...     a = rng.random()
+    >>> with reproducible():
+    ...     b = rng.random()
+    >>> a == b
+    True
+    """
     state = _sympy_random.rng.getstate()
     _sympy_random.rng.seed(seed)
     try:
@@ -33,7 +53,18 @@ def reproducible(seed: int = SEED):
 
 
 def reproducible_sympy(func):
-    """Decorator: run ``func`` under :func:`reproducible`."""
+    """Decorator: run ``func`` under :func:`reproducible`.
+
+    Parameters
+    ----------
+    func : callable
+        A derivation.
+
+    Returns
+    -------
+    callable
+        ``func`` wrapped, with the same name and docstring.
+    """
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 
@@ -13,14 +14,11 @@ from strapdown.analysis.cli import COMMANDS, build_parser, main
 
 
 def _listed(parser) -> dict:
-    """``{"name" or "group name": help}`` of every leaf command of a parser."""
+    """``{"name" or "group name": help}`` of every command, as ``strapdown --help`` lists them."""
     out = {}
-    for action in parser._subparsers._group_actions[0]._choices_actions:
-        sub = parser._subparsers._group_actions[0].choices[action.dest]
-        if sub._subparsers is not None:
-            out |= {f"{action.dest} {k}": v for k, v in _listed(sub).items()}
-        else:
-            out[action.dest] = action.help
+    for line in parser.epilog.splitlines()[1:]:
+        name, help_text = re.split(r"\s{2,}", line.strip(), maxsplit=1)
+        out[name] = help_text
     return out
 
 
@@ -40,7 +38,7 @@ def test_a_command_needs_only_its_module(key):
     for word in key.split():
         leaf = leaf._subparsers._group_actions[0].choices[word]
     assert any("--json" in a.option_strings for a in leaf._actions)
-    assert leaf.get_default("_func") is not None, f"{key}: not registered by {module}"
+    assert leaf.get_default("func_") is not None, f"{key}: not registered by {module}"
 
 
 def _imported_after(argv) -> set:

@@ -77,26 +77,7 @@ def missing_parameters(obj) -> list:
     return [p for p in params if p not in documented]
 
 
-#: Modules whose docstrings are still being completed (strict xfail: remove a module once it passes).
-PENDING = {
-    "strapdown.analysis.cli",
-    "strapdown.analysis.cli.report",
-    "strapdown.analysis.core.dual",
-    "strapdown.analysis.core.kalman",
-    "strapdown.analysis.core.montecarlo",
-    "strapdown.analysis.core.quaternion",
-    "strapdown.analysis.core.validation",
-    "strapdown.analysis.report",
-    "strapdown.analysis.report.html",
-    "strapdown.analysis.report.index",
-    "strapdown.derivations.reproducible",
-}
-
-MODULES = [pytest.param(m, marks=pytest.mark.xfail(strict=True, reason="docstrings pending")) if m in PENDING else m for m in sorted(_module_names())]
-
-
-def test_pending_modules_exist():
-    assert PENDING <= set(_module_names())
+MODULES = sorted(_module_names())
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -1,4 +1,7 @@
-"""Report framework: atomic writes, byte-identical regeneration, --only keeps other sections."""
+"""Report framework: atomic writes, byte-identical regeneration, --only keeps other sections.
+
+The output-directory safety rules (foreign files, locks, crashes) are in test_report_output.py.
+"""
 
 import hashlib
 from pathlib import Path
@@ -36,13 +39,29 @@ def test_failed_run_leaves_previous_reports_intact(tmp_path, monkeypatch):
     assert leftovers == []
 
 
-def test_only_keeps_other_files(tmp_path):
+def test_only_keeps_other_sections_and_rebuilds_the_gathering_ones(tmp_path):
     out = tmp_path / "reports"
-    report.generate(out, only=["errata", "index"], show_progress=False)
-    (out / "keep.md").write_text("kept\n")
-    report.generate(out, only=["index"], show_progress=False)
-    assert (out / "keep.md").read_text() == "kept\n"
-    assert (out / "errata.md").exists()
+    assert report.generate(out, only=["errata"], show_progress=False) == ["errata", "index", "html"]
+    errata = (out / "errata.md").read_bytes()
+    (out / "errata.md").write_text("an earlier errata page\n")  # a file this package wrote: replaced only if rebuilt
+    assert report.generate(out, only=["index"], show_progress=False) == ["errata", "index", "html"]
+    assert (out / "errata.md").read_bytes() == errata  # errata gathers every section: rebuilt too
+    assert "index.html" in {p.name for p in out.iterdir()}
+
+
+def test_only_carries_the_files_of_other_sections_over(tmp_path):
+    from strapdown.analysis.report import output
+
+    out = tmp_path / "reports"
+    report.generate(out, only=["errata"], show_progress=False)
+    manifest = output.Manifest.read(out)
+    assert set(manifest.sections) == {"errata", "index", "html"}
+    assert manifest.files == {"errata.md", "README.md", "index.html"}
+    assert sorted(p.name for p in out.iterdir()) == sorted([output.MANIFEST, "errata.md", "README.md", "index.html"])
+
+
+def test_section_names_are_the_discovered_sections():
+    assert report.section_names() == sorted(m.SECTION.name for m in report.discover())
 
 
 def test_unknown_section_rejected(tmp_path):

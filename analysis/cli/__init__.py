@@ -1,11 +1,33 @@
 """Command-line interface: ``strapdown <command> [options] [--json]``.
 
 Commands live in the modules of this package; each module defines
-``register(commands)`` and adds its commands through :class:`Commands`.  Every
-command accepts ``--json`` and then prints exactly one JSON object on stdout;
-progress bars and logs go to stderr.  A bad argument or a ``ValueError`` /
-``TypeError`` raised by the library prints one line on stderr and exits with
-status 2, without a traceback.
+``register(commands)`` and adds its commands through :class:`Commands`.
+
+The contract of every command
+-----------------------------
+* With ``--json`` it prints exactly one JSON object on stdout, with no NaN or
+  infinity: a result that comes out NaN or infinite means the arguments lie
+  outside the range where the model is defined, and is refused like a bad
+  argument.
+* A bad argument prints one line on stderr, ``strapdown <command>: error:
+  <message>``, naming the option as typed, and exits with status 2, without a
+  traceback.  This holds for argparse errors, for ``ValueError`` /
+  ``TypeError`` raised by the library (the message names the Python argument,
+  and the option it came from is put in front: ``argument --duration: ...``),
+  for work refused by its estimate (:mod:`strapdown.analysis.core.budget`), for
+  operating-system errors (a directory given as a file, an unreadable file, a
+  read-only output directory), and for ``MemoryError``, ``RecursionError`` and
+  arithmetic errors (division by zero, overflow).
+* Ctrl-C prints one line and exits with status 130.
+* Numerical warnings (numpy's ``RuntimeWarning``) never reach stderr; other
+  warnings are printed as one line each.
+* Work longer than about two seconds shows its progress on stderr when stderr
+  is a terminal (:mod:`strapdown.analysis.core.progress`), and nothing when it
+  is not; ``--no-progress`` turns it off.
+
+Any other exception is a defect of the package: it prints one line asking for
+a report and exits with status 70.  ``STRAPDOWN_DEBUG=1`` in the environment
+shows the traceback of every error instead, and the numerical warnings.
 """
 
 from __future__ import annotations
@@ -14,15 +36,26 @@ import argparse
 import importlib
 import json
 import math
+import os
 import pkgutil
+import re
 import sys
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 from .. import __version__
+from ..core.progress import activity, wanted
 
-__all__ = ["main", "Commands", "Result", "UsageError"]
+__all__ = ["main", "build_parser", "Commands", "Result", "UsageError", "EXIT_USAGE", "EXIT_INTERRUPTED", "EXIT_SOFTWARE"]
+
+#: Exit status of a bad argument (argparse's convention).
+EXIT_USAGE = 2
+#: Exit status after Ctrl-C (128 + SIGINT).
+EXIT_INTERRUPTED = 130
+#: Exit status of a defect of the package (``EX_SOFTWARE`` of sysexits.h).
+EXIT_SOFTWARE = 70
 
 
 class UsageError(Exception):
@@ -31,41 +64,157 @@ class UsageError(Exception):
 
 @dataclass
 class Result:
-    """What a command returns: JSON-able ``data`` and an optional human ``text``."""
+    """What a command returns.
+
+    Attributes
+    ----------
+    data : dict
+        JSON-able result (printed with ``--json``); every number must be finite.
+    text : str or None
+        Text for people (default: one ``key: value`` line per entry of ``data``).
+    """
 
     data: dict
     text: str | None = None
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors are one line on stderr and exit status 2."""
+    """ArgumentParser whose errors are one line on stderr and exit status 2.
+
+    A value such as ``-1e-3`` or ``-inf`` is read as a (negative) number, not as
+    an option: ``--eps -1e-3`` works as typed.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
     def error(self, message):  # noqa: D401 - argparse API
-        sys.stderr.write(f"{self.prog}: error: {message}\n")
-        sys.exit(2)
+        _say(self.prog, "error: " + _one_line(message))
+        sys.exit(EXIT_USAGE)
+
+
+class _Given:
+    """Default of an option declared with :meth:`Commands.only_with`: tells a default from a value typed."""
+
+    def __init__(self, value):
+        self.value = value
+
+    def __repr__(self):
+        return repr(self.value)
+
+    def __str__(self):
+        return str(self.value)
+
+    def __format__(self, spec):
+        return format(self.value, spec)
+
+
+def _apply_rules(args) -> None:
+    """Refuse options given where they do not apply; replace untouched defaults by their values."""
+    for dest, option, other_dest, other, values in getattr(args, "only_with_", None) or ():
+        value = getattr(args, dest)
+        if isinstance(value, _Given):
+            setattr(args, dest, value.value)
+        elif getattr(args, other_dest) not in values:
+            allowed = " or ".join(str(v) for v in values)
+            raise UsageError(f"{option} applies only to {other} {allowed}, got {other} {getattr(args, other_dest)}")
 
 
 @dataclass
 class Commands:
-    """Registry handed to each command module's ``register`` function."""
+    """Registry handed to each command module's ``register`` function.
 
-    _root: Any
-    _groups: dict = field(default_factory=dict)
-    _added: set = field(default_factory=set)
+    Attributes
+    ----------
+    root : argparse._SubParsersAction
+        The subparsers of ``strapdown`` (commands are added to it, or to a group under it).
+    listing : list of (str, str)
+        Every command added so far, as (full name, one-line help), for ``strapdown --help``.
+    """
 
-    def add(self, name: str, func: Callable[[argparse.Namespace], Result | dict], help: str, *, group: str | None = None, description: str | None = None) -> argparse.ArgumentParser:
-        """Add a command (or ``group`` subcommand) and return its parser for arguments."""
-        subparsers = self._root if group is None else self._group(group)
-        parser = subparsers.add_parser(name, help=help, description=description or help)
-        self._added.add((group, name))
+    root: Any
+    listing: list = field(default_factory=list)
+    _groups: dict = field(default_factory=dict, init=False, repr=False)
+
+    def add(
+        self,
+        name: str,
+        func: Callable[[argparse.Namespace], Result | dict],
+        help: str,
+        *,
+        group: str | None = None,
+        description: str | None = None,
+        progress: str = "activity",
+    ) -> argparse.ArgumentParser:
+        """Add a command (or ``group`` subcommand) and return its parser for arguments.
+
+        Parameters
+        ----------
+        name : str
+            Command name, kebab-case.
+        func : callable
+            ``func(args) -> Result | dict``; raise ``ValueError`` / ``TypeError`` on bad input.
+        help : str
+            One line for ``strapdown --help``.
+        group : str, optional, keyword-only
+            Parent command (``"derive"``, ``"reproduce"``), created on first use.
+        description : str, optional, keyword-only
+            Longer text for ``strapdown <command> --help`` (default ``help``).
+        progress : {"activity", "own"}, keyword-only
+            ``"activity"``: the edge shows the elapsed time on stderr once the
+            command runs longer than two seconds (on a terminal); ``"own"``: the
+            command draws its own progress bar (it reads ``args.progress``).
+
+        Returns
+        -------
+        argparse.ArgumentParser
+            The command's parser, with ``--json`` and ``--no-progress`` already added.
+        """
+        if progress not in ("activity", "own"):
+            raise ValueError(f"Expected `progress` in ('activity', 'own'), got {progress!r}")
+        if group is None:  # `strapdown --help` lists the commands itself, one line each (build_parser)
+            parser = self.root.add_parser(name, description=description or help)
+        else:
+            parser = self._group(group).add_parser(name, help=help, description=description or help)
         parser.add_argument("--json", action="store_true", help="print exactly one JSON object on stdout")
-        parser.set_defaults(_func=func)
+        parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="no progress display on stderr (shown only when stderr is a terminal)")
+        parser.set_defaults(func_=func, parser_=parser, command_=name if group is None else f"{group} {name}", progress_mode_=progress)
+        self.listing.append((name if group is None else f"{group} {name}", help))
         return parser
+
+    def only_with(self, parser, option: str, other: str, values) -> None:
+        """Declare that ``option`` applies only when ``other`` takes one of ``values``.
+
+        Giving ``option`` explicitly with another value of ``other`` is then
+        refused with a one-line error (``--period-s applies only to --rocking
+        sine or narrowband, got --rocking normal``) instead of being ignored.
+
+        Parameters
+        ----------
+        parser : argparse.ArgumentParser
+            The command's parser (from :meth:`add`), on which both options are defined.
+        option : str
+            The option that may not apply, e.g. ``"--period-s"``.
+        other : str
+            The option that decides, e.g. ``"--rocking"``.
+        values : iterable of str
+            Values of ``other`` with which ``option`` applies.
+        """
+        actions = {s: a for a in parser._actions for s in a.option_strings}
+        if option not in actions or other not in actions:
+            raise ValueError(f"Expected options of this parser, got {option!r} and {other!r}")
+        action = actions[option]
+        if not isinstance(action.default, _Given):
+            action.default = _Given(action.default)
+        rules = list(parser.get_default("only_with_") or [])
+        rules.append((action.dest, option, actions[other].dest, other, tuple(values)))
+        parser.set_defaults(only_with_=rules)
 
     def _group(self, group: str):
         if group not in self._groups:
             helps = {"algorithms": "the registry of algorithms: list it, show one", "derive": "regenerate a symbolic derivation", "reproduce": "reproduce published tables"}
-            parser = self._root.add_parser(group, help=helps.get(group, group), description=helps.get(group, group))
+            parser = self.root.add_parser(group, description=helps.get(group, group))
             self._groups[group] = parser.add_subparsers(dest=f"{group}_command", metavar="SUBCOMMAND", parser_class=_Parser, required=True)
         return self._groups[group]
 
@@ -85,7 +234,7 @@ COMMANDS = {
     "design": ("design", "largest step and computational load of each algorithm for a drift budget"),
     "drift": ("drift", "constant drift rate of an algorithm under regular precession (parallel computation)"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
-    "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth)"),
+    "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth, index, HTML)"),
     "reproduce tables": ("tables", "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values"),
     "stability": ("stability", "poles, damping, stability and peak tilt error of a corrected attitude stage (Plotnikov 1999)"),
     "velocity-error": ("velocity_error", "apparent-velocity error |ΔW_E|, |ΔW_I| of an algorithm's dual extension (dual regular precession or classical sculling)"),
@@ -110,26 +259,52 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     With ``argv`` only the module of the command it names is imported; every
     other command of :data:`COMMANDS` is listed by its help line, so that
     ``strapdown --help`` and a call of a light command import nothing heavy.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The command line to be parsed (default: build every command).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        ``strapdown``'s parser; its help lists every command, one line each.
     """
-    parser = _Parser(prog="strapdown", description="Error analysis of strapdown inertial navigation algorithms.")
+    parser = _Parser(prog="strapdown", description="Error analysis of strapdown inertial navigation algorithms.", formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"strapdown-analysis {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser, required=True)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser, required=True, help="one of the commands below; `strapdown COMMAND --help` for its options")
     commands = Commands(sub)
-    wanted = None if argv is None else _wanted(argv)
+    wanted_modules = None if argv is None else _wanted(argv)
     declared = {module for module, _ in COMMANDS.values()}
-    modules = _command_modules() if wanted is None else wanted + [m for m in _command_modules() if m not in declared]
+    modules = _command_modules() if wanted_modules is None else wanted_modules + [m for m in _command_modules() if m not in declared]
     for name in modules:
         importlib.import_module(f"{__name__}.{name}").register(commands)
+    added = {full for full, _ in commands.listing}
     for key, (_, help_text) in COMMANDS.items():
-        group, _, name = key.rpartition(" ")
-        if (group or None, name) not in commands._added:
+        if key not in added:
+            group, _, name = key.rpartition(" ")
             commands.add(name, None, help_text, group=group or None)
+    width = max(len(name) for name, _ in commands.listing)
+    lines = [f"  {name:<{width}}  {_one_line(text)}" for name, text in sorted(commands.listing)]
+    parser.epilog = "commands:\n" + "\n".join(lines)
     return parser
 
 
+def _one_line(text: str) -> str:
+    """The first non-empty line of ``text``, whitespace collapsed."""
+    for line in str(text).splitlines():
+        if line.strip():
+            return " ".join(line.split())
+    return ""
+
+
+def _say(prog: str, message: str) -> None:
+    sys.stderr.write(f"{prog}: {message}\n")
+    sys.stderr.flush()
+
+
 def _jsonable(obj):
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
+    """Plain JSON types (numpy scalars and arrays unwrapped); non-finite floats kept for the check."""
     if isinstance(obj, dict):
         return {str(k): _jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -141,6 +316,23 @@ def _jsonable(obj):
     return obj
 
 
+def _non_finite(obj, path: str = ""):
+    """Path and value of the first NaN or infinite number in ``obj`` (or None)."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return path or "result", obj
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            found = _non_finite(v, f"{path}.{k}" if path else str(k))
+            if found:
+                return found
+    if isinstance(obj, list):
+        for i, v in enumerate(obj):
+            found = _non_finite(v, f"{path}[{i}]")
+            if found:
+                return found
+    return None
+
+
 def _human(data: dict) -> str:
     lines = []
     for key, value in data.items():
@@ -150,25 +342,225 @@ def _human(data: dict) -> str:
     return "\n".join(lines)
 
 
+def _write_stdout(text: str) -> None:
+    try:
+        sys.stdout.write(text)
+    except UnicodeEncodeError:  # e.g. PYTHONIOENCODING=ascii and a Greek letter in the text
+        encoding = getattr(sys.stdout, "encoding", None) or "ascii"
+        sys.stdout.write(text.encode(encoding, "backslashreplace").decode(encoding))
+    sys.stdout.flush()
+
+
+# --------------------------------------------------------------------------- errors
+_TICKED = re.compile(r"`([A-Za-z_][\w-]*)`")
+
+
+def _option_strings(parser) -> dict:
+    """``dest → option string as typed`` for the options of a command's parser."""
+    out = {}
+    for action in getattr(parser, "_actions", ()):
+        longs = [s for s in action.option_strings if s.startswith("--")]
+        if longs:
+            out[action.dest] = longs[0]
+    return out
+
+
+_UNIT_SUFFIXES = ("s", "m", "hz", "deg", "rad", "deg_per_h", "m_s", "m_s2", "mb", "per_s", "per_s2")
+
+
+def _option_for(name: str, args) -> str | None:
+    """The option a Python argument name of a library message refers to (None if unclear).
+
+    By dest (``duration`` → ``--duration``), by dest with a unit suffix
+    (``averaging_time`` → ``--averaging-time-s``), then by the words of the name
+    in exactly one option's help (``earth_radius`` → ``--R``, "Earth radius R [m]").
+    """
+    parser = getattr(args, "parser_", None)
+    options = _option_strings(parser)
+    dest = name.lstrip("-").replace("-", "_")
+    if dest in options:
+        return options[dest]
+    suffixed = [options[d] for d in options if any(d == f"{dest}_{u}" for u in _UNIT_SUFFIXES)]
+    if len(suffixed) == 1:
+        return suffixed[0]
+    words = dest.replace("_", " ").lower()
+    if len(words) > 3:
+        helped = [a for a in getattr(parser, "_actions", ()) if a.help and words in a.help.lower() and any(o.startswith("--") for o in a.option_strings)]
+        if len(helped) == 1:
+            return [o for o in helped[0].option_strings if o.startswith("--")][0]
+    return None
+
+
+def _blame(message: str, args, argv=()) -> str:
+    """Name the option a library message is about: ``argument --duration: ...``.
+
+    The library names the Python argument (``duration``); the user typed
+    ``--duration``.  The option is found from a backticked name in the message
+    (:func:`_option_for`) or from an option value (a file name) that the message
+    quotes.  A message that names no option gets the options given on the
+    command line appended, so that the user sees what was refused.
+    """
+    options = _option_strings(getattr(args, "parser_", None))
+    flag = None
+    for name in _TICKED.findall(message):
+        flag = _option_for(name, args)
+        if flag:
+            break
+    if flag is None:
+        for dest, option in options.items():
+            value = getattr(args, dest, None)
+            if isinstance(value, str) and len(value) > 1 and value in message:
+                flag = option
+                break
+    if flag is not None:
+        return message if re.search(rf"(^|[\s`(]){re.escape(flag)}(?![\w-])", message) else f"argument {flag}: {message}"
+    if re.search(r"(^|[\s`(])--[a-z]", message):
+        return message
+    given = _given(argv)
+    return f"{message} (given: {given})" if given else message
+
+
+#: Options that set how a command runs, not what it computes (left out of "given: ..." lists).
+_QUIET = {"--json", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
+
+
+def _given(argv) -> str:
+    """The options given on the command line, for messages that cannot name one argument."""
+    pairs, tokens, i = [], list(argv or []), 0
+    while i < len(tokens):
+        token = tokens[i]
+        if token.startswith("--") and "=" in token:
+            flag, value = token.split("=", 1)
+            i += 1
+        elif token.startswith("--") and i + 1 < len(tokens) and not tokens[i + 1].startswith("--"):
+            flag, value = token, tokens[i + 1]
+            i += 2
+        else:
+            i += 1
+            continue
+        if flag not in _QUIET:
+            pairs.append(f"{flag} {value[:40]}")
+    return ", ".join(pairs)
+
+
+def _budget_message(exc, args) -> str:
+    from ..core.budget import format_bytes, format_seconds
+
+    options = _option_strings(getattr(args, "parser_", None))
+    if exc.resource == "memory":
+        flag = options.get("memory_limit_mb", "--memory-limit-mb")
+        return (
+            f"{exc.estimate.what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
+            f"over the limit of {format_bytes(exc.limits.memory)}; reduce the request or raise the limit with {flag}"
+        )
+    flag = options.get("time_limit", "--time-limit")
+    return (
+        f"{exc.estimate.what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
+        f"over the limit of {format_seconds(exc.limits.seconds)}; reduce the request or raise the limit with {flag} (seconds)"
+    )
+
+
+#: numpy's ValueErrors for an array too large to allocate: treated like MemoryError.
+_TOO_LARGE = ("Maximum allowed size exceeded", "array is too big")
+
+
+def _message(exc: BaseException, args, argv) -> tuple[str, int]:
+    """The one-line message and the exit status for an exception raised by a command."""
+    given = _given(argv) or "the defaults"
+    from ..core.budget import BudgetExceeded  # imported on an error only: it pulls in numpy
+
+    if isinstance(exc, BudgetExceeded):
+        return _budget_message(exc, args), EXIT_USAGE
+    if isinstance(exc, MemoryError) or (isinstance(exc, ValueError) and str(exc).startswith(_TOO_LARGE)):
+        return f"out of memory: the request is too large for this machine (given: {given})", EXIT_USAGE
+    if isinstance(exc, UnicodeDecodeError):
+        return _blame(f"expected UTF-8 text, got undecodable bytes ({exc.reason} at byte {exc.start})", args, argv), EXIT_USAGE
+    if isinstance(exc, (ValueError, TypeError, UsageError)):
+        return _blame(_one_line(str(exc)) or type(exc).__name__, args, argv), EXIT_USAGE
+    if isinstance(exc, OSError):
+        what = exc.strerror or _one_line(str(exc)) or type(exc).__name__
+        target = exc.filename if exc.filename is not None else ""
+        return _blame(f"{what}: {target!r}" if target else what, args, argv), EXIT_USAGE
+    if isinstance(exc, RecursionError):
+        return f"input nested too deeply to process (given: {given})", EXIT_USAGE
+    if isinstance(exc, ArithmeticError):
+        detail = _one_line(str(exc)) or type(exc).__name__
+        return f"arithmetic error ({detail}): the arguments lie outside the range the computation supports (given: {given})", EXIT_USAGE
+    detail = _one_line(str(exc))
+    return f"internal error ({type(exc).__name__}{': ' + detail if detail else ''}); please report it with the command line (STRAPDOWN_DEBUG=1 shows the traceback)", EXIT_SOFTWARE
+
+
+def _debug() -> bool:
+    return os.environ.get("STRAPDOWN_DEBUG", "") not in ("", "0")
+
+
+# --------------------------------------------------------------------------- entry point
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``strapdown`` console script."""
+    """Entry point of the ``strapdown`` console script.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments after the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success, 2 for a bad argument, 130 after Ctrl-C, 70 for a defect.
+    """
     argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        if _debug():
+            raise
+        if wanted(None):  # a terminal: clear what a progress bar left on the line
+            sys.stderr.write("\r\033[K")
+        _say("strapdown", "interrupted")
+        return EXIT_INTERRUPTED
+
+
+def _main(argv: list[str]) -> int:
     parser = build_parser(argv)
     args, _ = parser.parse_known_args(argv)
     # A command listed only by its help line (its module not loaded) is parsed by the full parser.
-    args = (parser if args._func is not None else build_parser()).parse_args(argv)
+    args = (parser if args.func_ is not None else build_parser()).parse_args(argv)
+    prog = f"strapdown {args.command_}"
+    with warnings.catch_warnings(record=True) as caught:
+        if not _debug():
+            warnings.simplefilter("ignore", RuntimeWarning)
+        try:
+            show = wanted(None if not args.no_progress else False)
+            args.progress = getattr(args, "progress", False) or show
+            _apply_rules(args)
+            with activity(prog, enabled=show and args.progress_mode_ == "activity"):
+                result = args.func_(args)
+            if isinstance(result, dict):
+                result = Result(result)
+            data = _jsonable(result.data)
+            bad = _non_finite(data)
+            if bad:
+                raise ValueError(f"the result {bad[0]} came out {bad[1]}: the arguments lie outside the range where the model is defined")
+        except KeyboardInterrupt:
+            raise
+        except Exception as exc:  # the edge of the contract: every exception becomes one line
+            if _debug():
+                raise
+            message, status = _message(exc, args, argv)
+            _say(prog, "error: " + message)
+            return status
+    for w in caught:
+        if not issubclass(w.category, RuntimeWarning) or _debug():
+            _say(prog, f"warning: {_one_line(str(w.message))}")
     try:
-        result = args._func(args)
-    except (ValueError, TypeError, UsageError, FileNotFoundError) as exc:
-        message = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        sys.stderr.write(f"strapdown {args.command}: error: {message}\n")
-        return 2
-    if isinstance(result, dict):
-        result = Result(result)
-    if args.json:
-        sys.stdout.write(json.dumps(_jsonable(result.data), allow_nan=False) + "\n")
-    else:
-        sys.stdout.write((result.text if result.text is not None else _human(result.data)) + "\n")
+        if args.json:
+            _write_stdout(json.dumps(data, allow_nan=False) + "\n")
+        else:
+            _write_stdout((result.text if result.text is not None else _human(data)) + "\n")
+    except BrokenPipeError:  # `strapdown ... | head`: the reader left; say nothing more
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
     return 0
 
 

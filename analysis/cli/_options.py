@@ -1,20 +1,112 @@
-"""Options shared by the simulation commands: algorithm choice and motion parameters."""
+"""Options shared by the commands: algorithm choice, motion parameters, counts, work limits.
+
+Argument types for argparse (:func:`count`, :func:`number`) turn a mistyped
+value into a one-line error naming the option; :func:`add_limits` and
+:func:`limits_from` give a command the ``--time-limit`` / ``--memory-limit-mb``
+options of :mod:`strapdown.analysis.core.budget`.
+"""
 
 from __future__ import annotations
 
+import argparse
 import math
+import re
 
 import numpy as np
 
-from ...derivations.coning.algorithms import load_toml
-from ...derivations.coning.registry import get
+from ...derivations.coning.algorithms import TOML_LIMITS, load_toml
+from ...derivations.coning.registry import get, names
+from ..core import budget
 from ..core.quaternion import normalize
-from ..core.units import RAD_PER_DEG
+from ..core.roundoff import drift_floor
+from ..core.units import RAD_PER_DEG, RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import as_float, in_open_interval, positive
 
+__all__ = [
+    "count",
+    "number",
+    "add_algorithm",
+    "algorithm_from",
+    "add_motion",
+    "add_run",
+    "motion_parameters",
+    "check_run_work",
+    "add_sculling",
+    "sculling_parameters",
+    "SCULLING_DEFAULTS",
+    "add_limits",
+    "limits_from",
+    "check_work",
+    "floats",
+    "unit_quaternion",
+    "run_summary",
+]
 
+_COUNT = re.compile(r"[+-]?(\d+(_\d+)*|\d*\.?\d+([eE][+-]?\d+)?|\d+\.\d*([eE][+-]?\d+)?)")
+
+
+def count(text: str) -> int:
+    """Argparse type of a count: a whole number, also in scientific notation (``1e6``, ``2.5e3``).
+
+    Parameters
+    ----------
+    text : str
+        The value as typed.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        If ``text`` is not a whole number (``1.5``, ``abc``, ``nan``, ``1e999``).
+
+    Examples
+    --------
+    >>> count("1e6"), count("2.5e3"), count("1_000")
+    (1000000, 2500, 1000)
+    """
+    text = str(text).strip()
+    if not _COUNT.fullmatch(text) or len(text) > 40:
+        raise argparse.ArgumentTypeError(f"expected a whole number such as 1000 or 1e6, got {text[:40]!r}")
+    if "e" not in text.lower() and "." not in text:
+        return int(text)
+    value = float(text)
+    if not math.isfinite(value) or not value.is_integer():
+        raise argparse.ArgumentTypeError(f"expected a whole number such as 1000 or 1e6, got {text!r}")
+    return int(value)
+
+
+def number(text: str) -> float:
+    """Argparse type of a finite real number (``nan``, ``inf`` and overflow such as ``1e999`` are refused).
+
+    Parameters
+    ----------
+    text : str
+        The value as typed.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        If ``text`` is not a finite number.
+    """
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {str(text)[:40]!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {str(text)[:40]!r}")
+    return value
+
+
+# --------------------------------------------------------------------------- algorithms
 def add_algorithm(parser, *, required: bool = True) -> None:
-    """Add ``--algorithm NAME | --algorithm-file FILE`` and ``--allow-inconsistent``.
+    """``--algorithm NAME | --algorithm-file FILE`` and ``--allow-inconsistent``.
 
     Parameters
     ----------
@@ -24,40 +116,59 @@ def add_algorithm(parser, *, required: bool = True) -> None:
         Whether one of the two must be given.
     """
     group = parser.add_mutually_exclusive_group(required=required)
-    group.add_argument("--algorithm", metavar="NAME", help="registry algorithm name (e.g. panov-4s-3, savage-1+1, ignagni-1996-5; see `strapdown algorithms list`)")
-    group.add_argument("--algorithm-file", metavar="FILE", help="TOML file with a user algorithm (indices <= 0: samples of earlier steps; docs/algorithm-files.md)")
+    group.add_argument(
+        "--algorithm",
+        metavar="NAME",
+        help=f"registry algorithm [name], one of: {', '.join(names(library=True))} (`strapdown algorithms list` shows them)",
+    )
+    group.add_argument(
+        "--algorithm-file",
+        metavar="FILE",
+        help=f"TOML file with a user algorithm [path] (indices <= 0: samples of earlier steps; docs/algorithm-files.md; "
+        f"at most {TOML_LIMITS.samples} samples, {TOML_LIMITS.terms} terms)",
+    )
     parser.add_argument("--allow-inconsistent", action="store_true", help="accept a TOML algorithm that misses the second-order condition")
 
 
 def algorithm_from(args):
-    """The algorithm chosen by :func:`add_algorithm` options (ValueError if unknown or malformed).
+    """The algorithm chosen by :func:`add_algorithm` options.
 
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed options.
+        Parsed arguments with ``algorithm`` or ``algorithm_file``.
+
+    Returns
+    -------
+    strapdown.derivations.coning.algorithms.Algorithm
+
+    Raises
+    ------
+    ValueError
+        An unknown name, or a file that is missing, unreadable, malformed or beyond the limits.
     """
     if getattr(args, "algorithm_file", None):
         return load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
     return get(args.algorithm)
 
 
+# --------------------------------------------------------------------------- motion
 def add_motion(parser) -> None:
-    """Add the regular precession (4.1) options ``--eps --nutation-deg --freq-hz``, step and duration.
+    """Regular precession (4.1) options: ``--eps --nutation-deg --freq-hz``, sample interval, duration, work limits.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
         The command's parser.
     """
-    parser.add_argument("--eps", type=float, required=True, help="ε = μ/ν, precession to spin rate (−1 is coning)")
+    parser.add_argument("--eps", type=float, required=True, help="ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning)")
     parser.add_argument("--nutation-deg", type=float, required=True, help="nutation angle ϑ [deg], in (0, 180)")
-    parser.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz]; ν = 2πF")
+    parser.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz], > 0; ν = 2πF")
     add_run(parser)
 
 
 def add_run(parser) -> None:
-    """Add ``--sample-interval`` and ``--duration`` (both required).
+    """``--sample-interval`` and ``--duration`` (both required), and the work limits of :func:`add_limits`.
 
     Parameters
     ----------
@@ -66,45 +177,183 @@ def add_run(parser) -> None:
     """
     parser.add_argument("--sample-interval", type=float, required=True, metavar="H", help="gyro sample interval h [s]")
     parser.add_argument("--duration", type=float, required=True, help="length of the run [s], at least one step N·h")
+    add_limits(parser)
 
 
-def motion_parameters(args) -> dict:
+def motion_parameters(args, algorithm=None, *, velocity: bool = False) -> dict:
     """Validated ε, ν [rad/s], ϑ [rad] from the options, with messages naming the option.
+
+    With ``algorithm`` the work of the run is estimated too and refused if it
+    exceeds the limits of :func:`add_limits` (before anything is allocated).
 
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed options of :func:`add_motion`.
+        Parsed arguments of :func:`add_motion`.
+    algorithm : Algorithm, optional
+        The algorithm to be run (for the work estimate).
+    velocity : bool, keyword-only
+        The run is a dual (apparent-velocity) run (about four times the work per step).
+
+    Returns
+    -------
+    dict
+        ``eps``, ``nu`` [rad/s], ``nutation`` [rad].
+
+    Raises
+    ------
+    ValueError
+        A value out of range (in the unit typed), or work beyond the limits
+        (:class:`strapdown.analysis.core.budget.BudgetExceeded`).
     """
     eps = as_float(args.eps, "--eps")
     nutation_deg = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees")
     freq = positive(args.freq_hz, "--freq-hz")
-    positive(args.sample_interval, "--sample-interval")
+    h = positive(args.sample_interval, "--sample-interval")
     positive(args.duration, "--duration")
-    return {"eps": eps, "nu": 2.0 * math.pi * freq, "nutation": nutation_deg * RAD_PER_DEG}
+    nu, nutation = 2.0 * math.pi * freq, nutation_deg * RAD_PER_DEG
+    with np.errstate(over="ignore", invalid="ignore"):
+        rate = float(abs(nu) * np.sqrt(np.float64(1.0) + 2.0 * eps * math.cos(nutation) + np.float64(eps) ** 2))  # |ω| of (4.1), constant
+    if not rate * h < math.pi:
+        raise ValueError(
+            f"Expected the body to turn less than π rad per sample, got |ω| h = {rate * h:.3g} rad "
+            f"(|ω| = {rate:.3g} rad/s from --eps {eps:g}, --nutation-deg {nutation_deg:g}, --freq-hz {freq:g}; --sample-interval {h:g} s): "
+            "sample faster or slow the motion"
+        )
+    if algorithm is not None:
+        check_run_work(args, algorithm, velocity=velocity)
+    return {"eps": eps, "nu": nu, "nutation": nutation}
 
 
+def check_run_work(args, algorithm, *, velocity: bool = False) -> None:
+    """Estimate the work of a simulation run from ``--duration`` and ``--sample-interval``; refuse it beyond the limits.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of :func:`add_run` (validated ``sample_interval``, ``duration``).
+    algorithm : Algorithm
+        The algorithm to be run.
+    velocity : bool, keyword-only
+        The run is a dual (apparent-velocity) run (about four times the work per step).
+
+    Raises
+    ------
+    strapdown.analysis.core.budget.BudgetExceeded
+        If the estimate exceeds the limits (a ValueError).
+    """
+    from ..coning.simulator import CHUNK_STEPS
+
+    h = positive(args.sample_interval, "--sample-interval")
+    duration = positive(args.duration, "--duration")
+    steps = duration / (algorithm.samples * h)
+    degree_sum = sum(t.degree for t in algorithm.terms)
+    what = f"{steps:.3g} steps of {algorithm.samples} samples (--duration {duration:g} s / --sample-interval {h:g} s)"
+    check_work(args, budget.coning_simulation(steps, window=algorithm.window, degree_sum=degree_sum, velocity=velocity, chunk_steps=CHUNK_STEPS, what=what))
+
+
+# --------------------------------------------------------------------------- work limits
+def add_limits(parser) -> None:
+    """``--time-limit`` [s] and ``--memory-limit-mb``: the largest estimated work a command accepts.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
+    parser.add_argument(
+        "--time-limit",
+        type=number,
+        default=budget.DEFAULT_TIME_LIMIT,
+        metavar="T",
+        help=f"refuse work estimated to take longer [s] (default {budget.DEFAULT_TIME_LIMIT:g})",
+    )
+    parser.add_argument(
+        "--memory-limit-mb",
+        type=number,
+        default=budget.DEFAULT_MEMORY_LIMIT / 1e6,
+        metavar="M",
+        help=f"refuse work estimated to need more memory [MB], 1 MB = 10⁶ bytes (default {budget.DEFAULT_MEMORY_LIMIT / 1e6:g})",
+    )
+
+
+def limits_from(args) -> budget.Limits:
+    """The :class:`~strapdown.analysis.core.budget.Limits` of the options of :func:`add_limits`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments (defaults apply where the options are absent).
+
+    Returns
+    -------
+    strapdown.analysis.core.budget.Limits
+
+    Raises
+    ------
+    ValueError
+        A limit that is not a positive number.
+    """
+    seconds = positive(getattr(args, "time_limit", budget.DEFAULT_TIME_LIMIT), "--time-limit")
+    megabytes = positive(getattr(args, "memory_limit_mb", budget.DEFAULT_MEMORY_LIMIT / 1e6), "--memory-limit-mb")
+    return budget.Limits(seconds=seconds, memory=megabytes * 1e6)
+
+
+def check_work(args, estimate: budget.Estimate) -> budget.Estimate:
+    """Refuse ``estimate`` if it exceeds the limits given on the command line.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments (with the options of :func:`add_limits`, or the defaults).
+    estimate : strapdown.analysis.core.budget.Estimate
+        The work of the request.
+
+    Returns
+    -------
+    strapdown.analysis.core.budget.Estimate
+        ``estimate``.
+
+    Raises
+    ------
+    strapdown.analysis.core.budget.BudgetExceeded
+        If it exceeds a limit (the CLI edge prints the estimate, the limit and the option).
+    """
+    return budget.check(estimate, limits_from(args))
+
+
+# --------------------------------------------------------------------------- vectors
 def floats(text: str, name: str, count: int) -> np.ndarray:
     """Parse ``count`` comma-separated finite numbers, e.g. ``--w0 10,0,0``.
 
     Parameters
     ----------
     text : str
-        The option's value.
+        The value as typed.
     name : str
-        The option as typed, for messages.
+        The option, for messages.
     count : int
-        How many numbers are expected.
+        How many numbers [count].
+
+    Returns
+    -------
+    ndarray, shape (count,)
+
+    Raises
+    ------
+    ValueError
+        Not ``count`` numbers, or a number that is not finite.
     """
     parts = [p.strip() for p in str(text).split(",")]
+    shown = str(text) if len(str(text)) <= 60 else str(text)[:57] + "..."
     try:
         values = [float(p) for p in parts]
     except ValueError:
-        raise ValueError(f"Expected `{name}` as {count} comma-separated numbers, got {text!r}") from None
+        raise ValueError(f"Expected `{name}` as {count} comma-separated numbers, got {shown!r}") from None
     if len(values) != count:
-        raise ValueError(f"Expected `{name}` as {count} comma-separated numbers, got {len(values)} in {text!r}")
+        raise ValueError(f"Expected `{name}` as {count} comma-separated numbers, got {len(values)} in {shown!r}")
     if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"Expected `{name}` to be finite, got {text!r}")
+        raise ValueError(f"Expected `{name}` to be finite, got {shown!r}")
     return np.array(values)
 
 
@@ -114,22 +363,51 @@ def unit_quaternion(text: str, name: str) -> np.ndarray:
     Parameters
     ----------
     text : str
-        The option's value.
+        The value as typed, e.g. ``"1,0,0,0"``.
     name : str
-        The option as typed, for messages.
+        The option, for messages.
+
+    Returns
+    -------
+    ndarray, shape (4,)
+
+    Raises
+    ------
+    ValueError
+        Not four finite numbers, or all four zero.
     """
-    return normalize(floats(text, name, 4), name)
+    q = floats(text, name, 4)
+    norm = float(np.sqrt(np.sum(q * q)))
+    if not norm > 1e-150 or not math.isfinite(norm):
+        raise ValueError(f"Expected `{name}` to be a nonzero quaternion of moderate size, got {text!r}")
+    return normalize(q / np.max(np.abs(q)), name)
 
 
-def run_summary(alg, result) -> tuple[dict, str]:
-    """JSON keys and the first text line shared by the simulation commands.
+# --------------------------------------------------------------------------- results
+def run_summary(alg, result, params: dict | None = None) -> tuple[dict, str]:
+    """JSON keys and the first text lines shared by the simulation commands.
+
+    With the motion ``params`` the simulated drift is compared with the
+    round-off floor of the run (:func:`strapdown.analysis.core.roundoff.drift_floor`):
+    below it, the result says so (``drift_below_roundoff_floor`` and a note),
+    rather than presenting round-off as a drift.
 
     Parameters
     ----------
     alg : Algorithm
         The algorithm run.
-    result : SimulationResult
+    result : strapdown.analysis.coning.simulator.SimulationResult
         The run.
+    params : dict, optional
+        ``eps``, ``nu`` [rad/s] of the motion (from :func:`motion_parameters`).
+
+    Returns
+    -------
+    data : dict
+        Algorithm, samples, sample interval [s], step [s], steps, simulated duration [s]
+        (and, with ``params``, ``roundoff_floor_deg_per_h`` and ``drift_below_roundoff_floor``).
+    text : str
+        One line (two when the drift is below the floor).
     """
     data = {
         "algorithm": alg.name,
@@ -142,9 +420,20 @@ def run_summary(alg, result) -> tuple[dict, str]:
     }
     prev = f" + {alg.history} previous" if alg.history else ""
     line = f"{alg.name}: N = {alg.samples}{prev}, h = {result.sample_interval:g} s, H = {result.step:g} s, {result.steps} steps, t = {data['simulated_duration']:g} s"
+    if params is not None:
+        floor = drift_floor(params["nu"], params["eps"] * params["nu"]) * RAD_PER_S_TO_DEG_PER_H
+        below = bool(float(result.drift_rate) * RAD_PER_S_TO_DEG_PER_H < floor)
+        data["roundoff_floor_deg_per_h"] = floor
+        data["drift_below_roundoff_floor"] = below
+        if below:
+            line += (
+                f"\nnote: the simulated drift is below the float64 round-off floor of this run ({floor:.2g} deg/h): "
+                "it is round-off, not the algorithm's drift (use a larger sample interval, or the asymptotic u_a)"
+            )
     return data, line
 
 
+# --------------------------------------------------------------------------- sculling
 def add_sculling(parser) -> None:
     """Add the classical sculling options (``--motion sculling``).
 

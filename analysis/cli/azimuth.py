@@ -7,7 +7,11 @@ warm call imports neither SymPy nor the other domains.
 
 from __future__ import annotations
 
+import math
+
+from ..core import budget
 from . import Result, UsageError
+from ._options import add_limits, check_work, count
 
 __all__ = ["register", "check_applicable", "check_rocking_domain"]
 
@@ -94,11 +98,12 @@ def _azimuth(args) -> Result:
     seed = as_int(args.seed, "seed", minimum=0)
     model = rocking_model(args.rocking, rad(sx_deg), rad(se_deg), period=args.period, damping=args.damping)
     workers = as_int(args.workers, "workers", minimum=1)
+    check_work(args, budget.monte_carlo(n, workers=workers, what=f"{n:.3g} rocking samples (--samples) on {workers} worker(s) (--workers)"))
     executor = None
     if workers > 1:
-        from concurrent.futures import ProcessPoolExecutor
+        from ..core.montecarlo import process_pool
 
-        executor = ProcessPoolExecutor(workers)
+        executor = process_pool(workers)
     try:
         mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress)
     finally:
@@ -117,7 +122,8 @@ def _azimuth(args) -> Result:
         "theory_rms_first_order_deg": deg(th.rms_first_order),
         "theory_rms_second_order_deg": deg(th.rms),
         "theory_bias_deg": deg(th.bias),
-        "quantiles_deg": {f"{level:g}": deg(v) for level, v in r.quantiles.items()},
+        # a quantile outside the histogram is unknown: null in JSON, never NaN
+        "quantiles_deg": {f"{level:g}": (deg(v) if math.isfinite(v) else None) for level, v in r.quantiles.items()},
         "bound14_holds": r.covers(mc.bound14),
         "bound15_holds": r.covers(mc.bound15),
         "samples": r.n_samples,
@@ -153,14 +159,16 @@ def _design(args) -> Result:
     if T * fs < 1:
         raise ValueError(f"Expected `averaging-time` >= 1/sample-rate-hz = {1 / fs:g} s, got {T:g}")
     points = as_int(args.points, "points", minimum=2)
-    budget = rad(positive(args.budget_deg, "budget-deg"))
+    lags = T * fs
+    check_work(args, budget.autocorrelation_sums(points, lags, what=f"{points} frequencies (--points) × {lags:.3g} samples (--averaging-time × --sample-rate-hz)"))
+    allowed = rad(positive(args.budget_deg, "budget-deg"))
     level = in_open_interval(args.level, "level", 0.0, 1.0)
     b0_deg, g0_deg = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
     for name, value in (("beta0-deg", b0_deg), ("gamma0-deg", g0_deg)):
         if not abs(value) < 90.0:
             raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
     d = admissible_amplitude(
-        budget,
+        allowed,
         lat,
         T,
         np.geomspace(fmin, fmax, points),
@@ -200,7 +208,7 @@ def register(commands) -> None:
     commands : Commands
         The registry of :mod:`strapdown.analysis.cli`.
     """
-    p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)")
+    p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)", progress="own")
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
@@ -209,10 +217,12 @@ def register(commands) -> None:
     p.add_argument("--rocking", choices=["normal", "sine", "narrowband"], default="normal", help="rocking model: normal, sine or narrowband (default normal)")
     p.add_argument("--period", type=float, default=None, help="rocking period [s] (sine, narrowband; default 8)")
     p.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
-    p.add_argument("--samples", type=int, default=1_000_000, help="rocking samples N [1] (default 1000000)")
-    p.add_argument("--seed", type=int, default=0, help="root seed [1] (default 0)")
-    p.add_argument("--workers", type=int, default=1, help="worker processes [1] (default 1; the result does not depend on it)")
+    p.add_argument("--samples", type=count, default=1_000_000, help="rocking samples N [count] (default 1e6)")
+    p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
+    p.add_argument("--workers", type=count, default=1, help="worker processes [count] (default 1; the result does not depend on it)")
     p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+
+    add_limits(p)
 
     d = commands.add("azimuth-design", _design, "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)")
     d.add_argument("--budget-deg", type=float, required=True, help="azimuth error budget [deg] (required; on the rms and on the percentile)")
@@ -223,9 +233,10 @@ def register(commands) -> None:
     d.add_argument("--sample-rate-hz", type=float, default=10.0, help="accelerometer sample rate [Hz] (default 10)")
     d.add_argument("--freq-min-hz", type=float, default=0.02, help="lowest rocking frequency [Hz] (default 0.02)")
     d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz] (default 1), below half the sample rate")
-    d.add_argument("--points", type=int, default=12, help="frequencies, log-spaced [1] (default 12)")
+    d.add_argument("--points", type=count, default=12, help="frequencies, log-spaced [count] (default 12)")
     d.add_argument("--level", type=float, default=0.95, help="percentile level of the percentile criterion, in (0, 1) [1] (default 0.95)")
     d.add_argument("--exact-phase", action="store_true", help="sine: the exact Dirichlet factor instead of its envelope over phase (default off)")
     d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
     d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
     d.add_argument("--max-amplitude-deg", type=float, default=20.0, help="cap of the reported amplitude [deg] (default 20)")
+    add_limits(d)

@@ -9,6 +9,8 @@ available and the JSON value is null.
 
 from __future__ import annotations
 
+import math
+
 from ..coning.drift_theory import asymptotic_drift
 from ..coning.precession import RegularPrecession
 from ..coning.simulator import simulate
@@ -19,14 +21,14 @@ from ._options import add_algorithm, add_motion, algorithm_from, motion_paramete
 
 def _run(args) -> Result:
     alg = algorithm_from(args)
-    params = motion_parameters(args)
+    params = motion_parameters(args, alg)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
     r = simulate(alg, motion, args.sample_interval, args.duration)
-    data, header = run_summary(alg, r)
+    data, header = run_summary(alg, r, params)
     asymptotic = None
     if alg.history == 0:
         u_a = asymptotic_drift(alg, eps=params["eps"], nu=abs(params["nu"]), nutation=params["nutation"], step=r.step)
-        asymptotic = float(deg_per_h(float(u_a)))
+        asymptotic = _finite_or_none(float(deg_per_h(float(u_a))))
     data |= {
         "eps": params["eps"],
         "nutation_deg": args.nutation_deg,
@@ -36,13 +38,20 @@ def _run(args) -> Result:
         "asymptotic_drift_deg_per_h": asymptotic,
         "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
     }
-    u_a_text = f"{asymptotic:.6g} deg/h" if asymptotic is not None else "not available for cross-step algorithms"
+    if asymptotic is not None:
+        u_a_text = f"{asymptotic:.6g} deg/h"
+    else:
+        u_a_text = "not available for cross-step algorithms" if alg.history else "none (zero through h^7)"
     text = (
         f"{header}\n"
         f"constant drift rate (frame I): {data['simulated_drift_deg_per_h']:.6g} deg/h\n"
         f"asymptotic drift rate u_a: {u_a_text}"
     )
     return Result(data, text)
+
+
+def _finite_or_none(x: float):
+    return x if math.isfinite(x) else None
 
 
 def register(commands) -> None:

@@ -9,7 +9,9 @@ open is an option.  The JSON keeps the list ``stages`` with
 
 from __future__ import annotations
 
+from ..core import budget
 from . import Result
+from ._options import add_limits, check_work, count
 
 
 def _scenario(args):
@@ -29,7 +31,8 @@ def _scenario(args):
     if args.rocking_origin is not None:
         kw["rocking_decay_origin"] = as_float(args.rocking_origin, "--rocking-origin")
     as_int(args.seed, "--seed", minimum=0)
-    positive(args.step, "--step")
+    steps = kw["duration"] / positive(args.step, "--step")
+    check_work(args, budget.multistage(steps, what=f"{steps:.3g} integration steps (--duration / --step)"))
     return Scenario(**kw)
 
 
@@ -108,4 +111,5 @@ def register(commands) -> None:
         default="carry",
         help="integral state of stage 2 at its gain switch: kept, rescaled by l_new/l_old, or bumpless (default: carry)",
     )
-    p.add_argument("--seed", type=int, default=0, help="seed of the sensor noise [-] (default 0)")
+    p.add_argument("--seed", type=count, default=0, help="seed of the sensor noise [count] (default 0)")
+    add_limits(p)

@@ -18,7 +18,7 @@ from ..coning.simulator import simulate
 from ..core.units import RAD_PER_DEG, deg_per_h
 from ..core.validation import as_float, in_open_interval, positive
 from . import Result, UsageError
-from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, floats, run_summary, sculling_parameters, unit_quaternion
+from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, run_summary, sculling_parameters, unit_quaternion
 
 _PRECESSION_ONLY = {"eps": "--eps", "nutation_deg": "--nutation-deg", "nu_dual": "--nu-dual", "nutation_dual": "--nutation-dual"}
 
@@ -58,13 +58,13 @@ def _sculling(args):
 def _run(args) -> Result:
     alg = algorithm_from(args)
     positive(args.freq_hz, "--freq-hz")
-    positive(args.sample_interval, "--sample-interval")
-    positive(args.duration, "--duration")
+    check_run_work(args, alg, velocity=True)
     motion, shown = _sculling(args) if args.motion == "sculling" else _precession(args)
     w0 = floats(args.w0, "--w0", 3)
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
     r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
-    data, header = run_summary(alg, r)
+    params = {"eps": motion.eps, "nu": motion.nu} if args.motion == "precession" else None
+    data, header = run_summary(alg, r, params)
     data |= shown | {
         "dW_E": float(r.final_dw_body),
         "dW_I": float(r.final_dw_inertial),

@@ -14,4 +14,10 @@ montecarlo
     Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
 kalman
     Thin adapter over filterpy, the only module that imports it.
+budget
+    Work estimates of the hot paths: a request is refused before it starts if it exceeds a limit.
+progress
+    Progress bars on stderr, shown only when stderr is a terminal.
+roundoff
+    The float64 round-off floor of a simulated drift rate.
 """

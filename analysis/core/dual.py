@@ -119,17 +119,47 @@ class Dual(np.lib.mixins.NDArrayOperatorsMixin):
 
 
 def is_dual(x) -> bool:
-    """True when ``x`` is a :class:`Dual`."""
+    """True when ``x`` is a :class:`Dual`.
+
+    Parameters
+    ----------
+    x : object
+        Anything.
+
+    Returns
+    -------
+    bool
+    """
     return isinstance(x, Dual)
 
 
 def real_part(x):
-    """Real part of ``x`` (``x`` itself when it is not dual)."""
+    """Real part of ``x`` (``x`` itself when it is not dual).
+
+    Parameters
+    ----------
+    x : Dual or array_like
+        A dual or real value.
+
+    Returns
+    -------
+    ndarray or scalar
+    """
     return _re(x)
 
 
 def dual_part(x):
-    """Dual part of ``x`` (zeros when it is not dual)."""
+    """Dual part of ``x`` (zeros when it is not dual).
+
+    Parameters
+    ----------
+    x : Dual or array_like
+        A dual or real value.
+
+    Returns
+    -------
+    ndarray
+    """
     return x.du if isinstance(x, Dual) else np.zeros_like(np.asarray(x, dtype=float))
 
 

@@ -21,12 +21,23 @@ def make_filter(F, Q, H, R, x0, P0):
 
     Parameters
     ----------
-    F : (n, n) array — state transition per step
-    Q : (n, n) array — process noise covariance per step
-    H : (m, n) array — measurement matrix
-    R : (m, m) array — measurement noise covariance
-    x0 : (n,) array — prior mean
-    P0 : (n, n) array — prior covariance
+    F : array_like, shape (n, n)
+        State transition per step.
+    Q : array_like, shape (n, n)
+        Process noise covariance per step.
+    H : array_like, shape (m, n)
+        Measurement matrix.
+    R : array_like, shape (m, m)
+        Measurement noise covariance.
+    x0 : array_like, shape (n,)
+        Prior mean.
+    P0 : array_like, shape (n, n)
+        Prior covariance.
+
+    Returns
+    -------
+    filterpy.kalman.KalmanFilter
+        A filter holding copies of the arrays.
     """
     from filterpy.kalman import KalmanFilter
 
@@ -48,10 +59,21 @@ def gain_sequence(F, Q, H, R, P0, n_steps: int):
     The covariances of a linear filter do not depend on the measurements, so
     filterpy is run once on zero measurements.
 
+    Parameters
+    ----------
+    F, Q, H, R : array_like
+        Model, as in :func:`make_filter`.
+    P0 : array_like, shape (n, n)
+        Prior covariance.
+    n_steps : int
+        Number of predict–update cycles [count].
+
     Returns
     -------
-    gains : (n_steps, n, m) array
-    covariances : (n_steps, n, n) array — posterior covariances
+    gains : ndarray, shape (n_steps, n, m)
+        Kalman gain of each cycle.
+    covariances : ndarray, shape (n_steps, n, n)
+        Posterior covariance of each cycle.
     """
     F = np.atleast_2d(np.asarray(F, dtype=float))
     kf = make_filter(F, Q, H, R, np.zeros(F.shape[0]), P0)
@@ -71,15 +93,21 @@ def apply_gains(F, H, gains, x0, zs):
 
     Parameters
     ----------
-    F : (n, n) array — state transition
-    H : (m, n) array — measurement matrix
-    gains : (n_steps, n, m) array — from :func:`gain_sequence`
-    x0 : (n,) array — prior mean
-    zs : (n_trials, n_steps, m) array — measurements
+    F : array_like, shape (n, n)
+        State transition.
+    H : array_like, shape (m, n)
+        Measurement matrix.
+    gains : array_like, shape (n_steps, n, m)
+        From :func:`gain_sequence`.
+    x0 : array_like, shape (n,)
+        Prior mean.
+    zs : array_like, shape (n_trials, n_steps, m)
+        Measurements.
 
     Returns
     -------
-    (n_trials, n_steps, n) array — posterior means (one step per measurement)
+    ndarray, shape (n_trials, n_steps, n)
+        Posterior means (one step per measurement).
     """
     F = np.atleast_2d(np.asarray(F, dtype=float))
     H = np.atleast_2d(np.asarray(H, dtype=float))
@@ -96,9 +124,25 @@ def apply_gains(F, H, gains, x0, zs):
 
 
 def filterpy_batch(F, Q, H, R, x0, P0, zs):
-    """Reference: ``KalmanFilter.batch_filter`` on one trial ``zs`` of shape ``(n_steps, m)``.
+    """Reference: ``KalmanFilter.batch_filter`` on one trial.
 
-    Returns the posterior means ``(n_steps, n)`` and covariances ``(n_steps, n, n)``.
+    Parameters
+    ----------
+    F, Q, H, R : array_like
+        Model, as in :func:`make_filter`.
+    x0 : array_like, shape (n,)
+        Prior mean.
+    P0 : array_like, shape (n, n)
+        Prior covariance.
+    zs : array_like, shape (n_steps, m)
+        Measurements of the trial.
+
+    Returns
+    -------
+    means : ndarray, shape (n_steps, n)
+        Posterior means.
+    covariances : ndarray, shape (n_steps, n, n)
+        Posterior covariances.
     """
     kf = make_filter(F, Q, H, R, x0, P0)
     means, covs, _, _ = kf.batch_filter(np.asarray(zs, dtype=float).reshape(len(zs), -1, 1))
@@ -110,12 +154,14 @@ def nees(errors, covariances):
 
     Parameters
     ----------
-    errors : (k, n) array — estimate minus truth
-    covariances : (k, n, n) array
+    errors : array_like, shape (k, n)
+        Estimate minus truth.
+    covariances : array_like, shape (k, n, n)
+        Covariances the estimates claim.
 
     Returns
     -------
-    (k,) array
+    ndarray, shape (k,)
     """
     from filterpy.stats import NEES
 

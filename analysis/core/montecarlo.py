@@ -28,7 +28,7 @@ import numpy as np
 
 from .validation import as_int, positive
 
-__all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks"]
+__all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool"]
 
 #: normal quantile of the two-sided 95 % interval
 Z95 = 1.959963984540054
@@ -44,18 +44,30 @@ class MonteCarloResult:
 
     Attributes
     ----------
-    n_trials : int — independent trials
-    n_samples : int — error samples (trials × steps)
-    mean : float — sample mean of the error (bias) [error units]
-    mean_ci : tuple — 95 % interval of the mean
-    mse : float — mean square of the error
-    mse_std_error : float — standard error of ``mse`` (from per-trial means)
-    rms : float — ``√mse``
-    rms_ci : tuple — 95 % interval of the rms, ``√`` of the interval of ``mse``
-    quantiles : dict — level → error quantile (NaN if it falls outside the histogram)
-    minimum, maximum : float — extreme errors
-    aux_mean : tuple — per-trial side quantities averaged over trials
-    histogram : tuple — ``(edges, counts, underflow, overflow)``
+    n_trials : int
+        Independent trials [count].
+    n_samples : int
+        Error samples (trials × steps) [count].
+    mean : float
+        Sample mean of the error (bias) [error units].
+    mean_ci : tuple of float
+        95 % interval of the mean [error units].
+    mse : float
+        Mean square of the error [error units²].
+    mse_std_error : float
+        Standard error of ``mse`` (from per-trial means) [error units²].
+    rms : float
+        ``√mse`` [error units].
+    rms_ci : tuple of float
+        95 % interval of the rms, ``√`` of the interval of ``mse`` [error units].
+    quantiles : dict
+        Level → error quantile [error units] (NaN if it falls outside the histogram).
+    minimum, maximum : float
+        Extreme errors [error units].
+    aux_mean : tuple of float
+        Per-trial side quantities averaged over trials.
+    histogram : tuple
+        ``(edges, counts, underflow, overflow)``.
     """
 
     n_trials: int
@@ -73,7 +85,19 @@ class MonteCarloResult:
     histogram: tuple = field(default=(), repr=False, compare=False)
 
     def covers(self, bound: float) -> str:
-        """Classify ``bound`` against the rms: ``"holds"`` (upper CI ≤ bound), ``"fails"`` (lower CI > bound) or ``"undecided"``."""
+        """Classify ``bound`` against the rms.
+
+        Parameters
+        ----------
+        bound : float
+            A claimed upper bound of the rms [error units].
+
+        Returns
+        -------
+        str
+            ``"holds"`` (upper end of the 95 % interval ≤ bound), ``"fails"``
+            (lower end > bound) or ``"undecided"``.
+        """
         if self.rms_ci[1] <= bound:
             return "holds"
         if self.rms_ci[0] > bound:
@@ -84,9 +108,23 @@ class MonteCarloResult:
 def root_seed_sequence(rng) -> np.random.SeedSequence:
     """The root :class:`~numpy.random.SeedSequence` of a run.
 
-    ``rng`` may be an int (the seed), a SeedSequence (used as is), a Generator
-    (128 bits are drawn from it, so the run is a deterministic function of its
-    state) or None (fresh entropy).
+    Parameters
+    ----------
+    rng : int, SeedSequence, Generator or None
+        An int (the seed, ≥ 0), a SeedSequence (used as is), a Generator (128
+        bits are drawn from it, so the run is a deterministic function of its
+        state) or None (fresh entropy).
+
+    Returns
+    -------
+    numpy.random.SeedSequence
+
+    Raises
+    ------
+    ValueError
+        For a negative seed.
+    TypeError
+        For anything else.
     """
     if isinstance(rng, np.random.SeedSequence):
         return rng
@@ -102,7 +140,19 @@ def root_seed_sequence(rng) -> np.random.SeedSequence:
 
 
 def block_seed(root: np.random.SeedSequence, index: int) -> np.random.SeedSequence:
-    """The ``index``-th child of ``root``, identical to ``root.spawn(index + 1)[index]``."""
+    """The ``index``-th child of ``root``, identical to ``root.spawn(index + 1)[index]``.
+
+    Parameters
+    ----------
+    root : numpy.random.SeedSequence
+        The root of the run.
+    index : int
+        Block number [count], ≥ 0.
+
+    Returns
+    -------
+    numpy.random.SeedSequence
+    """
     return np.random.SeedSequence(root.entropy, spawn_key=tuple(root.spawn_key) + (int(index),), pool_size=root.pool_size)
 
 
@@ -149,8 +199,22 @@ class _Chunk:
 def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, desc: str = "Monte Carlo") -> list:
     """Run zero-argument callables, serially (``executor=None``) or on an executor, in order.
 
-    ``executor`` is a :class:`concurrent.futures.Executor` or a
-    ``dask.distributed.Client`` (anything with ``submit`` and ``gather``).
+    Parameters
+    ----------
+    executor : Executor, dask Client or None
+        A :class:`concurrent.futures.Executor` or a ``dask.distributed.Client``
+        (anything with ``submit`` and ``gather``); None runs them here.
+    tasks : sequence of callable
+        Picklable zero-argument callables.
+    progress : bool, keyword-only
+        Progress bar over the tasks on stderr.
+    desc : str, keyword-only
+        Label of the bar.
+
+    Returns
+    -------
+    list
+        The results, in the order of ``tasks`` (whatever order they finish in).
     """
     import sys
 
@@ -183,6 +247,32 @@ def _call(task):
     return task()
 
 
+def _ignore_interrupt() -> None:
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def process_pool(workers: int):
+    """A :class:`concurrent.futures.ProcessPoolExecutor` whose workers leave Ctrl-C to the parent.
+
+    On Ctrl-C the parent stops and reports it once; the workers, which ignore
+    SIGINT, print no traceback of their own and end when the pool shuts down.
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes [count], ≥ 1.
+
+    Returns
+    -------
+    concurrent.futures.ProcessPoolExecutor
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(as_int(workers, "workers", minimum=1), initializer=_ignore_interrupt)
+
+
 def run(
     kernel: Callable,
     n_trials: int,
@@ -201,17 +291,28 @@ def run(
 
     Parameters
     ----------
-    kernel : callable — ``kernel(n_trials, rng) -> errors (n_trials, n_steps)`` or ``(errors, aux)``
-    n_trials : int — number of independent trials, at least 2
-    rng : Generator | SeedSequence | int | None — root of the random streams
-    trials_per_block : int — trials per block (the unit of randomness; changing it changes the draws)
-    blocks_per_chunk : int — blocks per work item (does not change the result)
-    executor : Executor | dask Client | None — where chunks run (does not change the result)
-    scale : float — error scale of the histogram [error units]
-    half_width : float — the histogram spans ``±half_width·scale``
-    n_bins : int — histogram bins
-    quantiles : sequence of float — levels in (0, 1)
-    progress : bool — tqdm bar over chunks on stderr
+    kernel : callable
+        ``kernel(n_trials, rng) -> errors (n_trials, n_steps)`` or ``(errors, aux)``.
+    n_trials : int
+        Number of independent trials [count], at least 2.
+    rng : Generator, SeedSequence, int or None, keyword-only
+        Root of the random streams.
+    trials_per_block : int, keyword-only
+        Trials per block [count] (the unit of randomness; changing it changes the draws).
+    blocks_per_chunk : int, keyword-only
+        Blocks per work item [count] (does not change the result).
+    executor : Executor, dask Client or None, keyword-only
+        Where chunks run (does not change the result).
+    scale : float, keyword-only
+        Error scale of the histogram [error units].
+    half_width : float, keyword-only
+        The histogram spans ``±half_width·scale`` [dimensionless].
+    n_bins : int, keyword-only
+        Histogram bins [count].
+    quantiles : sequence of float, keyword-only
+        Levels in (0, 1).
+    progress : bool, keyword-only
+        Progress bar over chunks on stderr.
 
     Returns
     -------

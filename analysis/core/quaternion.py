@@ -55,6 +55,21 @@ def multiply_parts(a, b):
     The structure-of-arrays form of :func:`multiply` (the one place the product
     is written out), for hot paths that keep ``(q0, q1, q2, q3)`` as separate
     arrays.
+
+    Parameters
+    ----------
+    a, b : tuple of 4 array_like
+        Components ``(q0, q1, q2, q3)`` of the left and right factors (real or
+        :class:`~strapdown.analysis.core.dual.Dual`, broadcasting).
+
+    Returns
+    -------
+    tuple of 4 arrays
+        Components of ``a ∘ b``.
+
+    References
+    ----------
+    Lebedev & Panov (1989), section 1 (quaternion product).
     """
     a0, a1, a2, a3 = a
     b0, b1, b2, b3 = b
@@ -69,6 +84,17 @@ def multiply_parts(a, b):
 def multiply(a, b):
     """Hamilton product ``a ∘ b`` of ``(..., 4)`` quaternions (broadcasting).
 
+    Parameters
+    ----------
+    a, b : array_like, shape (..., 4)
+        Left and right factors, scalar first (real or dual).
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 4)
+
+    Examples
+    --------
     >>> multiply([0, 1, 0, 0], [0, 0, 1, 0])   # i * j = k
     array([0., 0., 0., 1.])
     """
@@ -78,19 +104,57 @@ def multiply(a, b):
 
 
 def conjugate(q):
-    """Conjugate ``q̄ = (q0, -q1, -q2, -q3)``."""
+    """Conjugate ``q̄ = (q0, -q1, -q2, -q3)``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternion(s), scalar first.
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 4)
+    """
     q = _arr(q)
     return np.stack([q[..., 0], -q[..., 1], -q[..., 2], -q[..., 3]], axis=-1)
 
 
 def norm(q):
-    """Euclidean norm over the last axis."""
+    """Euclidean norm over the last axis.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternion(s).
+
+    Returns
+    -------
+    ndarray or Dual, shape (...)
+    """
     q = _arr(q)
     return np.sqrt(np.sum(q * q, axis=-1))
 
 
 def normalize(q, name: str = "q"):
-    """Return ``q / |q|``; raise ``ValueError`` naming ``name`` for a zero quaternion."""
+    """Return ``q / |q|``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Nonzero quaternion(s).
+    name : str
+        Argument name for error messages.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternion(s).
+
+    Raises
+    ------
+    ValueError
+        For a zero quaternion, or one that is not finite or not of shape (..., 4).
+    """
     q = as_quaternion(q, name)
     n = np.linalg.norm(q, axis=-1, keepdims=True)
     if np.any(n == 0):
@@ -99,20 +163,51 @@ def normalize(q, name: str = "q"):
 
 
 def identity(shape=()):
-    """Identity quaternions of the given batch shape."""
+    """Identity quaternions of the given batch shape.
+
+    Parameters
+    ----------
+    shape : int or tuple of int
+        Batch shape (``()`` for one quaternion).
+
+    Returns
+    -------
+    ndarray, shape (*shape, 4)
+        ``(1, 0, 0, 0)`` everywhere.
+    """
     q = np.zeros(tuple(np.atleast_1d(shape)) + (4,) if shape != () else (4,))
     q[..., 0] = 1.0
     return q
 
 
 def vector_to_quat(v):
-    """Pure quaternion ``{0, v}`` from a ``(..., 3)`` vector."""
+    """Pure quaternion ``{0, v}`` from a ``(..., 3)`` vector.
+
+    Parameters
+    ----------
+    v : array_like, shape (..., 3)
+        Vector(s) (real or dual).
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 4)
+    """
     v = _arr(v)
     return np.stack([v[..., 0] * 0.0, v[..., 0], v[..., 1], v[..., 2]], axis=-1)
 
 
 def vect(q):
-    """Vector part of ``(..., 4)`` quaternions, shape ``(..., 3)``."""
+    """Vector part of ``(..., 4)`` quaternions.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternion(s).
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 3)
+    """
     return _arr(q)[..., 1:]
 
 
@@ -125,12 +220,31 @@ def rotate(q, v):
         Unit quaternion(s).
     v : array_like, shape (..., 3)
         Vector(s), broadcast against ``q``.
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 3)
+        The rotated vector(s).
+
+    References
+    ----------
+    Lebedev & Panov (1989), section 1 (``v_I = Λ ∘ v_E ∘ Λ̄``).
     """
     return vect(multiply(multiply(q, vector_to_quat(v)), conjugate(q)))
 
 
 def cross(a, b):
-    """Cross product of ``(..., 3)`` vectors (real or dual)."""
+    """Cross product of ``(..., 3)`` vectors (real or dual).
+
+    Parameters
+    ----------
+    a, b : array_like, shape (..., 3)
+        Left and right factors (broadcasting).
+
+    Returns
+    -------
+    ndarray or Dual, shape (..., 3)
+    """
     if isinstance(a, Dual) or isinstance(b, Dual):
         a, b = _arr(a), _arr(b)
         a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
@@ -140,7 +254,17 @@ def cross(a, b):
 
 
 def dot(a, b):
-    """Dot product over the last axis (real or dual)."""
+    """Dot product over the last axis (real or dual).
+
+    Parameters
+    ----------
+    a, b : array_like, shape (..., n)
+        Factors (broadcasting).
+
+    Returns
+    -------
+    ndarray or Dual, shape (...)
+    """
     return np.sum(_arr(a) * _arr(b), axis=-1)
 
 

@@ -1,7 +1,12 @@
 """Validation of user input: one place, messages a user can act on.
 
 Every check raises :class:`ValueError` for a bad value and :class:`TypeError` for
-a wrong type, and names the argument, what was expected and what came.
+a wrong type, and names the argument, what was expected and what came.  The
+name is the Python argument (``sample_interval``); the command line puts the
+option it came from in front of the message (``argument --sample-interval:``).
+A limit is stated in the unit of the value checked: a command line that takes
+degrees checks degrees (``in_open_interval(lat, "--lat-deg", -90, 90, text="(-90, 90)
+degrees")``) before it converts to radians.
 """
 
 from __future__ import annotations
@@ -31,6 +36,26 @@ def _describe(x) -> str:
 def as_float(x, name: str) -> float:
     """Return ``x`` as a finite float, or raise naming ``name``.
 
+    Parameters
+    ----------
+    x : real number
+        The value (a Python or numpy real, or a 0-d numeric array; not a bool).
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is NaN or infinite.
+
+    Examples
+    --------
     >>> as_float(2, "eps")
     2.0
     """
@@ -46,7 +71,33 @@ def as_float(x, name: str) -> float:
 
 
 def as_int(x, name: str, *, minimum: int | None = None) -> int:
-    """Return ``x`` as an int (at least ``minimum``), or raise naming ``name``."""
+    """Return ``x`` as an int (at least ``minimum``), or raise naming ``name``.
+
+    Parameters
+    ----------
+    x : int or integral float
+        The value (``3.0`` is accepted, ``3.5`` and booleans are not).
+    name : str
+        Argument name for the message.
+    minimum : int, optional, keyword-only
+        Smallest value accepted.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not an integer.
+    ValueError
+        If ``x`` is below ``minimum``.
+
+    Examples
+    --------
+    >>> as_int(1e6, "samples", minimum=2)
+    1000000
+    """
     if isinstance(x, bool) or not isinstance(x, (numbers.Integral, np.integer)):
         if isinstance(x, (float, np.floating)) and math.isfinite(x) and float(x).is_integer():
             x = int(x)
@@ -59,7 +110,26 @@ def as_int(x, name: str, *, minimum: int | None = None) -> int:
 
 
 def positive(x, name: str) -> float:
-    """Return ``x`` as a finite float > 0."""
+    """Return ``x`` as a finite float > 0.
+
+    Parameters
+    ----------
+    x : real number
+        The value.
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is not finite or not positive.
+    """
     value = as_float(x, name)
     if value <= 0:
         raise ValueError(f"Expected `{name}` > 0, got {value}")
@@ -67,7 +137,26 @@ def positive(x, name: str) -> float:
 
 
 def nonnegative(x, name: str) -> float:
-    """Return ``x`` as a finite float >= 0."""
+    """Return ``x`` as a finite float >= 0.
+
+    Parameters
+    ----------
+    x : real number
+        The value.
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is not finite or negative.
+    """
     value = as_float(x, name)
     if value < 0:
         raise ValueError(f"Expected `{name}` >= 0, got {value}")
@@ -77,6 +166,30 @@ def nonnegative(x, name: str) -> float:
 def in_open_interval(x, name: str, low: float, high: float, *, text: str | None = None) -> float:
     """Return ``x`` as a finite float in the open interval ``(low, high)``.
 
+    Parameters
+    ----------
+    x : real number
+        The value.
+    name : str
+        Argument name for the message.
+    low, high : float
+        Ends of the interval (excluded), in the unit of ``x``.
+    text : str, optional, keyword-only
+        How the message shows the interval, with its unit (e.g. ``"(0, 180) degrees"``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is not finite or outside the interval.
+
+    Examples
+    --------
     >>> in_open_interval(4.2, "nutation", 0.0, math.pi, text="(0, π)")
     Traceback (most recent call last):
     ...
@@ -91,6 +204,21 @@ def in_open_interval(x, name: str, low: float, high: float, *, text: str | None 
 
 def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> np.ndarray:
     """Return ``x`` as a float array, optionally with last axis of length ``last``.
+
+    Parameters
+    ----------
+    x : array_like
+        Numbers.
+    name : str
+        Argument name for the message.
+    last : int, optional, keyword-only
+        Required length of the last axis.
+    finite : bool, keyword-only
+        Refuse NaN and infinities.
+
+    Returns
+    -------
+    ndarray of float
 
     Raises
     ------
@@ -111,13 +239,57 @@ def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> n
 
 
 def as_vector(x, name: str) -> np.ndarray:
-    """Return ``x`` as a finite ``(..., 3)`` float array."""
+    """Return ``x`` as a finite ``(..., 3)`` float array.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., 3)
+        Vector(s).
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not numeric.
+    ValueError
+        If the last axis is not of length 3 or an entry is not finite.
+    """
     return as_array(x, name, last=3)
 
 
 def as_quaternion(q, name: str, *, unit: bool = False, atol: float = 1e-9) -> np.ndarray:
     """Return ``q`` as a finite ``(..., 4)`` float array; with ``unit``, require |q| = 1.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternion(s), scalar first.
+    name : str
+        Argument name for the message.
+    unit : bool, keyword-only
+        Require unit norm.
+    atol : float, keyword-only
+        Tolerance of the unit norm [dimensionless].
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+
+    Raises
+    ------
+    TypeError
+        If ``q`` is not numeric.
+    ValueError
+        If the last axis is not of length 4, an entry is not finite, or (with
+        ``unit``) a norm differs from 1 by more than ``atol``.
+
+    Examples
+    --------
     >>> as_quaternion([1.0, 0.0, 0.0, 0.1], "attitude", unit=True)
     Traceback (most recent call last):
     ...

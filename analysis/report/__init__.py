@@ -1,7 +1,8 @@
 """Report generation: ``strapdown report`` regenerates ``reports/``.
 
-Each module of this package (name not starting with ``_``) is one report
-section.  It defines
+Each module of this package that defines ``SECTION`` and ``build`` is one
+report section (the others, :mod:`.output` and :mod:`.rendering`, are the
+machinery).  A section module defines
 
 ``SECTION``
     a :class:`Section` (name, title, order);
@@ -12,38 +13,56 @@ section.  It defines
     package; the ``errata`` section gathers them into ``errata.md``.
 
 Reports are pure functions of (configuration, seed): figures carry no dates
-or software stamps, and every random stream is seeded, so two regenerations
-are byte-identical.  Output is staged in a temporary directory and moved into
-place only when every section succeeded, so a failed run leaves the previous
-reports intact.
+or software stamps and are rendered from coordinates rounded far below a pixel
+(:mod:`.rendering`), and every random stream is seeded, so two regenerations
+are byte-identical, on this machine and on any other with the same matplotlib.
+
+Output is written into a staging directory and swapped into place atomically
+only when every section succeeded; a directory holding files that no earlier
+run wrote is refused, and so is a regular file (:mod:`.output`).
 """
 
 from __future__ import annotations
 
 import importlib
 import io
-import os
 import pkgutil
-import shutil
-import sys
-import tempfile
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 from ...derivations.reproducible import reproducible
+from . import output
+from .rendering import quantise
 
-__all__ = ["Section", "Erratum", "Context", "discover", "generate", "SEED"]
+__all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
 
 #: Root seed of every report (streams are split with ``SeedSequence.spawn``).
 SEED = 20261122
+
+#: Modules of this package that are machinery, not sections.
+_MACHINERY = frozenset({"output", "rendering"})
 
 
 @dataclass(frozen=True)
 class Section:
     """A report section: ``name`` is its file stem, ``order`` its place in the index.
 
-    ``page`` is the file the index links to (``<name>.md`` when empty).
+    Attributes
+    ----------
+    name : str
+        Section name (``strapdown report --only NAME``) and file stem.
+    title : str
+        Title in the index.
+    order : int
+        Place in the index and build order (lower first).
+    summary : str
+        One line for the index.
+    page : str
+        The file the index links to (``<name>.md`` when empty).
+    gathers : bool
+        The section is built from the other sections (errata, index, HTML edition):
+        it is rebuilt whenever any section is.
     """
 
     name: str
@@ -51,6 +70,7 @@ class Section:
     order: int
     summary: str = ""
     page: str = ""
+    gathers: bool = False
 
     @property
     def link(self) -> str:
@@ -107,29 +127,105 @@ class Erratum:
 
 @dataclass
 class Context:
-    """What a section builder gets: where to write, how big to run, how to draw."""
+    """What a section builder gets: where to write, how big to run, how to draw.
+
+    Attributes
+    ----------
+    out_dir : Path
+        Directory the section writes into (the staging directory during ``generate``).
+    quick : bool
+        Reduced Monte Carlo sizes and grids (for CI).
+    seed : int
+        Root seed of the report.
+    show_progress : bool
+        Progress bars on stderr.
+    files : list of str
+        Files written so far, relative to ``out_dir`` (POSIX paths).
+    command : str
+        The command line stamped in the index.
+    sections : tuple
+        Section modules of this run, in index order (default: :func:`discover`).
+    """
 
     out_dir: Path
     quick: bool = False
     seed: int = SEED
     show_progress: bool = True
     files: list = field(default_factory=list)
+    command: str = "strapdown report"
+    sections: tuple = ()
+
+    def __post_init__(self):
+        self.out_dir = Path(self.out_dir)
+        if not self.sections:
+            self.sections = tuple(discover())
 
     # ---------------------------------------------------------------- writing
     def path(self, relpath: str) -> Path:
-        p = self.out_dir / relpath
+        """Absolute path of ``relpath`` under :attr:`out_dir`, its parent directory created.
+
+        Parameters
+        ----------
+        relpath : str
+            A relative POSIX path such as ``"figures/x.png"`` (no ``..``).
+
+        Returns
+        -------
+        Path
+        """
+        parts = PurePosixPath(relpath).parts
+        if not parts or PurePosixPath(relpath).is_absolute() or any(p in ("..", ".") for p in parts):
+            raise ValueError(f"Expected `relpath` relative and inside the report, got {relpath!r}")
+        p = self.out_dir.joinpath(*parts)
         p.parent.mkdir(parents=True, exist_ok=True)
         return p
 
+    def _record(self, relpath: str) -> None:
+        name = PurePosixPath(relpath).as_posix()
+        if name not in self.files:
+            self.files.append(name)
+
     def write_text(self, relpath: str, text: str) -> Path:
-        """Write a UTF-8 text file (``\\n`` line ends) under the staging directory."""
+        """Write a UTF-8 text file (``\\n`` line ends) under :attr:`out_dir`.
+
+        Parameters
+        ----------
+        relpath : str
+            Relative POSIX path of the file.
+        text : str
+            Its content (a final newline is added if missing).
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         p = self.path(relpath)
         p.write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8", newline="\n")
-        self.files.append(relpath)
+        self._record(relpath)
         return p
 
     def savefig(self, fig, relpath: str, *, dpi: int = 110) -> Path:
-        """Save a matplotlib figure deterministically (no date or software metadata)."""
+        """Save a matplotlib figure deterministically and close it.
+
+        No date or software metadata is written, and every drawn coordinate is
+        rounded far below a pixel first (:func:`.rendering.quantise`), so the
+        bytes do not depend on the last bits of the machine's floating point.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure
+            The figure.
+        relpath : str
+            Relative POSIX path; its suffix (``.png``, ``.svg``, ``.pdf``) sets the format.
+        dpi : int, keyword-only
+            Resolution of raster formats [dots per inch].
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         import matplotlib.pyplot as plt
 
         p = self.path(relpath)
@@ -140,19 +236,34 @@ class Context:
             metadata = {"CreationDate": None, "Creator": None, "Producer": None}
         else:
             metadata = {"Software": None}
+        quantise(fig)
         buf = io.BytesIO()
         fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata, bbox_inches="tight")
         plt.close(fig)
         p.write_bytes(buf.getvalue())
-        self.files.append(relpath)
+        self._record(relpath)
         return p
 
     # ---------------------------------------------------------------- progress
     def progress(self, iterable: Iterable, desc: str, total: int | None = None):
-        """Wrap ``iterable`` in a tqdm bar on stderr (silent when disabled)."""
-        from tqdm import tqdm
+        """Wrap ``iterable`` in a progress bar on stderr (silent when :attr:`show_progress` is off).
 
-        return tqdm(iterable, desc=desc, total=total, file=sys.stderr, leave=False, disable=not self.show_progress)
+        Parameters
+        ----------
+        iterable : iterable
+            What to iterate over.
+        desc : str
+            Label of the bar.
+        total : int, optional
+            Number of items [count] (default ``len(iterable)``).
+
+        Returns
+        -------
+        tqdm.tqdm
+        """
+        from ..core.progress import bar
+
+        return bar(iterable, desc=desc, total=total, enabled=self.show_progress)
 
 
 def configure_matplotlib() -> None:
@@ -174,88 +285,150 @@ def configure_matplotlib() -> None:
     )
 
 
+def section_names() -> list:
+    """Names of the report sections, without importing them (cheap enough for ``--help``).
+
+    Returns
+    -------
+    list of str
+        Sorted section names; each section module is named after its section (``_`` in a module name is ``-`` in the section name).
+    """
+    return sorted(info.name.replace("_", "-") for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_") and info.name not in _MACHINERY)
+
+
 def discover() -> list:
-    """Section modules of this package, in report order."""
+    """Section modules of this package, in report order.
+
+    Returns
+    -------
+    list of module
+        Modules with ``SECTION`` and ``build``, sorted by ``SECTION.order``.
+    """
     modules = []
-    for info in pkgutil.iter_modules(__path__):
-        if info.name.startswith("_"):
-            continue
-        module = importlib.import_module(f"{__name__}.{info.name}")
+    for name in section_names():
+        module = importlib.import_module(f"{__name__}.{name.replace('-', '_')}")
         if hasattr(module, "SECTION") and hasattr(module, "build"):
             modules.append(module)
     return sorted(modules, key=lambda m: (m.SECTION.order, m.SECTION.name))
 
 
-def generate(out: Path | str = "reports", *, only: Iterable[str] | None = None, quick: bool = False, show_progress: bool = True, command: str = "strapdown report") -> list[str]:
-    """Regenerate the reports atomically.
+def generate(
+    out: Path | str = "reports",
+    *,
+    only: Iterable[str] | None = None,
+    quick: bool = False,
+    show_progress: bool = True,
+    command: str = "strapdown report",
+    sections: Sequence | None = None,
+) -> list[str]:
+    """Regenerate the reports into ``out``, atomically and without touching foreign files.
+
+    The destination is checked first (:func:`.output.prepare`): a regular file,
+    or a directory holding files that no earlier run wrote, is refused before
+    any work.  Under the destination's lock, what killed runs left is cleaned
+    up; the report is built in a staging directory, its manifest written, and
+    the staging directory swapped with ``out`` in one atomic step
+    (:func:`.output.commit`).  A failure at any point leaves the previous report
+    as it was.
 
     Parameters
     ----------
-    out : path
+    out : str or Path
         Destination directory (``reports/`` by default).
     only : iterable of str, optional
-        Section names to rebuild; other sections' files are kept as they are.
-    quick : bool
+        Section names to rebuild; the sections that gather the others (errata,
+        index, HTML edition) are rebuilt too, and the files of every other
+        section are carried over from the previous report.
+    quick : bool, keyword-only
         Reduced Monte Carlo sizes and grids (for CI).
-    show_progress : bool
+    show_progress : bool, keyword-only
         Progress bars on stderr.
-    command : str
+    command : str, keyword-only
         The command line stamped in the index.
+    sections : sequence of module, optional, keyword-only
+        Section modules to use instead of :func:`discover` (each with ``SECTION`` and ``build``).
 
     Returns
     -------
     list of str
-        Names of the sections rebuilt.
+        Names of the sections rebuilt, in build order.
 
     Raises
     ------
     ValueError
         If ``only`` names an unknown section.
+    strapdown.analysis.report.output.OutputError
+        If ``out`` must not be replaced (foreign files, a regular file), another
+        run holds its lock, or it cannot be written.
     """
-    from tqdm import tqdm
+    from ..core.progress import bar
 
-    configure_matplotlib()
-    out = Path(out)
-    modules = discover()
+    modules = list(discover() if sections is None else sections)
     names = [m.SECTION.name for m in modules]
-    selected = list(names) if not only else list(only)
-    unknown = [n for n in selected if n not in names]
-    if unknown:
-        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(unknown)}")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
-    try:
-        if out.exists() and only:
-            shutil.copytree(out, stage, dirs_exist_ok=True)
-        ctx = Context(out_dir=stage, quick=quick, show_progress=show_progress)
-        ctx.command = command
-        ctx.sections = modules
-        todo = [m for m in modules if m.SECTION.name in selected]
-        bar = tqdm(todo, desc="report", file=sys.stderr, disable=not show_progress)
-        for module in bar:
-            bar.set_description(f"report: {module.SECTION.name}")
-            with reproducible():  # SymPy's random choices fixed: same path and time every run
-                module.build(ctx)
-        bar.close()
-        _swap(stage, out)
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
-        raise
+    requested = list(names) if only is None else list(only)
+    unknown = [n for n in requested if n not in names]
+    if unknown or not requested:
+        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(unknown) or 'nothing'}")
+    selected = set(requested) | {m.SECTION.name for m in modules if m.SECTION.gathers}
+    todo = [m for m in modules if m.SECTION.name in selected]
+    dest = output.prepare(out)  # refuse early, before the lock and any work
+    configure_matplotlib()
+    with output.lock(dest):
+        output.clean(dest)
+        dest = output.prepare(out)  # again under the lock: another run may have replaced it meanwhile
+        if dest.legacy and only is not None:
+            raise output.OutputError(
+                f"Expected `out` with a report manifest for --only, got {str(dest.path)!r} written before manifests existed: "
+                "regenerate it whole once, then sections one by one"
+            )
+        staged = output.stage(dest)
+        try:
+            output.fault("staged")
+            kept = _carry_over(dest, staged, {m.SECTION.name for m in todo}) if only is not None else {}
+            ctx = Context(out_dir=staged, quick=quick, show_progress=show_progress, command=command, sections=tuple(modules))
+            written = dict(kept)
+            progress = bar(todo, desc="report", enabled=show_progress, leave=False)
+            for module in progress:
+                progress.set_description(f"report: {module.SECTION.name}")
+                before = len(ctx.files)
+                with reproducible():  # SymPy's random choices fixed: same path and time every run
+                    module.build(ctx)
+                written[module.SECTION.name] = tuple(sorted(ctx.files[before:]))
+                output.fault("section")
+            progress.close()
+            files = {f for fs in written.values() for f in fs}
+            output.check_legacy(dest, files)
+            import matplotlib
+
+            manifest = output.Manifest({k: v for k, v in written.items() if v}, matplotlib.__version__)
+            (staged / output.MANIFEST).write_text(manifest.to_json(), encoding="utf-8", newline="\n")
+            output.fault("complete")
+            output.commit(dest, staged)
+        except BaseException:
+            import shutil
+
+            shutil.rmtree(staged, ignore_errors=True)
+            raise
     return [m.SECTION.name for m in todo]
 
 
-def _swap(stage: Path, out: Path) -> None:
-    """Move ``stage`` to ``out``, keeping the old tree until the move succeeded."""
-    os.chmod(stage, 0o755)
-    if not out.exists():
-        os.replace(stage, out)
-        return
-    backup = Path(tempfile.mkdtemp(prefix=f".{out.name}-old-", dir=out.parent))
-    os.rmdir(backup)
-    os.replace(out, backup)
-    try:
-        os.replace(stage, out)
-    except BaseException:
-        os.replace(backup, out)
-        raise
-    shutil.rmtree(backup, ignore_errors=True)
+def _carry_over(dest: output.Destination, staged: Path, rebuilt: set) -> dict:
+    """Copy the files of the sections not rebuilt from the previous report into ``staged``."""
+    import shutil
+
+    kept = {}
+    if dest.previous is None:  # new, empty (a pre-manifest report is refused for partial runs)
+        return kept
+    sections = {k: v for k, v in dest.previous.sections.items() if k not in rebuilt}
+    for name, files in sections.items():
+        present = []
+        for rel in files:
+            src = dest.path.joinpath(*PurePosixPath(rel).parts)
+            if src.is_file():
+                target = staged.joinpath(*PurePosixPath(rel).parts)
+                target.parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(src, target)
+                present.append(rel)
+        if present:
+            kept[name] = tuple(present)
+    return kept

@@ -12,7 +12,7 @@ from __future__ import annotations
 from ..coning.biquaternion_checks import printed_formula_checks
 from . import Erratum, Section
 
-SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.")
+SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.", gathers=True)
 
 #: Seed of the random points of the printed-formula checks.
 CHECK_SEED = 0

@@ -31,7 +31,7 @@ from pathlib import Path
 
 from . import Section
 
-SECTION = Section("html", "HTML edition", order=110, summary="The whole report as one self-contained web page.", page="index.html")
+SECTION = Section("html", "HTML edition", order=110, summary="The whole report as one self-contained web page.", page="index.html", gathers=True)
 
 __all__ = ["SECTION", "build", "render_site", "MathRenderer"]
 
@@ -84,7 +84,21 @@ class MathRenderer:
         self.errors: list = []
 
     def render(self, tex: str, *, display: bool = False) -> str:
-        """HTML for the TeX expression ``tex`` (without dollar signs)."""
+        """HTML for the TeX expression ``tex`` (without dollar signs).
+
+        Parameters
+        ----------
+        tex : str
+            The expression, e.g. ``r"\\frac{1}{12}"``.
+        display : bool, keyword-only
+            Display math (``$$...$$``) rather than inline math.
+
+        Returns
+        -------
+        str
+            An inline ``<span>`` with the SVG, or a ``<code class="math-error">``
+            with the source when mathtext cannot parse it.
+        """
         tex = " ".join(tex.split())
         key = tex
         if key not in self._cache:
@@ -374,9 +388,14 @@ def _toc_html(pages: dict, math: MathRenderer) -> str:
 
 
 def build(ctx) -> None:
-    from . import discover
+    """Write ``index.html``, the HTML edition of every Markdown page already in ``ctx.out_dir``.
 
-    sections = [m.SECTION for m in discover()]
+    Parameters
+    ----------
+    ctx : strapdown.analysis.report.Context
+        The report context; pages follow the order of its ``sections``.
+    """
+    sections = [m.SECTION for m in ctx.sections]
     doc, errors = render_site(ctx.out_dir, sections)
     ctx.write_text(OUTPUT, doc)
     if errors:

@@ -49,17 +49,57 @@ terms unchanged, since every increment is expanded about the same instant.
 
 from __future__ import annotations
 
+import os
+import re
+import stat
 import tomllib
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-__all__ = ["Term", "Algorithm", "MAX_HISTORY", "load_toml", "second_order_defect"]
+__all__ = ["Term", "Algorithm", "MAX_HISTORY", "TOML_LIMITS", "TomlLimits", "load_toml", "second_order_defect"]
 
 Expr = int | tuple
 
 #: How far back a cross-step term may reach, in samples before the current step.
 MAX_HISTORY = 64
+
+
+@dataclass(frozen=True)
+class TomlLimits:
+    """Limits of a TOML algorithm file, checked before any arithmetic.
+
+    Far above any published algorithm (the largest in the sources has six
+    samples and twenty terms), low enough that every file within them is read,
+    checked and refused or accepted in well under a second.
+
+    Attributes
+    ----------
+    file_bytes : int
+        Largest file size [bytes].
+    samples : int
+        Largest number of samples N per step [count].
+    terms : int
+        Largest number of nonlinear terms [count].
+    depth : int
+        Deepest nesting of tables and arrays (``[cross]`` then ``key = value`` is 2) [count].
+    coefficient_digits : int
+        Most decimal digits in a coefficient's numerator or denominator, and
+        largest decimal exponent of a coefficient such as ``"1.5e-3"`` [count].
+    text : int
+        Longest ``name``, ``description`` or ``reference`` [characters].
+    """
+
+    file_bytes: int = 256 * 1024
+    samples: int = 64
+    terms: int = 1000
+    depth: int = 2
+    coefficient_digits: int = 40
+    text: int = 1000
+
+
+#: The limits :func:`load_toml` applies by default.
+TOML_LIMITS = TomlLimits()
 
 
 def _leaves(expr) -> list:
@@ -213,13 +253,34 @@ def second_order_defect(algorithm: Algorithm) -> Fraction:
 
 
 # ---------------------------------------------------------------- TOML files
-def _fraction(value, where: str) -> Fraction:
+def _show(value, width: int = 40) -> str:
+    """``repr(value)``, cut to ``width`` characters (a hostile file must not make a huge message)."""
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+_NUMBER = re.compile(r"\s*[+-]?(?:(?P<num>\d+)(?:/(?P<den>\d+))?|(?P<mant>\d*\.\d+|\d+\.?\d*)(?:[eE](?P<exp>[+-]?\d+))?)\s*")
+
+
+def _fraction(value, where: str, limits: TomlLimits = TOML_LIMITS) -> Fraction:
     if isinstance(value, bool) or not isinstance(value, (str, int)):
-        raise ValueError(f"{where}: expected an exact fraction as a string such as \"27/40\", got {value!r}")
+        raise ValueError(f"{where}: expected an exact fraction as a string such as \"27/40\", got {_show(value)}")
+    digits = limits.coefficient_digits
+    if isinstance(value, int):
+        if abs(value) >= 10**digits:
+            raise ValueError(f"{where}: expected a coefficient of at most {digits} digits, got an integer of {len(str(abs(value)))} digits")
+        return Fraction(value)
+    m = _NUMBER.fullmatch(value) if len(value) <= 4 * digits else None
+    if m is None:
+        raise ValueError(f"{where}: expected an exact fraction such as \"27/40\" (at most {digits} digits), got {_show(value)}")
+    parts = [m.group("num"), m.group("den"), (m.group("mant") or "").replace(".", "")]
+    exponent = int(m.group("exp") or 0) if len(m.group("exp") or "") <= 6 else 10**6
+    if max(len(p or "") for p in parts) > digits or abs(exponent) > digits:  # rejected before any arithmetic
+        raise ValueError(f"{where}: expected a coefficient of at most {digits} digits and a decimal exponent of at most {digits}, got {_show(value)}")
     try:
         return Fraction(value)
     except (ValueError, ZeroDivisionError):
-        raise ValueError(f"{where}: expected an exact fraction such as \"27/40\", got {value!r}") from None
+        raise ValueError(f"{where}: expected an exact fraction such as \"27/40\", got {_show(value)}") from None
 
 
 def _indices(key: str, count: int, where: str, samples: int) -> tuple:
@@ -228,53 +289,118 @@ def _indices(key: str, count: int, where: str, samples: int) -> tuple:
     try:
         idx = tuple(int(s) for s in parts)
     except ValueError:
-        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}") from None
+        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {_show(key)}") from None
     if len(idx) != count:
-        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {key!r}")
+        raise ValueError(f"{where}: expected {count} comma-separated sample indices, got {_show(key)}")
     bad = [i for i in idx if not 1 - MAX_HISTORY <= i <= samples]
     if bad:
         raise ValueError(f"{where}: expected sample indices in {1 - MAX_HISTORY}..{samples} (≤ 0: earlier steps), got {bad[0]}")
     return idx
 
 
-def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
+def _parse(path: Path, limits: TomlLimits) -> dict:
+    """Read and parse ``path`` within ``limits``: a regular UTF-8 file, small, shallow."""
+    try:
+        info = os.stat(path)
+        if stat.S_ISDIR(info.st_mode):
+            raise ValueError(f"{path}: is a directory, expected a TOML file")
+        if not stat.S_ISREG(info.st_mode):
+            raise ValueError(f"{path}: not a regular file (a device, pipe or socket), expected a TOML file")
+        if info.st_size > limits.file_bytes:
+            raise ValueError(f"{path}: {info.st_size} bytes, more than the limit of {limits.file_bytes} bytes for an algorithm file")
+        with open(path, "rb") as f:
+            raw = f.read(limits.file_bytes + 1)
+    except FileNotFoundError:
+        raise ValueError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror or type(exc).__name__})") from None
+    if len(raw) > limits.file_bytes:
+        raise ValueError(f"{path}: more than the limit of {limits.file_bytes} bytes for an algorithm file")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not UTF-8 text (undecodable byte at offset {exc.start})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML ({str(exc).splitlines()[0] if str(exc) else 'parse error'})") from None
+    except RecursionError:
+        raise ValueError(f"{path}: nested deeper than the limit of {limits.depth} levels") from None
+    except ValueError as exc:  # e.g. an integer literal of more than 4300 digits
+        raise ValueError(f"{path}: not valid TOML ({str(exc).splitlines()[0] if str(exc) else 'bad value'})") from None
+    depth = _depth(data)
+    if depth > limits.depth:
+        raise ValueError(f"{path}: nested {depth} levels deep, more than the limit of {limits.depth} ([table] then key = value)")
+    return data
+
+
+def _depth(value, level: int = 0) -> int:
+    """Nesting depth of tables and arrays (iterative: a hostile file cannot exhaust the stack)."""
+    deepest, stack = level, [(value, level)]
+    while stack:
+        item, d = stack.pop()
+        children = item.values() if isinstance(item, dict) else item if isinstance(item, list) else None
+        if children is None:
+            continue
+        deepest = max(deepest, d)
+        stack.extend((child, d + 1) for child in children if isinstance(child, (dict, list)))
+    return deepest + 1 if isinstance(value, (dict, list)) and value else deepest
+
+
+def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TOML_LIMITS) -> Algorithm:
     """Read a user algorithm from a TOML file (syntax in the module docstring).
+
+    Everything is checked before any arithmetic, within :data:`TOML_LIMITS`
+    (file size, samples, terms, nesting depth, coefficient size): a hostile
+    file is refused in milliseconds and never exhausts memory or the stack.
 
     Parameters
     ----------
     path : str or Path
-        The file.
+        The file (a regular file of UTF-8 text).
     allow_inconsistent : bool, keyword-only
         Accept an algorithm that violates the second-order condition.
+    limits : TomlLimits, keyword-only
+        Limits of the file (default :data:`TOML_LIMITS`).
+
+    Returns
+    -------
+    Algorithm
+        The algorithm, with exact fraction coefficients.
 
     Raises
     ------
     ValueError
         Malformed file (the message names the file, the key and the problem),
-        or an algorithm that misses the second-order condition.
+        a file beyond ``limits``, a file that cannot be read (missing, a
+        directory, a device, no permission, not UTF-8), or an algorithm that
+        misses the second-order condition.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{path}: file not found") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({exc})") from None
+    data = _parse(path, limits)
     known = {"name", "samples", "description", "reference", "cross", "triple", "dot_cross"}
     extra = sorted(set(data) - known)
     if extra:
-        raise ValueError(f"{path}: unknown key {extra[0]!r} (expected one of {', '.join(sorted(known))})")
+        raise ValueError(f"{path}: unknown key {_show(extra[0])} (expected one of {', '.join(sorted(known))})")
     samples = data.get("samples")
     if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
-        raise ValueError(f"{path}: key 'samples' must be a positive integer, got {samples!r}")
+        raise ValueError(f"{path}: key 'samples' must be a positive integer, got {_show(samples)}")
+    if samples > limits.samples:
+        raise ValueError(f"{path}: key 'samples' is {_show(samples)}, more than the limit of {limits.samples} samples per step")
+    count = sum(len(v) for k, v in data.items() if k in ("cross", "triple", "dot_cross") and isinstance(v, dict))
+    if count > limits.terms:
+        raise ValueError(f"{path}: {count} terms, more than the limit of {limits.terms}")
+    for key in ("name", "description", "reference"):
+        if isinstance(data.get(key), str) and len(data[key]) > limits.text:
+            raise ValueError(f"{path}: key {key!r} has {len(data[key])} characters, more than the limit of {limits.text}")
     terms = []
     for table in ("cross", "triple", "dot_cross"):
         entries = data.get(table, {})
         if not isinstance(entries, dict):
             raise ValueError(f"{path}: [{table}] must be a table, got {type(entries).__name__}")
         for key, value in entries.items():
-            where = f"{path}: [{table}] key {key!r}"
-            c = _fraction(value, where)
+            where = f"{path}: [{table}] key {_show(key)}"
+            c = _fraction(value, where, limits)
             if table == "cross":
                 i, j = _indices(key, 2, where, samples)
                 terms.append(Term(c, (i, j)))
@@ -290,7 +416,7 @@ def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
                 terms.append(Term(c, (k, m), ((i, j),)))
     name = data.get("name", path.stem)
     if not isinstance(name, str):
-        raise ValueError(f"{path}: key 'name' must be a string, got {name!r}")
+        raise ValueError(f"{path}: key 'name' must be a string, got {_show(name)}")
     alg = Algorithm(name, samples, tuple(terms), str(data.get("description", "")), str(data.get("reference", str(path.name))))
     defect = second_order_defect(alg)
     if defect != 0 and not allow_inconsistent:

@@ -1,0 +1,156 @@
+"""Deterministic figures: the same pixels on every machine with the same matplotlib.
+
+numpy picks its implementation of ``sin``, ``exp``, ``geomspace`` and friends by
+the instruction set of the processor (AVX-512, AVX2, ...), and OpenBLAS its
+kernels likewise, so the same computation can differ in the last bit from one
+machine to the next.  Agg's anti-aliasing turns such a difference in a vertex
+into a different grey level of a pixel, so without care a PNG differs across
+machines even though every printed number agrees.
+
+:func:`quantise` therefore rounds every coordinate a figure will draw (line
+data, collection vertices and offsets, image values, text positions, the view
+limits) to :data:`MANTISSA_BITS` significant bits, far below a pixel (2⁻²⁴ of a
+value is 1/16 000 of a pixel on a 1000-pixel axis) yet far above the last bit,
+before the figure is rendered.  Two machines then draw identical coordinates,
+unless a value lies within a few units in the last place of a rounding
+boundary (probability about 2⁻²⁸ per value).  Fonts, the rasteriser and the
+PNG encoder come with matplotlib, so byte equality of figures needs the same
+matplotlib version (recorded in the report manifest).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["MANTISSA_BITS", "round_bits", "quantise"]
+
+#: Significant bits kept of every drawn coordinate.
+MANTISSA_BITS = 24
+
+
+def round_bits(values, bits: int = MANTISSA_BITS):
+    """Round ``values`` to ``bits`` significant bits (exactly, in binary; inf and NaN pass through).
+
+    Parameters
+    ----------
+    values : array_like
+        Numbers to round (a masked array keeps its mask).
+    bits : int
+        Significant bits to keep [count], 1 … 52.
+
+    Returns
+    -------
+    ndarray
+        Float array of the same shape.
+
+    Examples
+    --------
+    >>> float(round_bits(1.0 + 2.0**-40)) == 1.0, float(round_bits(3.0)) == 3.0
+    (True, True)
+    """
+    if not 1 <= int(bits) <= 52:
+        raise ValueError(f"Expected `bits` in 1 … 52, got {bits}")
+    if np.ma.isMaskedArray(values):
+        return np.ma.array(round_bits(np.ma.getdata(values), bits), mask=np.ma.getmask(values))
+    x = np.asarray(values, dtype=float)
+    mantissa, exponent = np.frexp(x)
+    scale = float(2**bits)
+    out = np.ldexp(np.round(mantissa * scale) / scale, exponent)
+    return np.where(np.isfinite(x), out, x)
+
+
+def _numeric(values) -> bool:
+    try:
+        arr = np.asarray(values)
+    except Exception:  # ragged or exotic data: leave it alone
+        return False
+    return arr.dtype.kind in "fiu" and arr.size > 0
+
+
+def _lines(ax) -> None:
+    for line in ax.get_lines():
+        x, y = line.get_data(orig=True)
+        if _numeric(x) and _numeric(y):
+            line.set_data(round_bits(x), round_bits(y))
+
+
+def _collections(ax) -> None:
+    for coll in ax.collections:
+        offsets = coll.get_offsets()
+        if _numeric(offsets):
+            coll.set_offsets(round_bits(offsets))
+        if hasattr(coll, "get_coordinates"):  # QuadMesh: its vertices are the coordinates
+            coords = coll.get_coordinates()
+            coords[...] = round_bits(coords)
+        else:
+            for path in coll.get_paths():
+                vertices = path.vertices
+                if vertices.flags.writeable:  # read-only paths are matplotlib's constant marker shapes
+                    vertices[...] = round_bits(vertices)
+        array = coll.get_array()
+        if array is not None and _numeric(array):
+            coll.set_array(round_bits(array))
+        _norm(coll)
+
+
+def _norm(mappable) -> None:
+    norm = getattr(mappable, "norm", None)
+    if norm is not None and norm.vmin is not None and norm.vmax is not None:
+        vmin, vmax = float(round_bits(norm.vmin)), float(round_bits(norm.vmax))
+        if vmin < vmax:
+            norm.vmin, norm.vmax = vmin, vmax
+
+
+def _images(ax) -> None:
+    for image in ax.get_images():
+        data = image.get_array()
+        if data is not None and _numeric(data) and np.asarray(data).dtype.kind == "f":
+            image.set_data(round_bits(data))
+        _norm(image)
+
+
+def _patches(ax) -> None:
+    for patch in ax.patches:
+        if hasattr(patch, "get_xy") and hasattr(patch, "set_xy") and not hasattr(patch, "get_width"):
+            xy = patch.get_xy()
+            if _numeric(xy):
+                patch.set_xy(round_bits(xy))
+        elif hasattr(patch, "get_width") and hasattr(patch, "set_bounds"):  # Rectangle (bars)
+            x, y = patch.get_xy()
+            patch.set_bounds(*(float(v) for v in round_bits([x, y, patch.get_width(), patch.get_height()])))
+
+
+def _texts(ax) -> None:
+    for text in ax.texts:
+        x, y = text.get_position()
+        if isinstance(x, (int, float)) and isinstance(y, (int, float)):
+            text.set_position(tuple(float(v) for v in round_bits([x, y])))
+
+
+def _limits(ax) -> None:
+    for get, set_ in ((ax.get_xlim, ax.set_xlim), (ax.get_ylim, ax.set_ylim)):
+        low, high = get()  # autoscaled from the data if not set
+        rl, rh = (float(v) for v in round_bits([low, high]))
+        if rl != rh:
+            set_(rl, rh, auto=None)
+
+
+def quantise(fig) -> None:
+    """Round every coordinate ``fig`` will draw to :data:`MANTISSA_BITS` bits, in place.
+
+    Call it once the figure is complete, just before saving it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    """
+    axes = fig.get_axes()
+    for ax in axes:
+        _lines(ax)
+        _collections(ax)
+        _images(ax)
+        _patches(ax)
+        _texts(ax)
+    for ax in axes:
+        _limits(ax)

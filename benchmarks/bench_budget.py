@@ -1,0 +1,110 @@
+"""Work estimates against measurement, and the round-off floor of a simulated drift.
+
+For each hot path with a cost model in ``strapdown.analysis.core.budget``, runs
+a few sizes and prints the measured time and peak traced memory next to the
+estimate (the ratio measured / estimated should stay below 1: the models err
+on the side of refusing).  Then prints the simulated drift of registry
+algorithms at sample intervals where their truncation drift is negligible,
+against the floor of ``strapdown.analysis.core.roundoff.drift_floor``.
+
+Run from the repository root::
+
+    python benchmarks/bench_budget.py
+"""
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import math  # noqa: E402
+import time  # noqa: E402
+import tracemalloc  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from strapdown.analysis.coning.drift_theory import asymptotic_drift  # noqa: E402
+from strapdown.analysis.coning.precession import RegularPrecession  # noqa: E402
+from strapdown.analysis.coning.simulator import CHUNK_STEPS, simulate  # noqa: E402
+from strapdown.analysis.core import budget  # noqa: E402
+from strapdown.analysis.core.roundoff import drift_floor  # noqa: E402
+from strapdown.analysis.core.units import RAD_PER_S_TO_DEG_PER_H  # noqa: E402
+from strapdown.derivations.coning.registry import get  # noqa: E402
+
+
+def measure(run):
+    """Wall time [s] (without tracing) and peak traced memory [bytes] (a second, traced run)."""
+    start = time.perf_counter()
+    run()
+    seconds = time.perf_counter() - start
+    tracemalloc.start()
+    run()
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return seconds, peak
+
+
+def cost_rows():
+    rows = []
+    coning = RegularPrecession(-1.0, 2 * np.pi * 10, np.radians(1.0))
+    dual = RegularPrecession(0.5, 2 * np.pi, 0.2, 10.0, 100.0)
+    h = 1e-4
+    for name in ("two-sample", "lebedev-panov-6"):
+        alg = get(name)
+        degree = sum(t.degree for t in alg.terms)
+        for steps, velocity in ((200_000, False), (1_000_000, False), (100_000, True)):
+            motion = dual if velocity else coning
+            seconds, peak = measure(lambda alg=alg, steps=steps, motion=motion, velocity=velocity: simulate(alg, motion, h, steps * alg.samples * h * (1 + 1e-9), velocity=velocity))
+            est = budget.coning_simulation(steps, window=alg.window, degree_sum=degree, velocity=velocity, chunk_steps=CHUNK_STEPS, what="")
+            rows.append((f"simulate {name}{' (velocity)' if velocity else ''}", steps, seconds, est.seconds, peak, est.memory))
+    from strapdown.analysis.gyrocompass.azimuth import azimuth_monte_carlo
+    from strapdown.analysis.gyrocompass.rocking import rocking_model
+
+    model = rocking_model("narrowband", math.radians(1.0), math.radians(1.0))
+    for samples in (1_000_000, 5_000_000):
+        seconds, peak = measure(lambda samples=samples: azimuth_monte_carlo(math.radians(45.0), 0.0, 0.0, model, samples, rng=1))
+        est = budget.monte_carlo(samples, what="")
+        rows.append(("azimuth Monte Carlo (narrowband)", samples, seconds, est.seconds, peak, est.memory))
+    from strapdown.analysis.multistage.stages import plotnikov_1999_stages
+    from strapdown.analysis.multistage.stages import simulate as cascade
+    from strapdown.analysis.multistage.trajectory import Scenario
+
+    for duration in (1300.0, 5000.0):
+        scenario = Scenario(duration=duration)
+        stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius)
+        seconds, peak = measure(lambda scenario=scenario, stages=stages: cascade(scenario, stages, step=0.02, rng=0))
+        steps = duration / 0.02
+        est = budget.multistage(steps, what="")
+        rows.append(("multistage cascade", int(steps), seconds, est.seconds, peak, est.memory))
+    return rows
+
+
+def floor_rows():
+    rows = []
+    for name in ("two-sample", "panov-4s-3", "lebedev-panov-6"):
+        alg = get(name)
+        for eps, freq, nutation in ((-1.0, 10.0, 1.0), (0.5, 10.0, 1.0), (-1.0, 1.0, 10.0)):
+            motion = RegularPrecession(eps, 2 * np.pi * freq, np.radians(nutation))
+            for h in (1e-5, 2.5e-5):
+                r = simulate(alg, motion, h, 10.0)
+                u_a = float(asymptotic_drift(alg, eps=eps, nu=2 * np.pi * freq, nutation=np.radians(nutation), step=r.step)) * RAD_PER_S_TO_DEG_PER_H
+                floor = drift_floor(2 * np.pi * freq, eps * 2 * np.pi * freq) * RAD_PER_S_TO_DEG_PER_H
+                rows.append((name, eps, freq, nutation, h, float(r.drift_deg_per_h), u_a, floor))
+    return rows
+
+
+def main():
+    print("### Work estimates (measured / estimated; below 1 means the estimate errs on the side of refusing)\n")
+    print("| hot path | size | time [s] | estimated [s] | ratio | peak traced [MB] | estimated [MB] | ratio |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for what, size, t, te, m, me in cost_rows():
+        print(f"| {what} | {size:,} | {t:.3g} | {te:.3g} | {t / te:.2f} | {m / 1e6:.3g} | {me / 1e6:.3g} | {m / me:.2f} |")
+    print("\n### Round-off floor of the simulated drift (10 s runs; truncation drift u_a far below the floor)\n")
+    print("| algorithm | ε | F [Hz] | ϑ [deg] | h [s] | simulated [deg/h] | u_a [deg/h] | floor [deg/h] | simulated / floor |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, eps, freq, nutation, h, sim, u_a, floor in floor_rows():
+        print(f"| {name} | {eps:g} | {freq:g} | {nutation:g} | {h:g} | {sim:.3g} | {u_a:.3g} | {floor:.3g} | {sim / floor:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
