@@ -110,7 +110,7 @@ def test_alpha_fourth_term_dominates_the_six_sample_algorithm_at_one_degree():
     H = 6 * x / nu
     theory = sum(alpha**k * nu * sum(float(c) * (nu * H) ** (w - 1) for w, c in enumerate(cs)) for k, cs in terms.items())
     run = simulate(alg, RegularPrecession(-1.0, nu, alpha), x / nu, 200 * 2 * np.pi / nu)
-    simulated = float(run.drift @ np.array([0.0, np.sin(alpha), np.cos(alpha)]))
+    simulated = float(run.drift @ -np.array([0.0, np.sin(alpha), np.cos(alpha)]))  # along the cone axis −n
     assert simulated == pytest.approx(theory, rel=1e-4)
     assert simulated > 1e6 * float(coning_drift_rate(alg, cone_angle=alpha, nu=nu, sample_interval=x / nu))
 

@@ -139,12 +139,12 @@ def _independent_cross_step(alg, motion, h, steps, *, velocity):
         lam.append(theta.re if velocity else theta)
         m.append(theta.du if velocity else None)
     lam = np.stack(lam)
-    err = quat.quat_to_rotvec(quat.multiply(lam, quat.conjugate(exact.attitude)), canonical=True)
+    err = quat.quat_to_rotvec(quat.multiply(exact.attitude, quat.conjugate(lam)), canonical=True)  # exact minus computed
     if not velocity:
         return time, err, None
     m = np.stack(m)
     w_i = 2 * quat.vect(quat.multiply(m, quat.conjugate(lam)))
-    return time, err, w_i - exact.w_inertial
+    return time, err, exact.w_inertial - w_i
 
 
 @needs_numba

@@ -130,7 +130,7 @@ def test_cross_step_simulation_equals_step_by_step_loop(name):
         lam = quat.multiply(lam, quat.rotvec_to_quat(increment(alg, window)))
         previous = previous + current
     exact = quat.multiply(quat.conjugate(m.attitude(0.0)), m.attitude(steps * n * h))
-    err = quat.quat_to_rotvec(quat.multiply(lam, quat.conjugate(exact)), canonical=True)
+    err = quat.quat_to_rotvec(quat.multiply(exact, quat.conjugate(lam)), canonical=True)  # exact minus computed
     np.testing.assert_allclose(r.attitude_error[-1], err, atol=1e-13)
 
 

@@ -117,9 +117,9 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
 
     The motion is (4.1) with ε = −1, ϑ = α, ν = ω, the initial attitude the
-    identity (so the precession axis in I is ``n = (0, sin α, cos α)``); the
-    simulator's drift (computed minus exact, frame I) projected on n is the
-    drift along the cone axis ``a = −n`` in the convention exact minus algorithm.
+    identity (so the precession axis in I is ``n = (0, sin α, cos α)`` and the
+    cone axis ``a = −n``); the simulator's drift (exact minus algorithm, frame
+    I) projected on ``a`` is the drift ``u`` of the closed form, with its sign.
 
     Parameters
     ----------
@@ -162,12 +162,12 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         return SimulatorCheck(**common, simulated=None, note="fewer than 8 steps in the run")
     if abs(theory) < floor:
         return SimulatorCheck(**common, simulated=None, note="drift below the round-off floor of the run")
+    motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, RegularPrecession(-1.0, nu, alpha), h, duration)
+        run = simulate(algorithm, motion, h, duration)
     except ValueError as exc:
         return SimulatorCheck(**common, simulated=None, note=f"not run by the simulator: {exc}")
-    axis = np.array([0.0, math.sin(alpha), math.cos(alpha)])
-    return SimulatorCheck(**common, simulated=float(run.drift @ axis))
+    return SimulatorCheck(**common, simulated=float(run.drift @ -motion.precession_axis()))
 
 
 @dataclass(frozen=True)
@@ -347,11 +347,13 @@ class FiniteAngleCheck:
     max_weight : int
         Weight of the series (powers of ωh below it are exact, at every order in α).
     closed_form : float
-        ``α² ω D(ωh)`` [rad/s].
+        ``α² ω D(ωh)`` [rad/s], signed as ``series``.
     series : float
-        The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in α [rad/s].
+        The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in
+        α, along the cone axis, exact minus algorithm [rad/s].
     simulated : float or None
-        Parallel computation along the cone axis [rad/s] (None if not run, see ``note``).
+        Parallel computation: the simulator's drift along the cone axis, exact
+        minus algorithm [rad/s] (None if not run, see ``note``).
     note : str
         Why not simulated ("" if it was).
     """
@@ -404,9 +406,9 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     # drift_terms is along the precession axis n; the cone axis is a = −n
     series = -float(np.sum(vals * nu**w * H ** np.maximum(w - 1, 0)))
     closed = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
+    motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, RegularPrecession(-1.0, nu, alpha), h, periods * 2 * math.pi / nu)
+        run = simulate(algorithm, motion, h, periods * 2 * math.pi / nu)
     except ValueError as exc:
         return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, None, f"not run by the simulator: {exc}")
-    axis = np.array([0.0, math.sin(alpha), math.cos(alpha)])
-    return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ axis))
+    return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ -motion.precession_axis()))

@@ -284,7 +284,8 @@ class ScullingCurve:
     nu_h : ndarray
         ν h values [rad] (h the sample interval).
     relative : ndarray
-        Error rate over the exact rectified acceleration ``½ θ₀ A cos(φ_a − φ_θ)``.
+        Error rate (exact minus algorithm) over the exact rectified acceleration
+        ``½ θ₀ A cos(φ_a − φ_θ)``; positive where the algorithm under-rectifies.
     slope : float
         Least-squares slope of ``log |relative|`` against ``log ν h`` over the
         lower half of the range (the order of the sculling error).
@@ -335,9 +336,10 @@ class ScullingPoint:
     nu_h : float
         ν h [rad].
     theory : float
-        :func:`rectification_error` rate [m/s²].
+        :func:`rectification_error` rate [m/s²], exact minus algorithm.
     simulated : float
-        Slope of the simulated ``ΔW_I`` along ``e_r × e_a`` [m/s²].
+        Slope of the simulated ``ΔW_I = W_I* − W_I`` along ``e_r × e_a`` [m/s²]
+        (exact minus algorithm, the same sign as ``theory``).
     """
 
     algorithm: str

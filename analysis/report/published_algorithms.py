@@ -151,6 +151,8 @@ def _sculling_section(quick: bool) -> list:
         "each coning algorithm (`evaluation.increment` on dual increments, no separate sculling formula). The figure shows the",
         "error of the rectified acceleration relative to its exact value, to first order in θ₀ A",
         "(`sculling_motion.rectification_error`, one step in closed form), against ν h (h the sample interval).",
+        "The error is exact minus algorithm, like every error of the package: the rate of $W_I^* - W_I$, positive when",
+        "the algorithm under-rectifies.",
         "",
         "![sculling error](figures/published-algorithms-sculling.png)",
         "",
@@ -161,7 +163,8 @@ def _sculling_section(quick: bool) -> list:
         out.append(f"| `{c.algorithm}` | {c.slope:.2f} |")
     out += [
         "",
-        "Simulator checks (θ₀ = 10⁻³ rad, A = 1 m/s², f = 10 Hz, 2 s; slope of the simulated ΔW_I along z):",
+        "Simulator checks (θ₀ = 10⁻³ rad, A = 1 m/s², f = 10 Hz, 2 s; slope of the simulated ΔW_I = W_I* − W_I along z,",
+        "exact minus algorithm):",
         "",
         "| algorithm | ν h | theory [m/s²] | simulated [m/s²] | difference |",
         "|---|---|---|---|---|",
