@@ -261,8 +261,8 @@ def printed_consistency() -> tuple:
     for row in rows:
         rho = row.order
         r3 = t3[(row.algorithm, row.eps)]
-        if row.beta_a_4 is not None and r3.u_a is not None:
-            out.append(ConsistencyCheck((_label(row, COLUMNS[1]), _label(row, COLUMNS[0])), row.beta_star_4 / row.beta_a_4, (r3.u_star / r3.u_a) ** (1 / rho),
+        if row.beta_a_4 is not None and r3.u_a_deg_per_h is not None:
+            out.append(ConsistencyCheck((_label(row, COLUMNS[1]), _label(row, COLUMNS[0])), row.beta_star_4 / row.beta_a_4, (r3.u_star_deg_per_h / r3.u_a_deg_per_h) ** (1 / rho),
                                         "printed u*/u_a of Table 3"))  # fmt: skip
         out.append(ConsistencyCheck((_label(row, COLUMNS[2]), _label(row, COLUMNS[1])), row.beta_star_5 / row.beta_star_4, (u4 / u5) ** (1 / rho),
                                     "the two budgets [u]"))  # fmt: skip
@@ -270,7 +270,7 @@ def printed_consistency() -> tuple:
         for b in rows:
             same = a.eps == b.eps and a.order == b.order and counts[a.algorithm] == counts[b.algorithm]
             if same and a.algorithm > b.algorithm:
-                expected = (t3[(a.algorithm, a.eps)].u_star / t3[(b.algorithm, b.eps)].u_star) ** (1 / a.order)
+                expected = (t3[(a.algorithm, a.eps)].u_star_deg_per_h / t3[(b.algorithm, b.eps)].u_star_deg_per_h) ** (1 / a.order)
                 for col, ba, bb in ((COLUMNS[1], a.beta_star_4, b.beta_star_4), (COLUMNS[2], a.beta_star_5, b.beta_star_5)):
                     out.append(ConsistencyCheck((_label(a, col), _label(b, col)), ba / bb, expected, "equal operation counts (Table 2) and printed u* of Table 3"))
     return tuple(out)

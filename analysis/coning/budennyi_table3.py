@@ -212,7 +212,7 @@ def _reproduce_u_star(conditions: Table3Conditions, duration: float) -> tuple:
     for row in P.BUDENNYI_TABLE_3:
         d = drifts[row.algorithm]
         ours = d.coning if row.eps == conditions.coning_eps else d.precession
-        out.append(UStarCell(row, ours, deg_per_h(ours) / row.u_star - 1.0))
+        out.append(UStarCell(row, ours, deg_per_h(ours) / row.u_star_deg_per_h - 1.0))
     return tuple(out)
 
 
@@ -268,17 +268,17 @@ class DriftEstimate(NamedTuple):
     @property
     def asymptotic_vs_printed(self) -> float | None:
         """``u_a / printed u_a − 1`` (in the printed unit); None where u_a is not printed."""
-        return None if self.printed.u_a is None else deg_per_h(self.asymptotic) / self.printed.u_a - 1
+        return None if self.printed.u_a_deg_per_h is None else deg_per_h(self.asymptotic) / self.printed.u_a_deg_per_h - 1
 
     @property
     def printed_vs_asymptotic(self) -> float | None:
         """``printed u_a / u_a − 1`` (in the printed unit); None where u_a is not printed."""
-        return None if self.printed.u_a is None else self.printed.u_a / deg_per_h(self.asymptotic) - 1
+        return None if self.printed.u_a_deg_per_h is None else self.printed.u_a_deg_per_h / deg_per_h(self.asymptotic) - 1
 
     @property
     def asymptotic_vs_printed_u_star(self) -> float:
         """``u_a / printed u* − 1`` (in the printed unit)."""
-        return deg_per_h(self.asymptotic) / self.printed.u_star - 1
+        return deg_per_h(self.asymptotic) / self.printed.u_star_deg_per_h - 1
 
     @property
     def asymptotic_vs_simulated(self) -> float:
@@ -407,17 +407,17 @@ class LeadingEstimates(NamedTuple):
     @property
     def printed_vs_mid_step(self) -> float:
         """``printed u_a / |mid_step| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.mid_step)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.mid_step)) - 1
 
     @property
     def printed_vs_full(self) -> float:
         """``printed u_a / |full| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.full)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.full)) - 1
 
     @property
     def printed_vs_small_angle(self) -> float:
         """``printed u_a / |small_angle| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.small_angle)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.small_angle)) - 1
 
     @property
     def full_vs_simulated(self) -> float:

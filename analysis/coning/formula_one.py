@@ -164,7 +164,7 @@ class AssignmentScore(NamedTuple):
 def _assignment_scores(conditions, duration: float, tolerance: float) -> tuple:
     printed_table = dict(PANOV_TABLE_1)
     printed_table[2] = P.BUDENNYI_TABLE_1_COLUMN_2
-    u_star = {(row.algorithm, row.eps): row.u_star for row in P.BUDENNYI_TABLE_3}
+    u_star = {(row.algorithm, row.eps): row.u_star_deg_per_h for row in P.BUDENNYI_TABLE_3}
     runs: dict = {}
     out = []
     for assignment in basis_assignments():

@@ -39,7 +39,7 @@ ORDER_STUDY_MOTIONS = (RegularPrecession(-1.0, 2 * math.pi, rad(10.0)), RegularP
 def _printed_u_star(algorithm: int) -> str:
     """The printed u* of ``algorithm`` under coning and precession, "a and b"-ready."""
     rows = {r.eps: r for r in P.BUDENNYI_TABLE_3 if r.algorithm == algorithm}
-    return f"{rows[-1.0].u_star:g}", f"{rows[0.5].u_star:g}"
+    return f"{rows[-1.0].u_star_deg_per_h:g}", f"{rows[0.5].u_star_deg_per_h:g}"
 
 
 def _table2(algorithm: int):
@@ -99,9 +99,10 @@ def _intro() -> list:
         "Every number here is computed by the simulator (`strapdown.analysis.coning.simulator.simulate`): the algorithm is",
         "driven by the exact increments (2.1) of the regular precession (4.1) or its dual analogue (4.2)–(4.3),",
         "and the attitude Λ (or the biquaternion θ = Λ + sM) it computes is compared with the closed-form",
-        "solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989). The attitude error is the rotation vector",
-        "$\\delta\\varphi_I = \\mathrm{rotvec}(\\Lambda_{alg} \\circ \\bar\\Lambda)$ in frame I; the constant drift rate is the norm",
-        "of its least-squares slope over the run. $|\\Delta W_E|$, $|\\Delta W_I|$ are taken at the end of the run.",
+        "solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989). Errors are exact minus algorithm, as everywhere in the",
+        "package: the attitude error is the rotation vector $\\delta\\varphi_I = \\mathrm{rotvec}(\\Lambda_{exact} \\circ \\bar\\Lambda_{alg})$ of the",
+        "error rotation, in frame I, and $\\Delta W = W_{exact} - W_{alg}$; the constant drift rate is the norm of the",
+        "least-squares slope of $\\delta\\varphi_I$ over the run. $|\\Delta W_E|$, $|\\Delta W_I|$ are taken at the end of the run.",
         f"A printed cell counts as reproduced when the relative difference is within {TOLERANCE:.0%}.",
         "",
     ]
@@ -120,7 +121,7 @@ def _table3_section() -> list:
     ]
     for c in cells:
         p = c.printed
-        out.append(f"| panov-4s-{p.algorithm} | {p.eps:g} | {_fmt(deg_per_h(c.simulated))} | {_fmt(p.u_star)} | {_pct(c.relative_difference)} | {_fmt(p.u_a)} |")
+        out.append(f"| panov-4s-{p.algorithm} | {p.eps:g} | {_fmt(deg_per_h(c.simulated))} | {_fmt(p.u_star_deg_per_h)} | {_pct(c.relative_difference)} | {_fmt(p.u_a_deg_per_h)} |")
     n_ok = sum(abs(c.relative_difference) <= TOLERANCE for c in cells)
     out += ["", f"{n_ok} of {len(cells)} cells reproduced within {TOLERANCE:.0%}.", ""]
     return out

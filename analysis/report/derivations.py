@@ -195,7 +195,7 @@ def _table2_commentary(checks) -> list:
         "",
         f"Algorithm 2: with Table 1 as printed (a3 = 4/3, i.e. 4/3 (p1×p3 + p2×p4)) the derivation gives k12 = {col2.k12}, not {c2.printed[1]},",
         f"and drift rates of {deg_per_h(col2.asymptotic.coning):.3f} / {deg_per_h(col2.asymptotic.precession):.3f} deg/h against the printed "
-        f"u_a = {t_c.u_a:g} / {t_p.u_a:.3f} and u* = {t_c.u_star:g} / {t_p.u_star:g} (Table 3);",
+        f"u_a = {t_c.u_a_deg_per_h:g} / {t_p.u_a_deg_per_h:.3f} and u* = {t_c.u_star_deg_per_h:g} / {t_p.u_star_deg_per_h:g} (Table 3);",
         "the algorithm 4/3 (p1×p4 + p2×p3), i.e. a1 = a2 = 4/3, reproduces Table 2, u_a and u*. The registry uses it",
         "(errata: see the algorithms section). The reconstructed formula (1) (a1 → p2×p3, a2 → p1×p4,",
         "a3 → p1×p3 + p2×p4, a4 → p1×p2 + p3×p4) is otherwise confirmed: among all assignments of sets of pair",
@@ -308,28 +308,28 @@ def _table3_table() -> list:
     for r in rows:
         p = r.printed
         ours = deg_per_h(r.asymptotic)
-        ratio = "–" if p.u_a is None else f"{1 + r.asymptotic_vs_printed:.4f}"
+        ratio = "–" if p.u_a_deg_per_h is None else f"{1 + r.asymptotic_vs_printed:.4f}"
         pl = "–" if r.mid_step is None else f"{deg_per_h(r.mid_step):.4g}"
-        ua = "–" if p.u_a is None else f"{p.u_a:.3g}"
+        ua = "–" if p.u_a_deg_per_h is None else f"{p.u_a_deg_per_h:.3g}"
         lines.append(
-            f"| {p.algorithm} | {p.eps:g} | {r.order} | {p.u_star:.3g} | {deg_per_h(r.simulated):.4g} | {ua} | {ours:.4g} | {ratio} | {deg_per_h(r.series):.4g} | {pl} |"
+            f"| {p.algorithm} | {p.eps:g} | {r.order} | {p.u_star_deg_per_h:.3g} | {deg_per_h(r.simulated):.4g} | {ua} | {ours:.4g} | {ratio} | {deg_per_h(r.series):.4g} | {pl} |"
         )
     lines += _table3_commentary(rows)
     return lines
 
 
 def _table3_commentary(rows) -> list:
-    worst4 = max(abs(r.asymptotic_vs_printed) for r in rows if r.order == 4 and r.printed.u_a is not None)
+    worst4 = max(abs(r.asymptotic_vs_printed) for r in rows if r.order == 4 and r.printed.u_a_deg_per_h is not None)
     rho6 = [r for r in rows if r.order == 6]
     sci = lambda values: ", ".join(f"{v:.3g}" for v in values)  # noqa: E731
     vs_sim = max(abs(r.asymptotic_vs_simulated) for r in rho6)
-    unprinted = [r for r in rows if r.printed.u_a is None]
+    unprinted = [r for r in rows if r.printed.u_a_deg_per_h is None]
     lines = [
         "",
         f"Every printed u_a with ρ = 4 is reproduced within {100 * worst4:.2g} %. For ρ = 6 (coning, algorithms "
         f"{', '.join(str(r.printed.algorithm) for r in rho6)}) the derived u_a ({sci(deg_per_h(r.asymptotic) for r in rho6)}) agrees with the printed "
-        f"simulation u* ({sci(r.printed.u_star for r in rho6)}) and with ours within {100 * vs_sim:.1f} %; the printed u_a "
-        f"({sci(r.printed.u_a for r in rho6)}) are compared with both estimates below.",
+        f"simulation u* ({sci(r.printed.u_star_deg_per_h for r in rho6)}) and with ours within {100 * vs_sim:.1f} %; the printed u_a "
+        f"({sci(r.printed.u_a_deg_per_h for r in rho6)}) are compared with both estimates below.",
     ]
     lines += [f"The u_a of algorithm {r.printed.algorithm} at ε = {r.printed.eps:g}, not printed, is {deg_per_h(r.asymptotic):.4g} deg/h." for r in unprinted]
     lines += [""]
@@ -356,8 +356,8 @@ def _order6_section() -> list:
     for e in est:
         p = e.printed
         lines.append(
-            f"| {p.algorithm} | {p.u_a:.3g} | {deg_per_h(e.mid_step):.4g} | {deg_per_h(e.small_angle):.4g} | {deg_per_h(e.full):.4g} | {deg_per_h(e.transport):+.4g} | "
-            f"{p.u_star:.3g} | {deg_per_h(e.simulated):.4g} | {1 + e.printed_vs_mid_step:.4f} | {1 + e.printed_vs_small_angle:.4f} | {1 + e.printed_vs_full:.4f} |"
+            f"| {p.algorithm} | {p.u_a_deg_per_h:.3g} | {deg_per_h(e.mid_step):.4g} | {deg_per_h(e.small_angle):.4g} | {deg_per_h(e.full):.4g} | {deg_per_h(e.transport):+.4g} | "
+            f"{p.u_star_deg_per_h:.3g} | {deg_per_h(e.simulated):.4g} | {1 + e.printed_vs_mid_step:.4f} | {1 + e.printed_vs_small_angle:.4f} | {1 + e.printed_vs_full:.4f} |"
         )
     three = next(e for e in est if e.printed.algorithm == 3)
     five = next(e for e in est if e.printed.algorithm == 5)
@@ -679,10 +679,10 @@ def _estimates_text(e) -> str:
 def _table3_algorithm_3(three, five, same: bool) -> Erratum:
     return Erratum(
         "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 3 under coning (ρ = 6)",
-        f"u_a = {three.printed.u_a:.3g} deg/h",
+        f"u_a = {three.printed.u_a_deg_per_h:.3g} deg/h",
         f"the small-cone-angle estimate c ϑ² ν (ν h)⁶ (c = 2/315): {deg_per_h(abs(three.small_angle)):.4g} deg/h, "
         f"{100 * abs(three.printed_vs_small_angle):.2f} % from the print; a legitimate approximation, not a misprint",
-        f"At the Table 3 conditions {_estimates_text(three)}; the full term agrees with the printed u* = {three.printed.u_star:.3g} "
+        f"At the Table 3 conditions {_estimates_text(three)}; the full term agrees with the printed u* = {three.printed.u_star_deg_per_h:.3g} "
         f"and with the simulator ({deg_per_h(three.simulated):.4g} deg/h) within {100 * abs(three.full_vs_simulated):.1f} %. "
         + ("The transport term is the same expression for algorithms 3 and 5 " if same else "The transport terms of algorithms 3 and 5 differ ")
         + f"({deg_per_h(three.transport):.3g} deg/h here), and algorithm 5's printed u_a is its mid-step estimate to "
@@ -698,7 +698,7 @@ def _table3_algorithm_3(three, five, same: bool) -> Erratum:
 def _table3_algorithm_5(five) -> Erratum:
     return Erratum(
         "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (ρ = 6)",
-        f"u_a = {five.printed.u_a:.3g} deg/h",
+        f"u_a = {five.printed.u_a_deg_per_h:.3g} deg/h",
         f"the papers' own estimate, the h⁷ error projected at the middle of the step: {deg_per_h(abs(five.mid_step)):.3g} deg/h, "
         f"{100 * abs(five.printed_vs_mid_step):.1f} % from the print; a legitimate, less accurate approximation, not a misprint",
         "The formula (3) behind u_a is lost in the stored text, which cites Panov (1995) for it, so the text does not decide which estimate "
@@ -706,7 +706,7 @@ def _table3_algorithm_5(five) -> Erratum:
         f"At the Table 3 conditions {_estimates_text(five)}.",
         "derivations",
         kind="ambiguous",
-        alternatives=f"the full leading term, {deg_per_h(abs(five.full)):.3g} deg/h, which agrees with the printed u* = {five.printed.u_star:.3g} "
+        alternatives=f"the full leading term, {deg_per_h(abs(five.full)):.3g} deg/h, which agrees with the printed u* = {five.printed.u_star_deg_per_h:.3g} "
         f"and the simulator ({deg_per_h(five.simulated):.4g} deg/h) within {100 * abs(five.full_vs_simulated):.1f} %: the better estimate, "
         "but not what the print uses.",
     )

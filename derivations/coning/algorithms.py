@@ -54,7 +54,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-__all__ = ["Term", "Algorithm", "MAX_HISTORY", "load_toml", "second_order_defect"]
+__all__ = ["Term", "Algorithm", "MAX_HISTORY", "load_toml", "second_order_defect", "SecondOrderConditionError"]
 
 Expr = int | tuple
 
@@ -237,6 +237,30 @@ def _indices(key: str, count: int, where: str, samples: int) -> tuple:
     return idx
 
 
+class SecondOrderConditionError(ValueError):
+    """A file's algorithm misses the second-order condition ``Σ c_ij (j − i) = N³/12``.
+
+    Raised by :func:`load_toml` unless ``allow_inconsistent=True``; a front end can
+    catch it to tell its user how to accept the algorithm in its own terms.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    total : Fraction
+        ``Σ c_ij (j − i)`` of the algorithm.
+    expected : Fraction
+        ``N³/12``.
+    """
+
+    def __init__(self, path, total, expected):
+        self.path, self.total, self.expected = path, total, expected
+        super().__init__(
+            f"{path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {total}, "
+            f"expected N³/12 = {expected} (load it with `allow_inconsistent=True` to accept it)"
+        )
+
+
 def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
     """Read a user algorithm from a TOML file (syntax in the module docstring).
 
@@ -250,8 +274,9 @@ def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
     Raises
     ------
     ValueError
-        Malformed file (the message names the file, the key and the problem),
-        or an algorithm that misses the second-order condition.
+        Malformed file (the message names the file, the key and the problem).
+    SecondOrderConditionError
+        An algorithm that misses the second-order condition (a ``ValueError``).
     """
     path = Path(path)
     try:
@@ -294,9 +319,5 @@ def load_toml(path, *, allow_inconsistent: bool = False) -> Algorithm:
     alg = Algorithm(name, samples, tuple(terms), str(data.get("description", "")), str(data.get("reference", str(path.name))))
     defect = second_order_defect(alg)
     if defect != 0 and not allow_inconsistent:
-        total = defect + Fraction(samples**3, 12)
-        raise ValueError(
-            f"{path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {total}, "
-            f"expected N³/12 = {Fraction(samples**3, 12)} (pass --allow-inconsistent to accept it)"
-        )
+        raise SecondOrderConditionError(path, defect + Fraction(samples**3, 12), Fraction(samples**3, 12))
     return alg
