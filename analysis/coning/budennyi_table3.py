@@ -48,6 +48,8 @@ __all__ = [
     "reproduce_u_star",
     "DriftEstimate",
     "drift_estimates",
+    "Table3Agreement",
+    "table3_agreement",
     "LeadingEstimates",
     "leading_estimates",
     "ErrorHistory",
@@ -204,6 +206,20 @@ class UStarCell(NamedTuple):
     simulated: float
     relative_difference: float
 
+    def reproduced(self, tolerance: float) -> bool:
+        """Whether the simulation reproduces the printed u* within ``tolerance``.
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest relative difference counted as reproduced [-].
+
+        Returns
+        -------
+        bool
+        """
+        return abs(self.relative_difference) <= tolerance
+
 
 @cache
 def _reproduce_u_star(conditions: Table3Conditions, duration: float) -> tuple:
@@ -328,6 +344,51 @@ def drift_estimates(*, conditions: Table3Conditions | None = None, simulation_du
     Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3), Table 3.
     """
     return _drift_estimates(_conditions(conditions), positive(simulation_duration, "simulation_duration"))
+
+
+class Table3Agreement(NamedTuple):
+    """How the package's estimates of Table 3 agree with the print and the simulation.
+
+    Attributes
+    ----------
+    worst_order_4 : float
+        Largest ``|u_a / printed u_a − 1|`` over the ρ = 4 rows with a printed u_a.
+    worst_order_6_vs_simulated : float
+        Largest ``|u_a / simulated u* − 1|`` over the ρ = 6 rows.
+    order_6 : tuple of DriftEstimate
+        The ρ = 6 rows.
+    unprinted : tuple of DriftEstimate
+        The rows whose u_a is not printed.
+    """
+
+    worst_order_4: float
+    worst_order_6_vs_simulated: float
+    order_6: tuple
+    unprinted: tuple
+
+
+def table3_agreement(estimates=None) -> Table3Agreement:
+    """Summary of :func:`drift_estimates`: the worst agreement of u_a with the print and with the simulation.
+
+    Parameters
+    ----------
+    estimates : sequence of DriftEstimate, optional
+        Default :func:`drift_estimates` ``()``.
+
+    Returns
+    -------
+    Table3Agreement
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3.
+    """
+    rows = tuple(drift_estimates() if estimates is None else estimates)
+    order_4 = [abs(r.asymptotic_vs_printed) for r in rows if r.order == 4 and r.asymptotic_vs_printed is not None]
+    order_6 = tuple(r for r in rows if r.order == 6)
+    worst_6 = max((abs(r.asymptotic_vs_simulated) for r in order_6), default=float("nan"))
+    unprinted = tuple(r for r in rows if r.printed.u_a_deg_per_h is None)
+    return Table3Agreement(max(order_4, default=float("nan")), worst_6, order_6, unprinted)
 
 
 class ErrorHistory(NamedTuple):

@@ -112,6 +112,13 @@ class SimulatorCheck:
             return None
         return self.simulated / self.theory - 1.0
 
+    @property
+    def simulated_coefficient(self) -> float | None:
+        """The simulated drift as a value of D: ``simulated / (α² ω)`` [-] (None if not simulated)."""
+        if self.simulated is None:
+            return None
+        return self.simulated / (self.cone_angle**2 * self.nu)
+
 
 def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> SimulatorCheck:
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
@@ -222,8 +229,22 @@ class ConingResponse:
         x = positive(omega_h, "omega_h")
         if self.quartic_order is None:
             return None
-        d = float(np.asarray(coning_drift_function(self.algorithm)(x)))
-        return math.sqrt(abs(d) / abs(float(self.quartic_coefficient) * x**self.quartic_order))
+        return math.sqrt(abs(self.drift_at(x)) / abs(float(self.quartic_coefficient) * x**self.quartic_order))
+
+    def drift_at(self, omega_h: float) -> float:
+        """``D(x)`` at one x = ωh, from the closed form [-], signed (exact minus algorithm).
+
+        Parameters
+        ----------
+        omega_h : float
+            x = ωh [rad], > 0.
+
+        Returns
+        -------
+        float
+        """
+        x = positive(omega_h, "omega_h")
+        return float(np.asarray(coning_drift_function(self.algorithm)(x)))
 
     @property
     def leading(self) -> np.ndarray:
@@ -250,6 +271,16 @@ class FrequencyResponse:
 
     omega_h: np.ndarray
     responses: tuple
+
+    @property
+    def simulated_checks(self) -> tuple:
+        """Every simulated check of every algorithm."""
+        return tuple(c for r in self.responses for c in r.simulated_checks)
+
+    @property
+    def largest_relative_difference(self) -> float:
+        """Largest ``|simulated / theory − 1|`` over :attr:`simulated_checks` (NaN if none)."""
+        return max((abs(c.relative_difference) for c in self.simulated_checks), default=float("nan"))
 
 
 def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> ConingResponse:
@@ -367,6 +398,11 @@ class FiniteAngleCheck:
     series: float
     simulated: float | None
     note: str = ""
+
+    @property
+    def simulated_vs_series(self) -> float | None:
+        """``simulated / series − 1`` (None if not simulated)."""
+        return None if self.simulated is None else self.simulated / self.series - 1.0
 
 
 def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float, nu: float = 2 * math.pi * 10.0, max_weight: int = 11, periods: int = 200) -> FiniteAngleCheck:

@@ -359,6 +359,8 @@ class RectificationError:
     relative : float
         ``rate`` over the exact rectified acceleration ``½ θ₀ A cos(φ_a − φ_θ)``
         (the same order), [-]; NaN when that vanishes.
+    exact_rate : float
+        That exact rectified acceleration along ``e_r × e_a``, first order in θ₀ A [m/s²].
     """
 
     algorithm: Algorithm
@@ -366,6 +368,7 @@ class RectificationError:
     nu_h: float
     rate: float
     relative: float
+    exact_rate: float
 
 
 def _phasors(motion: ScullingMotion, h, index):
@@ -467,5 +470,5 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
         exact_rate = mpmath.mpf(motion.angle_amplitude) * motion.accel_amplitude * mpmath.cos(mpmath.mpf(motion.accel_phase) - motion.angle_phase) / 2
         rate = exact_rate - total / (n * hm)
         relative = float(rate / exact_rate) if exact_rate != 0 else float("nan")
-        return RectificationError(algorithm, h, motion.nu * h, float(rate), relative)
+        return RectificationError(algorithm, h, motion.nu * h, float(rate), relative, float(exact_rate))
 

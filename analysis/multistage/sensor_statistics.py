@@ -197,6 +197,24 @@ class PeakStatistics:
     statistics: SensorErrorStatistics
     seed_entropy: int
 
+    def spread(self, stage: int | None = None) -> float:
+        """Largest distance of a percentile of the yaw, pitch or roll peak from the error-free run [rad].
+
+        Parameters
+        ----------
+        stage : int, optional
+            Stage number, 1-based; default the last stage.
+
+        Returns
+        -------
+        float
+            ``max |percentile − nominal|`` over the levels and the three angles.
+        """
+        s = self.nominal.shape[0] - 1 if stage is None else as_int(stage, "stage", minimum=1) - 1
+        if s >= self.nominal.shape[0]:
+            raise ValueError(f"Expected `stage` in 1..{self.nominal.shape[0]}, got {s + 1}")
+        return float(np.abs(self.percentiles[:, s, :3] - self.nominal[s, :3]).max())
+
     def percentile(self, level: float, stage: int, quantity: str) -> float:
         """One percentile [rad].
 
@@ -247,7 +265,7 @@ def sensor_error_monte_carlo(
     stages : sequence of Stage, optional
         Default :func:`strapdown.analysis.multistage.stages.plotnikov_1999_stages`.
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     levels : sequence of float
         Percentile levels in [0, 100].
     rng : Generator | SeedSequence | int | None
