@@ -1,4 +1,4 @@
-"""Architecture rules of the package, checked on the source (CONTRIBUTING.md, issue 10).
+"""Architecture rules of the package, checked on the source (CONTRIBUTING.md).
 
 * Names starting with ``_`` are not used outside their module: no
   ``from .x import _y`` and no ``x._y`` on an imported module, anywhere in
@@ -7,7 +7,7 @@
   ``--option`` in the text of an exception raised outside the CLI and the
   reports.
 * Radians inside the library: no parameter or attribute named ``*_deg`` or
-  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage}``
+  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage,gyrocompass}``
   and ``derivations`` (the printed data of ``published.py`` keep the paper's
   units, with names that say so).
 
@@ -26,23 +26,6 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = {"analysis": "strapdown.analysis", "derivations": "strapdown.derivations"}
 
-#: Paths being changed on other branches while these checks were written (the
-#: gyrocompass domain and the CLI and report edge).  They are skipped by every check
-#: below until they are merged; then this set is emptied.  Strict: every entry
-#: must exist (:func:`test_not_yet_checked_is_strict`), so a typo cannot hide a file.
-NOT_YET_CHECKED = frozenset(
-    {
-        "analysis/gyrocompass",
-        "derivations/gyrocompass",
-        "analysis/report/azimuth.py",
-        "analysis/cli/azimuth.py",
-        "analysis/cli/__init__.py",
-        "analysis/report/__init__.py",
-        "analysis/report/html.py",
-        "analysis/report/index.py",
-    }
-)
-
 #: Modules that may use a private module of their own subpackage, with the reason.
 #: ``_kernel_template`` is a code template, not an API: ``kernels`` copies its
 #: functions into generated modules (its docstring says so, and its ``__all__`` is empty).
@@ -52,16 +35,11 @@ PRIVATE_MODULE_USERS = {("analysis/coning/kernels.py", "_kernel_template")}
 UNIT_CONVERSIONS = frozenset({"analysis/core/units.py"})
 
 
-def _skipped(rel: str) -> bool:
-    return any(rel == p or rel.startswith(p + "/") for p in NOT_YET_CHECKED)
-
-
 def _sources(*folders):
     for folder in folders:
         for path in sorted((ROOT / folder).rglob("*.py")):
             rel = path.relative_to(ROOT).as_posix()
-            if not _skipped(rel):
-                yield rel, ast.parse(path.read_text(encoding="utf-8"), filename=rel)
+            yield rel, ast.parse(path.read_text(encoding="utf-8"), filename=rel)
 
 
 def _module_name(rel: str) -> str:
@@ -156,7 +134,7 @@ def test_the_flag_check_can_fail():
 
 
 # --------------------------------------------------------------------------- units
-UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "derivations")
+UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "analysis/gyrocompass", "derivations")
 DEGREE_NAME = re.compile(r"(^|_)deg(_per_h)?$")
 #: A numpydoc entry "name : type" and its indented description.
 DOC_ENTRY = re.compile(r"^(\s*)([A-Za-z_][\w, ]*) : [^\n]*\n((?:\1\s+[^\n]*\n?)*)", re.M)
@@ -228,15 +206,6 @@ def test_published_data_in_degrees_say_so_in_their_names():
 def test_the_published_unit_check_can_fail():
     tree = ast.parse('class Row:\n    """R.\n\n    Attributes\n    ----------\n    u_star : float\n        Drift [deg/h].\n    """\n\n    u_star: float\n')
     assert published_degree_fields("derivations/coning/published.py", tree) == ["derivations/coning/published.py: Row.u_star"]
-
-
-# --------------------------------------------------------------------------- the skip list
-def test_not_yet_checked_is_strict():
-    """Every skipped path exists and lies in the checked tree; none of the checked folders is skipped whole."""
-    for entry in NOT_YET_CHECKED:
-        assert (ROOT / entry).exists(), f"NOT_YET_CHECKED names {entry!r}, which does not exist"
-        assert entry.split("/")[0] in PACKAGES, entry
-    assert not NOT_YET_CHECKED & set(PACKAGES) and not NOT_YET_CHECKED & set(UNIT_FOLDERS)
 
 
 @pytest.mark.parametrize("folder", sorted(PACKAGES))
