@@ -51,16 +51,15 @@ def _coning_checks(quick: bool):
 
 
 def _library_table() -> list:
-    out = ["## The library", "", "| name | N | previous samples | order ρ | how | source |", "|---|---|---|---|---|---|"]
+    out = ["## The library", "", "| name | N | previous samples | order ρ | source |", "|---|---|---|---|---|"]
     for name in names(library=True):
         s = summarize(get(name))
         order = "—" if s.order is None else str(s.order)
-        how = "series" if s.order_method == "series" else "measured"
-        out.append(f"| `{name}` | {s.samples} | {s.history} | {order} | {how} | {s.reference} |")
+        out.append(f"| `{name}` | {s.samples} | {s.history} | {order} | {s.reference} |")
     out += [
         "",
-        "ρ is the order of the local error O(h^(ρ+1)) in a general motion (no symmetry): from the symbolic series for",
-        "algorithms within one step, measured on a tumbling motion for cross-step ones. Compressed forms and the",
+        "ρ is the order of the local error O(h^(ρ+1)) in a general motion (no symmetry), from the symbolic series (cross-step",
+        "algorithms included; a one-step error measured on a tumbling motion confirms it). Compressed forms and the",
         "cross-step class are optimised for coning: under coning they are far better than their general order says",
         "(next sections); in a general motion they are third order.",
         "",
