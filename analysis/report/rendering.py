@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "round_bits", "quantise"]
+__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off"]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -57,6 +57,33 @@ def round_bits(values, bits: int = MANTISSA_BITS):
     scale = float(2**bits)
     out = np.ldexp(np.round(mantissa * scale) / scale, exponent)
     return np.where(np.isfinite(x), out, x)
+
+
+def at_round_off(value: float, floor: float = 1e-13) -> str:
+    """Text for a difference that should be round-off: a bound below ``floor``, else the number.
+
+    The last bits of a round-off-level difference depend on the instruction set
+    (see the module docstring), so printing its digits would make a report differ
+    from one machine to the next; a bound does not.
+
+    Parameters
+    ----------
+    value : float
+        A non-negative difference [any unit].
+    floor : float
+        Bound printed when ``value`` is below it [same unit as ``value``].
+
+    Returns
+    -------
+    str
+        ``"below 1e-13"`` or, above the floor, the value to two digits.
+
+    Examples
+    --------
+    >>> at_round_off(7.2e-16), at_round_off(3.1e-9)
+    ('below 1e-13', '3.1e-09')
+    """
+    return f"below {floor:.0e}" if abs(value) < floor else f"{value:.1e}"
 
 
 def _numeric(values) -> bool:

@@ -13,6 +13,7 @@ import numpy as np
 from ...derivations.multistage.published import PAPER, PRINTED_GAINS, SECTION5
 from ..core import units
 from . import Erratum, Section
+from .rendering import at_round_off
 
 SECTION = Section(
     "stability",
@@ -669,7 +670,7 @@ def _yaw(ctx, run) -> list:
         f"({d.stage1_correction_free}), and with $\\nu^{{-1}}$ for $\\bar\\nu$ in (2.2) the cancellation is exact for any norm ({d.cancels_any_norm_with_inverse}).",
         "Every stage-1 correction cancels: the composite is the gyro-integrated attitude corrected by stage 2 only. The",
         "discrete cascade has the property exactly — with stage 2 left uncorrected, the composite equals the product of the",
-        f"gyro increments to {study.identity.max_difference:.1e} while stage 1 (all four components) moves its own yaw by up to",
+        f"gyro increments (difference {at_round_off(study.identity.max_difference)}) while stage 1 (all four components) moves its own yaw by up to",
         f"{study.identity.stage1_yaw_peak:.2e} rad (tests: any stage 1, to 10⁻¹¹).",
         "",
         "So the earlier statement \"yaw is not corrected by either stage, so the second stage cannot reduce it\" was wrong as",
