@@ -31,9 +31,8 @@ def _cases(tmp: Path) -> list:
 
     cases = [(kind, argv, expect, names, 5.0) for kind, argv, expect, names in fuzz.CASES]
     for _label, path in fuzz.file_cases(tmp):
-        for command in ("derive local-error", "drift"):
-            base = [x for x in fuzz.BASELINES[command] if x not in ("--algorithm", "two-sample", "panov-4s-1")]
-            cases.append((f"hostile algorithm file ({command})", fuzz.command_argv(command, base + ["--algorithm-file", path]), "refuse", ("--algorithm-file",), 2.0))
+        for command in fuzz.algorithm_file_commands():
+            cases.append((f"hostile algorithm file ({command})", fuzz.with_algorithm_file(command, path), "refuse", ("--algorithm-file",), 2.0))
     for kind, argv, expect, names in contract.EXTRA_CASES:
         cases.append((kind, argv, expect, names, 5.0))
     return cases

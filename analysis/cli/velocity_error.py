@@ -20,7 +20,7 @@ from ..core.validation import as_float, in_open_interval, positive
 from . import Result, UsageError
 from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, run_summary, sculling_parameters, unit_quaternion
 
-_PRECESSION_ONLY = {"eps": "--eps", "nutation_deg": "--nutation-deg", "nu_dual": "--nu-dual", "nutation_dual": "--nutation-dual"}
+_PRECESSION_ONLY = {"eps": "--eps", "nutation_deg": "--nutation-deg", "nu_dual_m_s2": "--nu-dual-m-s2", "nutation_dual_m_s": "--nutation-dual-m-s"}
 
 
 def _given(args, keys) -> list:
@@ -37,8 +37,8 @@ def _precession(args):
     eps = as_float(args.eps, "--eps")
     nutation = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees") * RAD_PER_DEG
     nu = 2.0 * math.pi * positive(args.freq_hz, "--freq-hz")
-    nu_dual = as_float(args.nu_dual if args.nu_dual is not None else 0.0, "--nu-dual")
-    nutation_dual = as_float(args.nutation_dual if args.nutation_dual is not None else 0.0, "--nutation-dual")
+    nu_dual = as_float(args.nu_dual_m_s2 if args.nu_dual_m_s2 is not None else 0.0, "--nu-dual-m-s2")
+    nutation_dual = as_float(args.nutation_dual_m_s if args.nutation_dual_m_s is not None else 0.0, "--nutation-dual-m-s")
     motion = RegularPrecession(eps, nu, nutation, nu_dual, nutation_dual)
     return motion, {"motion": "precession", "eps": eps, "nutation_deg": args.nutation_deg, "freq_hz": args.freq_hz, "nu_dual": nu_dual, "nutation_dual": nutation_dual}
 
@@ -60,7 +60,7 @@ def _run(args) -> Result:
     positive(args.freq_hz, "--freq-hz")
     check_run_work(args, alg, velocity=True)
     motion, shown = _sculling(args) if args.motion == "sculling" else _precession(args)
-    w0 = floats(args.w0, "--w0", 3)
+    w0 = floats(args.w0_m_s, "--w0-m-s", 3)
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
     r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
     params = {"eps": motion.eps, "nu": motion.nu} if args.motion == "precession" else None
@@ -103,12 +103,12 @@ def register(commands) -> None:
     )
     add_algorithm(p)
     p.add_argument("--motion", choices=("precession", "sculling"), default="precession", help="test motion: dual regular precession (4.2) or classical sculling (default precession)")
-    p.add_argument("--eps", type=float, default=None, help="precession: ε = μ/ν, precession to spin rate (−1 is coning); required with --motion precession")
-    p.add_argument("--nutation-deg", type=float, default=None, help="precession: nutation angle ϑ [deg], in (0, 180); required with --motion precession")
-    p.add_argument("--freq-hz", type=float, required=True, help="precession: spin frequency F [Hz], ν = 2πF; sculling: vibration frequency F [Hz]")
+    p.add_argument("--eps", type=float, default=None, help="precession: ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning) (default: none; required with --motion precession)")
+    p.add_argument("--nutation-deg", type=float, default=None, help="precession: nutation angle ϑ [deg], in (0, 180) (default: none; required with --motion precession)")
+    p.add_argument("--freq-hz", type=float, required=True, help="precession: spin frequency F [Hz], ν = 2πF; sculling: vibration frequency F [Hz] (required)")
     add_run(p)
-    p.add_argument("--nu-dual", type=float, default=None, help="precession: dual part ν° of the spin rate [m/s²] (default 0)")
-    p.add_argument("--nutation-dual", type=float, default=None, help="precession: dual part ϑ° of the nutation [m/s] (default 0)")
+    p.add_argument("--nu-dual-m-s2", type=float, default=None, help="precession: dual part ν° of the spin rate [m/s²] (default 0)")
+    p.add_argument("--nutation-dual-m-s", type=float, default=None, help="precession: dual part ϑ° of the nutation [m/s] (default 0)")
     add_sculling(p)
-    p.add_argument("--w0", default="0,0,0", metavar="X,Y,Z", help="initial apparent velocity W_I(0) [m/s] (default 0,0,0)")
-    p.add_argument("--attitude0", default="1,0,0,0", metavar="Q0,Q1,Q2,Q3", help="initial attitude Λ(0), normalised (default 1,0,0,0)")
+    p.add_argument("--w0-m-s", default="0,0,0", metavar="X,Y,Z", help="initial apparent velocity W_I(0) [m/s] (default 0,0,0)")
+    p.add_argument("--attitude0", default="1,0,0,0", metavar="Q0,Q1,Q2,Q3", help="initial attitude Λ(0), a quaternion, normalised [dimensionless] (default 1,0,0,0)")
