@@ -367,6 +367,10 @@ def test_options_that_do_not_apply_are_refused(capsys):
     assert capsys.readouterr().err == "strapdown azimuth-design: error: --exact-phase does not apply to --rocking narrowband (it applies to --rocking sine)\n"
     assert cli.main(["align", "--method", "analytic", "--lat-deg", "45", "--velocity-noise-m-s", "0.01"]) == 2
     assert "--velocity-noise-m-s does not apply to --method analytic (it applies to --method kalman)" in capsys.readouterr().err
+    assert cli.main(SCULLING + ["--nutation-dual-m-s", "1"]) == 2
+    assert capsys.readouterr().err == "strapdown velocity-error: error: --nutation-dual-m-s does not apply to --motion sculling (it applies to --motion precession)\n"
+    assert cli.main(VELOCITY + ["--rotation-axis", "z"]) == 2
+    assert capsys.readouterr().err == "strapdown velocity-error: error: --rotation-axis does not apply to --motion precession (it applies to --motion sculling)\n"
 
 
 def test_ranges_are_stated_in_the_unit_typed(capsys):

@@ -20,20 +20,15 @@ from ..core.validation import as_float, in_open_interval, positive
 from . import Result, UsageError
 from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, run_summary, sculling_parameters, unit_quaternion
 
-_PRECESSION_ONLY = {"eps": "--eps", "nutation_deg": "--nutation-deg", "nu_dual_m_s2": "--nu-dual-m-s2", "nutation_dual_m_s": "--nutation-dual-m-s"}
-
-
-def _given(args, keys) -> list:
-    return [flag for key, flag in keys.items() if getattr(args, key) is not None]
+#: Options of one motion only (refused with the other, :meth:`Commands.only_with`).
+_PRECESSION_ONLY = ("--eps", "--nutation-deg", "--nu-dual-m-s2", "--nutation-dual-m-s")
+_SCULLING_ONLY = tuple("--" + key.replace("_", "-") for key in SCULLING_DEFAULTS)
 
 
 def _precession(args):
     missing = [flag for key, flag in (("eps", "--eps"), ("nutation_deg", "--nutation-deg")) if getattr(args, key) is None]
     if missing:
         raise UsageError(f"Expected {' and '.join(missing)} with --motion precession, got none")
-    stray = _given(args, {k: "--" + k.replace("_", "-") for k in SCULLING_DEFAULTS})
-    if stray:
-        raise UsageError(f"Expected no sculling option with --motion precession, got {stray[0]}")
     eps = as_float(args.eps, "--eps")
     nutation = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees") * RAD_PER_DEG
     nu = 2.0 * math.pi * positive(args.freq_hz, "--freq-hz")
@@ -44,9 +39,6 @@ def _precession(args):
 
 
 def _sculling(args):
-    stray = _given(args, _PRECESSION_ONLY)
-    if stray:
-        raise UsageError(f"Expected no precession option with --motion sculling, got {stray[0]}")
     params = sculling_parameters(args)
     if params["rotation_axis"] == params["accel_axis"]:
         raise UsageError(f"Expected --accel-axis different from --rotation-axis, got both {'xyz'[params['accel_axis']]}")
@@ -112,3 +104,7 @@ def register(commands) -> None:
     add_sculling(p)
     p.add_argument("--w0-m-s", default="0,0,0", metavar="X,Y,Z", help="initial apparent velocity W_I(0) [m/s] (default 0,0,0)")
     p.add_argument("--attitude0", default="1,0,0,0", metavar="Q0,Q1,Q2,Q3", help="initial attitude Λ(0), a quaternion, normalised [dimensionless] (default 1,0,0,0)")
+    for flag in _PRECESSION_ONLY:
+        commands.only_with(p, flag, "--motion", ("precession",))
+    for flag in _SCULLING_ONLY:
+        commands.only_with(p, flag, "--motion", ("sculling",))
