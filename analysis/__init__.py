@@ -54,12 +54,36 @@ Dual numbers
 Apparent velocity
     ``W_E = 2 vect(Λ̄ ∘ M)``, ``W_I = 2 vect(M ∘ Λ̄)``
     (Lebedev & Panov 1989, eq. (1.3)).
-Local errors
-    Exact minus algorithm: the local error of a step is
-    ``δφ = Δφ_exact − Δφ_algorithm``, on the symbolic side (series) and the
-    numeric side alike, and drift rates derived from it carry the same sign
-    (the error rotation ``Λ_true ∘ Λ̄_computed``).  ``h`` is the sample interval,
-    ``H = N h`` the step of an N-sample algorithm.
+Errors
+    Errors of an algorithm against the exact motion (the coning domain) have
+    one sign, exact minus algorithm, on the symbolic side (series) and the
+    numeric side (theory, simulator, compiled kernels, batches, streaming
+    statistics, CLI and reports) alike:
+
+    - the local error of a step is ``δφ = Δφ_exact − Δφ_algorithm``;
+    - the accumulated attitude error is the rotation vector of the error
+      rotation ``Λ_true ∘ Λ̄_computed``, ``δφ_I = rotvec(Λ_true ∘ Λ̄_computed)``
+      with components in frame I (``Λ_true = exp(δφ_I) ∘ Λ_computed``); in the
+      body axes it is ``δφ_E = Λ̄_computed ∘ δφ_I ∘ Λ_computed``
+      (``Λ_true = Λ_computed ∘ exp(δφ_E)``);
+    - apparent-velocity errors are ``ΔW_E = W_E,true − W_E,computed`` (frame E)
+      and ``ΔW_I = W_I,true − W_I,computed`` (frame I), and a rectification
+      (sculling) error is the rate of ``ΔW_I``: positive when the algorithm
+      under-rectifies;
+    - drift rates are slopes of these errors and carry their sign: a signed
+      drift is the rate of ``Λ_true ∘ Λ̄_computed`` (a vector in frame I, or its
+      component along a named axis: the precession axis n, or under coning the
+      cone axis −n, where u > 0 means the computed attitude lags); a drift
+      *rate* with no axis is a magnitude.
+
+    Errors of an estimator against the truth (the stages of
+    :mod:`strapdown.analysis.multistage`, the filter helpers of
+    :mod:`strapdown.analysis.core.kalman`) are estimate minus truth, as their
+    modules state.
+Steps
+    ``h`` is the sample interval, ``H = N h`` the step of an N-sample algorithm
+    (public arguments ``sample_interval`` and ``step``); the multistage stages
+    take one sample per step, so there ``h = H`` and the argument is ``step``.
 Units
     SI throughout; angles in radians inside the code.  Degrees and deg/h appear
     only at the edges (CLI and reports).

@@ -67,7 +67,7 @@ def naive_loop(alg, motion, steps):
     for k in range(steps):
         lam = quat.multiply(lam, quat.rotvec_to_quat(increment(alg, p[k]), validate=False))
         exact = quat.multiply(c, motion.attitude((k + 1) * alg.samples * H))
-        err[k] = quat.quat_to_rotvec(quat.multiply(lam, quat.conjugate(exact)), canonical=True, validate=False)
+        err[k] = quat.quat_to_rotvec(quat.multiply(exact, quat.conjugate(lam)), canonical=True, validate=False)  # exact minus computed
     return err
 
 

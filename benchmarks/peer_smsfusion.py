@@ -96,9 +96,13 @@ class Run:
 
 # --------------------------------------------------------------------------- errors
 def attitude_error(lam, lam_exact):
-    """Rotation angle of ``Λ̄_exact ∘ Λ`` [rad] (error resolved in E)."""
-    err = quat.multiply(quat.conjugate(lam_exact), lam)
-    return 2.0 * np.arctan2(np.linalg.norm(err[..., 1:], axis=-1), np.abs(err[..., 0]))
+    """``δφ_I = rotvec(Λ_exact ∘ Λ̄)`` [rad]: exact minus computed, frame I, as ``SimulationResult.attitude_error``."""
+    return quat.quat_to_rotvec(quat.multiply(lam_exact, quat.conjugate(lam)), canonical=True, validate=False)
+
+
+def attitude_error_angle(lam, lam_exact):
+    """``|δφ_I|`` [rad], the angle of the error rotation."""
+    return np.linalg.norm(attitude_error(lam, lam_exact), axis=-1)
 
 
 def drift(t, angle) -> float:
@@ -161,17 +165,17 @@ def run_ours(name, motion, duration, repeats):
     if motion.is_dual:
         lam = theta.re
         w_i = 2.0 * quat.vect(quat.multiply(theta.du, quat.conjugate(lam)))
-        vel_err = float(np.linalg.norm(w_i[-1] - exact.w_inertial[-1]))
+        vel_err = float(np.linalg.norm(exact.w_inertial[-1] - w_i[-1]))  # |W_I* − W_I|
     else:
         lam, vel_err = theta, math.nan
-    angle = attitude_error(lam, exact.attitude)
+    angle = attitude_error_angle(lam, exact.attitude)
     vec = Run(f"{name} (vectorised)", n, drift(t_step, angle), float(angle[-1]), vel_err, seconds)
     # one step per call: time a slice and check it agrees with the vectorised run
     m = max(1, min(n_steps, 2000))
     per_seconds, last = best_time(lambda: ours_per_step(alg, p[:m], start), 1)
     last_lam = last.re if motion.is_dual else last
     ref = theta.re[m - 1] if motion.is_dual else theta[m - 1]
-    mismatch = float(attitude_error(last_lam, ref))
+    mismatch = float(attitude_error_angle(last_lam, ref))
     if mismatch > 1e-12:
         raise RuntimeError(f"per-step and vectorised runs of {name} disagree by {mismatch:.1e} rad")
     loop = Run(f"{name} (one step per call)", n, vec.drift_deg_h, vec.att_err_end, vec.vel_err_end, per_seconds * n_steps / m)
@@ -196,7 +200,7 @@ def _check_conventions(StrapdownINS):
     ins = StrapdownINS(1.0 / dt, np.r_[np.zeros(6), q0, np.zeros(6)], g=0.0)
     ins.update(np.zeros(3), w)
     ours = quat.multiply(q0, quat.rotvec_to_quat(w * dt))
-    gap = float(attitude_error(ins.quaternion(), ours))
+    gap = float(attitude_error_angle(ins.quaternion(), ours))
     if gap > 1e-9:
         raise RuntimeError(f"smsfusion's quaternion convention differs from ours (gap {gap:.1e} rad after one step)")
     f = np.array([1.0, 2.0, 3.0])
@@ -235,8 +239,8 @@ def run_smsfusion(motion, duration, repeats, *, inputs: str):
 
     seconds, (q, v) = best_time(integrate, repeats)
     exact = exact_state(motion, edges[1:], attitude0=lam0)
-    angle = attitude_error(q, exact.attitude)
-    vel_err = float(np.linalg.norm(v[-1] - exact.w_inertial[-1])) if motion.is_dual else math.nan
+    angle = attitude_error_angle(q, exact.attitude)
+    vel_err = float(np.linalg.norm(exact.w_inertial[-1] - v[-1])) if motion.is_dual else math.nan
     label = "smsfusion StrapdownINS, mean rate & force (= our increments / h)" if inputs == "mean" else "smsfusion StrapdownINS, point samples at interval starts"
     return Run(label, n, drift(edges[1:], angle), float(angle[-1]), vel_err, seconds)
 

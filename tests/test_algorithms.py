@@ -13,7 +13,7 @@ from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.local_error import TumblingMotion, error_coefficients, local_error
 from strapdown.analysis.core.dual import Dual
 from strapdown.derivations.coning import published as P
-from strapdown.derivations.coning.algorithms import Algorithm, load_toml, second_order_defect
+from strapdown.derivations.coning.algorithms import Algorithm, SecondOrderConditionError, load_toml, second_order_defect
 from strapdown.derivations.coning.registry import get, names
 
 
@@ -96,11 +96,13 @@ def test_toml_missing_file(tmp_path):
 
 def test_toml_second_order_condition_refused_unless_allowed(tmp_path):
     path = _write(tmp_path, 'samples = 2\n[cross]\n"1,2" = "1/2"\n')
-    with pytest.raises(ValueError) as info:
+    with pytest.raises(SecondOrderConditionError) as info:
         load_toml(path)
     message = str(info.value)
-    assert str(path) in message and "second-order condition" in message and "--allow-inconsistent" in message
-    assert "2/3" in message  # N³/12 for N = 2
+    assert isinstance(info.value, ValueError)
+    # the library names its own argument; the CLI maps it to its option
+    assert str(path) in message and "second-order condition" in message and "allow_inconsistent=True" in message and "--" not in message
+    assert "2/3" in message and info.value.expected == Fraction(2, 3) and info.value.total == Fraction(1, 2)  # N³/12 for N = 2
     alg = load_toml(path, allow_inconsistent=True)
     assert second_order_defect(alg) == Fraction(1, 2) - Fraction(2, 3)
 

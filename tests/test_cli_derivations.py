@@ -7,6 +7,7 @@ import json
 import pytest
 
 from strapdown.analysis.cli import main
+from strapdown.derivations.coning import published as P
 
 
 def _json(capsys, argv):
@@ -16,9 +17,16 @@ def _json(capsys, argv):
 
 def test_local_error_json_table_2_algorithm_4(capsys):
     data = _json(capsys, ["derive", "local-error", "--algorithm", "panov-4s-4"])
-    assert data["order"] == 4 and data["delta"] == "1/315"
-    assert data["coefficients"] == {"x03": "52", "x12": "0", "x002": "448", "x110": "1344", "x0001": "-448"}
-    assert data["latex"].startswith("\\delta\\varphi = \\frac{1}{315}")
+    printed = {c.algorithm: c for c in P.BUDENNYI_TABLE_2}
+    four, three = printed[4], printed[3]
+    assert data["order"] == 4 and data["delta"] == str(four.delta)
+    # Table 2 as printed, except its misprinted k002, k0001 (errata): δ4 k002 and δ4 k0001 are
+    # common to every pairwise algorithm, so they are algorithm 3's products over algorithm 4's δ4.
+    expected = list(four.k)
+    for i in (2, 4):
+        expected[i] = three.delta * three.k[i] / four.delta
+    assert data["coefficients"] == {name: str(k) for name, k in zip(("x03", "x12", "x002", "x110", "x0001"), expected)}
+    assert data["latex"].startswith(f"\\delta\\varphi = \\frac{{{four.delta.numerator}}}{{{four.delta.denominator}}}")
 
 
 def test_local_error_from_file(tmp_path, capsys):
@@ -59,7 +67,8 @@ def test_design_bad_input(flag, value, capsys):
 
 def test_drift_reports_asymptotic_drift(capsys):
     data = _json(capsys, ["drift", "--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "2"])
-    assert data["asymptotic_drift_deg_per_h"] == pytest.approx(2.51, rel=0.01)
+    printed = next(r for r in P.BUDENNYI_TABLE_3 if r.algorithm == 1 and r.eps == -1.0)  # the conditions of the run above
+    assert data["asymptotic_drift_deg_per_h"] == pytest.approx(printed.u_a_deg_per_h, rel=0.01)
 
 
 # ------------------------------------------------------------------ derive local-error --max-order

@@ -14,6 +14,7 @@ from strapdown.analysis.coning.frequency_response import ROUND_OFF_MARGIN, conin
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.coning.simulator import simulate
 from strapdown.derivations.coning import drift as D
+from strapdown.derivations.coning import published as P
 from strapdown.derivations.coning.algorithms import Algorithm, Term
 from strapdown.derivations.coning.registry import get, names
 
@@ -23,17 +24,11 @@ SAVAGE = Algorithm("savage-1+1", 1, (Term(Fraction(1, 12), (0, 1)),), "Savage 1 
 UNCOMPENSATED = Algorithm("uncompensated", 1, ())
 
 # Coning drift constants of the optimal N-sample algorithms, drift = α² Ω (ΩT)^(2N) ρ_N with
-# T = H the update interval.  N = 2-4: Ignagni (1990); N = 1-6 and the lag sums k_1 … k_(N-1)
-# (coefficients of p_(N-l) × p_N): Yan Gongmin, PSINS toolbox `glv.cs` and the table of ρ_N
-# (reproduced in LiZhengXiao99/Navigation-Learning, PSINS notes).
-PUBLISHED_RHO = {1: Fraction(1, 12), 2: Fraction(1, 960), 3: Fraction(1, 204120), 4: Fraction(1, 82575360), 5: Fraction(1, 54140625000), 6: Fraction(1, 52295018840064)}
-PUBLISHED_LAG_SUMS = {
-    2: ("2/3",),
-    3: ("27/20", "9/20"),
-    4: ("214/105", "92/105", "54/105"),
-    5: ("1375/504", "650/504", "525/504", "250/504"),
-    6: ("15797/4620", "7834/4620", "7296/4620", "4558/4620", "2315/4620"),
-}
+# T = H the update interval, and their lag sums k_1 … k_(N-1) (coefficients of p_(N-l) × p_N),
+# as printed (derivations/coning/published.py: PSINS toolbox glv.cs; Ignagni 1990, 1996).
+PUBLISHED_RHO = {get(f.algorithm).samples: f.value for f in P.PUBLISHED_ALGORITHM_ERRORS if f.quantity == "coning_coefficient"}
+#: Lags N − 1 … 1 of the printed k_1 … k_(N−1), reordered as lags 1 … N − 1 (the order of ``lag_sums``).
+PUBLISHED_LAG_SUMS = {n: tuple(reversed(ks)) for n, (ks, _) in P.PUBLISHED_ALGORITHM_COEFFICIENTS.items()}
 
 
 @pytest.mark.parametrize("N", [2, 3, 4, 5, 6])
@@ -110,7 +105,7 @@ def test_alpha_fourth_term_dominates_the_six_sample_algorithm_at_one_degree():
     H = 6 * x / nu
     theory = sum(alpha**k * nu * sum(float(c) * (nu * H) ** (w - 1) for w, c in enumerate(cs)) for k, cs in terms.items())
     run = simulate(alg, RegularPrecession(-1.0, nu, alpha), x / nu, 200 * 2 * np.pi / nu)
-    simulated = float(run.drift @ np.array([0.0, np.sin(alpha), np.cos(alpha)]))
+    simulated = float(run.drift @ -np.array([0.0, np.sin(alpha), np.cos(alpha)]))  # along the cone axis −n
     assert simulated == pytest.approx(theory, rel=1e-4)
     assert simulated > 1e6 * float(coning_drift_rate(alg, cone_angle=alpha, nu=nu, sample_interval=x / nu))
 

@@ -34,7 +34,7 @@ from strapdown.derivations.coning.registry import PANOV_TABLE_1, get
 def test_published_tables_are_complete():
     assert [c.algorithm for c in P.BUDENNYI_TABLE_2] == [1, 2, 3, 4, 5]
     assert len(P.BUDENNYI_TABLE_3) == 10 and len(P.BUDENNYI_TABLES_4_5) == 10
-    assert sum(r.u_a is None for r in P.BUDENNYI_TABLE_3) == 1
+    assert sum(r.u_a_deg_per_h is None for r in P.BUDENNYI_TABLE_3) == 1
     # 29 printed loads: 10 β* of Table 4, 9 β_a, 10 β* of Table 5
     assert sum(1 + (r.beta_a_4 is not None) + 1 for r in P.BUDENNYI_TABLES_4_5) == 29
     assert len(P.LEBEDEV_PANOV_TABLE) == 24 and len(P.EQ_2_4) == 20
@@ -67,7 +67,7 @@ def test_only_the_registry_assignment_reproduces_table_3():
 
 
 def test_table_1_column_2_readings():
-    printed = {r.eps: r.u_star for r in P.BUDENNYI_TABLE_3 if r.algorithm == 2}
+    printed = {r.eps: r.u_star_deg_per_h for r in P.BUDENNYI_TABLE_3 if r.algorithm == 2}
     col2 = column_2_readings()
     assert deg_per_h(col2.corrected.coning) == pytest.approx(printed[-1.0], rel=0.02)
     assert deg_per_h(col2.corrected.precession) == pytest.approx(printed[0.5], rel=0.02)
@@ -79,7 +79,7 @@ def test_table_1_column_2_readings():
 
 def test_table_2_fit_and_derivation_agree_on_the_algorithm_4_misprint():
     fits = {f.label: f for f in table2_fits()}
-    assert fits["panov-4s-2"].fitted_k[1] == pytest.approx(124, abs=0.02)
+    assert fits["panov-4s-2"].fitted_k[1] == pytest.approx(next(c for c in P.BUDENNYI_TABLE_2 if c.algorithm == 2).k[1], abs=0.02)
     assert fits["Table 1 column 2 as printed"].fitted_k[1] == pytest.approx(4, abs=0.02)
     assert fits["panov-4s-4"].fitted_k[2] == pytest.approx(448, abs=0.05)
     checks = {c.algorithm: c for c in table2_checks()}
@@ -105,7 +105,9 @@ def test_leading_drift_transport_is_common_to_algorithms_3_and_5():
     assert sp.expand(three.transport - five.transport) == 0
     residual = sp.expand(three.mid_step + three.transport - three.full)
     assert sp.expand(residual.subs(D.SIN**2, 1 - D.COS**2)) == 0  # equal once sin²ϑ = 1 − cos²ϑ
-    assert small_cone_limit(get("two-sample"), 5) == -sp.Rational(1, 960)
+    # along the precession axis: minus the printed ρ_2 of the optimal two-sample algorithm
+    rho_2 = next(f.value for f in P.PUBLISHED_ALGORITHM_ERRORS if f.algorithm == "compressed-2")
+    assert small_cone_limit(get("two-sample"), 5) == -sp.Rational(rho_2.numerator, rho_2.denominator)
     with pytest.raises(ValueError, match="`weight`"):
         leading_drift(get("panov-4s-3"), 8)
 
@@ -115,10 +117,10 @@ def test_table_3_order_6_estimates():
     rows = {r.printed.algorithm: r for r in T3.drift_estimates() if r.order == 6}
     assert sorted(rows) == [3, 5]
     five, three = rows[5], rows[3]
-    assert deg_per_h(five.mid_step) == pytest.approx(five.printed.u_a, rel=0.003)
+    assert deg_per_h(five.mid_step) == pytest.approx(five.printed.u_a_deg_per_h, rel=0.003)
     for r in (three, five):
         assert r.asymptotic == pytest.approx(r.simulated, rel=0.015)
-    assert abs(deg_per_h(three.mid_step) / three.printed.u_a - 1) > 0.04
+    assert abs(deg_per_h(three.mid_step) / three.printed.u_a_deg_per_h - 1) > 0.04
     assert abs(three.asymptotic_vs_printed) > 0.04
     # the same transport term moves the two estimates apart, in opposite directions
     assert (three.asymptotic - three.mid_step) == pytest.approx(-(five.asymptotic - five.mid_step), rel=0.01)
@@ -161,8 +163,9 @@ def test_lebedev_panov_bad_input():
 
 # --------------------------------------------------------------------------- orders
 def test_dot_term_study_and_drift_orders():
-    rows = dot_term_study()
-    assert [r.local_order for r in rows] == [3, 5, 7, 5]
+    study = dot_term_study()
+    assert [r.local_order for r in study.rows] == [3, 5, 7, 5]
+    assert study.printed_is_sixth_order and study.without_dot.order == 4
     study = drift_orders(RegularPrecession(0.5, 2 * np.pi, np.radians(10.0)), steps=(0.08, 0.04, 0.02), algorithms=["lebedev-panov-4"])
     assert study[0].slope == pytest.approx(4.0, abs=0.1)
     with pytest.raises(TypeError, match="`motion`"):
@@ -207,7 +210,7 @@ def test_table_3_algorithm_3_is_the_small_cone_angle_term():
     """Algorithm 3's printed u_a is the ϑ² part of the leading drift, c ϑ² ν (ν h)⁶ with c = 2/315; algorithm 5's is not."""
     est = {e.printed.algorithm: e for e in T3.leading_estimates()}
     three, five = est[3], est[5]
-    assert deg_per_h(abs(three.small_angle)) == pytest.approx(three.printed.u_a, rel=0.002)
+    assert deg_per_h(abs(three.small_angle)) == pytest.approx(three.printed.u_a_deg_per_h, rel=0.002)
     assert abs(five.printed_vs_small_angle) > 0.02
     # the ϑ² part is the classical coning drift of `derive coning-drift`: c α² ω (ω h)^6
     from strapdown.derivations.coning.drift import coning_drift

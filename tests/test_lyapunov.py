@@ -6,6 +6,10 @@ import sympy as sp
 
 from strapdown.analysis.multistage.decay_rates import exact_rate, perturbation_matrix, rest_rate, simulated_rate, strict_rate_bound
 from strapdown.derivations.multistage.lyapunov_function import SYMBOLS, derive
+from strapdown.derivations.multistage.published import PRINTED_GAINS
+
+#: Stage-1 gains of section 5 of Plotnikov (1999).
+K1, L1 = PRINTED_GAINS.stage1
 
 
 @pytest.fixture(scope="module")
@@ -53,12 +57,12 @@ def test_vdot_numerically_along_trajectory():
 
 def test_rest_rate_matches_charpoly_and_eigenvalues(d):
     assert str(d.charpoly_rest) == "(k*s + l + 2*s**2)**4/16"
-    for k, l in [(0.01, 5e-5), (0.05, 1e-4), (0.3, 0.001)]:
+    for k, l in [(K1, L1), (0.05, 1e-4), (0.3, 0.001)]:
         assert rest_rate(k, l) == pytest.approx(exact_rate(k, l), rel=1e-9)
-    assert rest_rate(0.01, 5e-5) == pytest.approx(0.01 / 4)
+    assert rest_rate(K1, L1) == pytest.approx(0.01 / 4)
 
 
-@pytest.mark.parametrize("k,l,w", [(0.01, 5e-5, (0.0, 0.01, 0.0)), (0.05, 1e-4, (0.01, 0.0, 0.02))])
+@pytest.mark.parametrize("k,l,w", [(K1, L1, (0.0, 0.01, 0.0)), (0.05, 1e-4, (0.01, 0.0, 0.02))])
 def test_simulated_decay_matches_rate_and_bound(k, l, w):
     exact = exact_rate(k, l, w)
     sim = simulated_rate(k, l, w, step=0.5, duration=14.0 / exact)
@@ -68,12 +72,12 @@ def test_simulated_decay_matches_rate_and_bound(k, l, w):
 
 
 def test_simulated_decay_at_rest():
-    sim = simulated_rate(0.01, 5e-5, step=0.5)
+    sim = simulated_rate(K1, L1, step=0.5)
     assert sim == pytest.approx(0.0025, rel=0.03)  # ripple of the oscillatory pair in log V
 
 
 def test_rotation_slows_decay():
-    assert exact_rate(0.01, 5e-5, (0, 0, 0.1)) < exact_rate(0.01, 5e-5, (0, 0, 0.01)) < exact_rate(0.01, 5e-5)
+    assert exact_rate(K1, L1, (0, 0, 0.1)) < exact_rate(K1, L1, (0, 0, 0.01)) < exact_rate(K1, L1)
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, "x"])

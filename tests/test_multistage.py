@@ -39,7 +39,7 @@ def test_sensor_model():
     sc = Scenario(duration=20.0, sensors=SensorErrors(gyro_drift=(1e-3, 0, 0)))
     d = sample(sc, 0.5)
     # Body fixed to the Earth with x1 north: Earth rate Ω cos φ + drift on x1.
-    np.testing.assert_allclose(d.gyro[:, 0] / 0.5, 7.292115e-5 * np.cos(np.radians(45)) + 1e-3, rtol=1e-6)
+    np.testing.assert_allclose(d.gyro[:, 0] / 0.5, sc.earth_rate * np.cos(sc.latitude) + 1e-3, rtol=1e-6)
     noisy = Scenario(duration=20.0, sensors=SensorErrors(gyro_noise=1e-4, accel_noise=1e-3))
     a, b = sample(noisy, 0.5, rng=3), sample(noisy, 0.5, rng=3)
     np.testing.assert_array_equal(a.gyro, b.gyro)
@@ -75,11 +75,11 @@ def test_static_tilt_levels():
     def est(stage):
         return simulate(sc, (stage,), step=0.5)
 
-    good = est(Stage.constant(0.01, 5e-5, "tilt"))
+    good = est(Stage.constant(*PRINTED_GAINS.stage1, "tilt"))
     assert abs(good.errors[0, -1, 1]) < 1e-6
-    half = est(Stage.constant(0.01, 5e-5, "tilt", c=2.0))
+    half = est(Stage.constant(*PRINTED_GAINS.stage1, "tilt", c=2.0))
     assert half.errors[0, -1, 1] + 0.1 == pytest.approx(0.05, abs=1e-4)  # c = 2 with half angles: half the tilt
-    pure = est(Stage.constant(0.01, 5e-5, "pure"))
+    pure = est(Stage.constant(*PRINTED_GAINS.stage1, "pure"))
     assert pure.errors[0, -1, 1] + 0.1 == pytest.approx(2 * np.arcsin(np.sin(0.1) / 2), abs=1e-6)
 
 
@@ -107,7 +107,7 @@ def test_printed_stages():
     assert s2.schedule[0][1:] == PRINTED_GAINS.stage2_before
     assert s2.schedule[1] == (PRINTED_GAINS.switch_time, 0.0, 9.81 / 6.371e6)
     assert s1.schedule[0][1:] == PRINTED_GAINS.stage1
-    assert s1.effective_gains[0][1:] == (0.005, 2.5e-5)
+    assert s1.effective_gains[0][1:] == tuple(g / 2 for g in PRINTED_GAINS.stage1)  # c = 1 on half angles
     assert s1.components == (1, 3) and s2.switch == "carry"
 
 

@@ -137,12 +137,12 @@ def test_table_1_row_2_as_printed_contradicts_table_2():
 
 
 # ------------------------------------------------------------------ eq. (2.4)
-# Lebedev & Panov (1989), eq. (2.4): δφ = 8/945 h^7 (Σ c x), exact − algorithm.
+# Lebedev & Panov (1989), eq. (2.4): δφ = c h^7 (Σ c_w x_w), c = P.EQ_2_4_FACTOR, exact − algorithm.
 EQ_2_4 = P.EQ_2_4
 
 
 def _eq_2_4():
-    return S.lie_vector([(tuple(int(ch) for ch in k), Fraction(8, 945) * v) for k, v in EQ_2_4.items()])
+    return S.lie_vector([(tuple(int(ch) for ch in k), P.EQ_2_4_FACTOR * v) for k, v in EQ_2_4.items()])
 
 
 def test_eq_2_4_equals_derived_series_exactly():
@@ -165,7 +165,7 @@ def test_eq_2_4_detects_a_changed_coefficient():
     """A one-unit change of any printed coefficient is caught (the comparison can fail)."""
     derived = S.local_error(get("lebedev-panov-6")).part(7, unit="h")
     wrong = dict(EQ_2_4, **{"1101": 245})
-    vec = S.lie_vector([(tuple(int(ch) for ch in k), Fraction(8, 945) * v) for k, v in wrong.items()])
+    vec = S.lie_vector([(tuple(int(ch) for ch in k), P.EQ_2_4_FACTOR * v) for k, v in wrong.items()])
     assert any(a != b for a, b in zip(derived, vec))
 
 

@@ -5,6 +5,10 @@ import json
 import pytest
 
 from strapdown.analysis.cli import main
+from strapdown.derivations.multistage.published import PRINTED_GAINS
+
+#: Stage-1 gains of section 5 of Plotnikov (1999).
+K1, L1 = PRINTED_GAINS.stage1
 
 
 def run(capsys, *argv):
@@ -14,12 +18,14 @@ def run(capsys, *argv):
 
 
 def test_stability_json(capsys):
-    code, out, _ = run(capsys, "stability", "--k", "0.01", "--l", "5e-5", "--json")
+    code, out, _ = run(capsys, "stability", "--k", str(K1), "--l", str(L1), "--json")
     data = json.loads(out)
     assert code == 0
-    assert data["poles"] == [[pytest.approx(-0.005), pytest.approx(-0.005)], [pytest.approx(-0.005), pytest.approx(0.005)]]
-    assert data["damping"] == [pytest.approx(2**-0.5)] * 2
-    assert data["natural_frequency_rad_s"] == [pytest.approx(5e-5**0.5)] * 2
+    # s² + K1 s + L1 with K1² < 4 L1: poles −K1/2 ± i √(L1 − K1²/4)
+    im = (L1 - K1**2 / 4) ** 0.5
+    assert data["poles"] == [[pytest.approx(-K1 / 2), pytest.approx(-im)], [pytest.approx(-K1 / 2), pytest.approx(im)]]
+    assert data["damping"] == [pytest.approx(K1 / (2 * L1**0.5))] * 2
+    assert data["natural_frequency_rad_s"] == [pytest.approx(L1**0.5)] * 2
     assert data["stability"] == "asymptotically stable"
     assert data["peak_tilt_error_rad"] > 0.1
     assert data["g_m_s2"] == 9.81 and data["R_m"] == 6.371e6
@@ -32,7 +38,7 @@ def test_stability_schuler(capsys):
     assert data["l_per_s2"] == pytest.approx(9.81 / 6.371e6) and data["k_per_s"] == 0.0
 
 
-@pytest.mark.parametrize("k,l", [("-0.01", "5e-5"), ("0.01", "-1e-5"), ("0", "0")])
+@pytest.mark.parametrize("k,l", [(str(-K1), str(L1)), (str(K1), "-1e-5"), ("0", "0")])
 def test_unstable_gains_are_an_error(capsys, k, l):
     code, out, err = run(capsys, "stability", f"--k={k}", f"--l={l}", "--json")
     assert code == 2 and out == "" and "stable loop" in err and "--k" in err and len(err.strip().splitlines()) == 1
@@ -42,7 +48,7 @@ def test_stability_design(capsys):
     code, out, _ = run(capsys, "stability", "--natural-frequency-rad-s", "0.005", "--damping", "0.7", "--reference", "tilt", "--json")
     data = json.loads(out)
     assert code == 0 and data["damping"] == [pytest.approx(0.7)] * 2 and data["natural_frequency_rad_s"] == [pytest.approx(0.005)] * 2
-    assert data["design"] == {"reference": "tilt", "c": 1.0, "stage_k_per_s": pytest.approx(0.014), "stage_l_per_s2": pytest.approx(5e-5)}
+    assert data["design"] == {"reference": "tilt", "c": 1.0, "stage_k_per_s": pytest.approx(4 * 0.7 * 0.005), "stage_l_per_s2": pytest.approx(2 * 0.005**2)}
 
 
 def test_stability_units_in_options(capsys):

@@ -5,26 +5,31 @@ import numpy as np
 import pytest
 
 from strapdown.analysis.multistage.tilt_loop import StageLoop, classify_poles, root_locus_k, root_locus_l
+from strapdown.derivations.multistage.published import PRINTED_GAINS
+
+#: The gains of section 5 of Plotnikov (1999): stage 1, and stage 2 before the switch.
+K1, L1 = PRINTED_GAINS.stage1
+K2, L2 = PRINTED_GAINS.stage2_before
 
 
 def test_poles_damping_natural_frequency():
-    loop = StageLoop(0.01, 5e-5)
+    loop = StageLoop(K1, L1)
     wn, zeta, p = loop.damp()
-    np.testing.assert_allclose(np.sort_complex(p), np.sort_complex(np.roots([1, 0.01, 5e-5])), rtol=1e-12)
-    np.testing.assert_allclose(wn, np.sqrt(5e-5))
-    np.testing.assert_allclose(zeta, 0.01 / (2 * np.sqrt(5e-5)))
+    np.testing.assert_allclose(np.sort_complex(p), np.sort_complex(np.roots([1, K1, L1])), rtol=1e-12)
+    np.testing.assert_allclose(wn, np.sqrt(L1))
+    np.testing.assert_allclose(zeta, K1 / (2 * np.sqrt(L1)))
 
 
 @pytest.mark.parametrize(
     "k,l,label",
-    [(0.01, 5e-5, "asymptotically stable"), (0.0, 1.54e-6, "marginal"), (0.01, 0.0, "marginal"), (-0.01, 5e-5, "unstable"), (0.01, -1e-5, "unstable"), (0.0, 0.0, "unstable")],
+    [(K1, L1, "asymptotically stable"), (0.0, 1.54e-6, "marginal"), (K1, 0.0, "marginal"), (-K1, L1, "unstable"), (K1, -1e-5, "unstable"), (0.0, 0.0, "unstable")],
 )
 def test_stability_flags(k, l, label):
     assert StageLoop(k, l).stability == label
 
 
 def test_complementary_filter():
-    loop = StageLoop(0.015, 1.25e-4)
+    loop = StageLoop(K2, L2)
     w = np.logspace(-5, 0, 50)
     hg = control.frequency_response(loop.gyro_highpass(), w)
     ha = control.frequency_response(loop.accel_lowpass(), w)
@@ -35,15 +40,15 @@ def test_complementary_filter():
 
 def test_root_loci_match_characteristic_roots():
     ks = np.array([0.0, 0.005, 0.02])
-    loci = root_locus_k(5e-5, ks).loci
+    loci = root_locus_k(L1, ks).loci
     for row, k in zip(loci, ks):
-        np.testing.assert_allclose(np.sort_complex(row), np.sort_complex(np.roots([1, k, 5e-5])), atol=1e-12)
+        np.testing.assert_allclose(np.sort_complex(row), np.sort_complex(np.roots([1, k, L1])), atol=1e-12)
     loci = root_locus_l(0.01, [1e-5, 1e-4]).loci
     np.testing.assert_allclose(np.sort_complex(loci[1]), np.sort_complex(np.roots([1, 0.01, 1e-4])), atol=1e-12)
 
 
 def test_peak_scales_linearly_and_matches_small_gain_limit():
-    loop = StageLoop(0.01, 5e-5)
+    loop = StageLoop(K1, L1)
     p20, p2 = loop.peak_tilt_error(20.0, 20.0), loop.peak_tilt_error(2.0, 20.0)
     assert p20 == pytest.approx(10 * p2, rel=1e-9)
     # A very fast loop follows the accelerometer: peak → a/g.
@@ -72,7 +77,7 @@ def test_bad_types_and_durations():
         StageLoop(0.01, 1e-5).peak_tilt_error(20.0, 20.0, horizon=10.0)
 
 
-@pytest.mark.parametrize("k,l", [(-0.01, 5e-5), (0.01, -1e-5), (0.0, 0.0)])
+@pytest.mark.parametrize("k,l", [(-K1, L1), (K1, -1e-5), (0.0, 0.0)])
 def test_unstable_loop_has_no_peak(k, l):
     loop = StageLoop(k, l)
     assert loop.stability == "unstable"
@@ -84,17 +89,17 @@ def test_unstable_loop_has_no_peak(k, l):
 
 def test_drift_response_peak_is_the_earth_rate_transient():
     """A stage started with an empty integral takes up a constant rate: peak d·max|s/(s² + ks + l)| step response."""
-    loop = StageLoop(1.5e-2, 1.25e-4)
+    loop = StageLoop(K2, L2)
     t, e = loop.drift_response(1e-4, 600.0)
-    wd = np.sqrt(1.25e-4 - (1.5e-2 / 2) ** 2)
-    closed = 1e-4 / wd * np.exp(-1.5e-2 / 2 * t) * np.sin(wd * t)  # inverse Laplace of d/(s² + ks + l)
+    wd = np.sqrt(L2 - (K2 / 2) ** 2)
+    closed = 1e-4 / wd * np.exp(-K2 / 2 * t) * np.sin(wd * t)  # inverse Laplace of d/(s² + ks + l)
     np.testing.assert_allclose(e, closed, atol=1e-12)
 
 
 def test_typed_responses():
     from strapdown.analysis.multistage.tilt_loop import complementary_filter, responses
 
-    loop = StageLoop(0.015, 1.25e-4)
+    loop = StageLoop(K2, L2)
     r = responses(loop, np.linspace(0.0, 500.0, 101))
     assert r.accel_step.shape == r.drift_step.shape == (101,) and r.accel_step[0] == 0.0
     f = complementary_filter(loop, np.logspace(-5, 0, 40))

@@ -14,7 +14,7 @@ import re
 
 import numpy as np
 
-from ...derivations.coning.algorithms import TOML_LIMITS, load_toml
+from ...derivations.coning.algorithms import TOML_LIMITS, SecondOrderConditionError, load_toml
 from ...derivations.coning.registry import get, names
 from ..core import budget
 from ..core.quaternion import normalize
@@ -149,7 +149,13 @@ def algorithm_from(args):
         An unknown name, or a file that is missing, unreadable, malformed or beyond the limits.
     """
     if getattr(args, "algorithm_file", None):
-        return load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
+        try:
+            return load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
+        except SecondOrderConditionError as exc:
+            raise ValueError(
+                f"{exc.path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {exc.total}, "
+                f"expected N³/12 = {exc.expected} (pass --allow-inconsistent to accept it)"
+            ) from None
     return get(args.algorithm)
 
 

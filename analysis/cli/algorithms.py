@@ -13,7 +13,7 @@ def _list(args) -> Result:
     for name in names(library=True):
         alg = get(name)
         s = summarize(alg)
-        rows.append({"name": name, "samples": alg.samples, "history": alg.history, "order": s.order, "order_method": s.order_method,
+        rows.append({"name": name, "samples": alg.samples, "history": alg.history, "order": s.order,
                      "paper": name in names(), "reference": alg.reference})
     width = max(len(r["name"]) for r in rows)
     lines = [f"{'name':<{width}}  N  prev  order  reference"]
@@ -35,8 +35,7 @@ def _show(args) -> Result:
     lines = [f"{s.name}: {s.description}", f"samples N = {s.samples}{prev} (window of {s.window} increments, p{1 - s.history} … p{s.samples})",
              "Δφ = " + " + ".join(f"p{j}" for j in range(1, s.samples + 1)) + "".join(f" {'−' if c < 0 else '+'} {abs(c)} {p}" for c, p in s.terms)]
     lines.append(f"second-order defect Σ c_ij (j − i) − N³/12 = {s.second_order_defect}")
-    how = "symbolic series" if s.order_method == "series" else "one-step error on a tumbling motion"
-    lines.append(f"order ρ = {'none through h⁷' if s.order is None else s.order} (local error O(h^(ρ+1)), from the {how})")
+    lines.append(f"order ρ = {'none through h⁷' if s.order is None else s.order} (local error O(h^(ρ+1)), from the symbolic series)")
     lines.append(f"source: {s.reference}")
     return Result(data, "\n".join(lines))
 

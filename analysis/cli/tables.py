@@ -25,7 +25,7 @@ def tables_command(args) -> Result:
         Every printed cell with ours and the relative difference (drift in deg/h, ΔW in m/s).
     """
     t3 = [
-        {"algorithm": f"panov-4s-{c.printed.algorithm}", "eps": c.printed.eps, "ours": deg_per_h(c.simulated), "printed": c.printed.u_star, "rel_diff": c.relative_difference}
+        {"algorithm": f"panov-4s-{c.printed.algorithm}", "eps": c.printed.eps, "ours": deg_per_h(c.simulated), "printed": c.printed.u_star_deg_per_h, "rel_diff": c.relative_difference}
         for c in reproduce_u_star()
     ]
     lp = []

@@ -6,6 +6,10 @@ about one body axis with linear vibration along another, ``--motion
 sculling``).  Under sculling the output adds the rectification error: the
 constant rate at which the velocity error grows (simulated) and its
 small-amplitude value from one step (:func:`rectification_error`).
+
+Signs follow the package convention, exact minus algorithm: the velocity
+error is ``ΔW_I = W_I* − W_I`` (components in frame I), so a positive
+rectification error along ``e_r × e_a`` means the algorithm under-rectifies.
 """
 
 from __future__ import annotations
@@ -74,7 +78,7 @@ def _run(args) -> Result:
             "rectification_error_relative": small.relative if math.isfinite(small.relative) else None,
         }
         text += (
-            f"\nvelocity-error rate (simulated): {', '.join(f'{x:.6g}' for x in rate)} m/s²"
+            f"\nvelocity-error rate W_I* − W_I (simulated, frame I): {', '.join(f'{x:.6g}' for x in rate)} m/s²"
             f"\nrectification error, small-amplitude theory: {small.rate:.6g} m/s² along e_r × e_a"
         )
     return Result(data, text)

@@ -10,7 +10,8 @@ The kernel does per step what :func:`strapdown.analysis.coning.simulator.simulat
 does with whole arrays (Lebedev & Panov 1989, eqs. (1.3), (1.5), (1.12),
 (2.1)–(2.6), (4.1)–(4.5)): the exact increments (2.1) of the regular precession
 over each sample, the algorithm, the step (bi)quaternion (1.12), the product,
-the exact solution at the step end, and the error.  Instead of storing the
+the exact solution at the step end, and the errors, exact minus algorithm
+(``δφ_I = rotvec(Λ* ∘ Λ̄)`` in frame I, ``ΔW = W* − W``).  Instead of storing the
 error it accumulates the drift fit and the error statistics (full series only
 on request).
 
@@ -263,7 +264,10 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
             # Exact solution at t_k: Λ* = C ∘ Q(t_k) (4.4), or θ* = C ∘ P(t_k) with (4.5).
             x0, x1, x2, x3 = cn * ca, sn * cb, -sn * sb, cn * sa
             l0, l1, l2, l3 = qmul(k0c0, k0c1, k0c2, k0c3, x0, x1, x2, x3)
+            # Error δφ_I = rotvec(Λ* ∘ Λ̄), exact minus algorithm: Λ* ∘ Λ̄ is the conjugate of
+            # Λ ∘ Λ̄*, whose rotation vector is the negated one, exactly (as in the numpy path).
             ex, ey, ez = error_rotvec(*qmul(t0, t1, t2, t3, l0, -l1, -l2, -l3))
+            ex, ey, ez = -ex, -ey, -ez
             weight = k - half_n
             e2n = ex * ex + ey * ey + ez * ez
             a0 += weight * ex
@@ -286,13 +290,13 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
                 m0, m1, m2, m3 = qmul(k0c0, k0c1, k0c2, k0c3, y0, y1, y2, y3)
                 n0, n1, n2, n3 = qmul(k0d0, k0d1, k0d2, k0d3, x0, x1, x2, x3)
                 u0, u1, u2, u3 = m0 + n0, m1 + n1, m2 + n2, m3 + n3
-                # W_E = 2 vect(Λ̄ ∘ M), W_I = 2 vect(M ∘ Λ̄) (1.3), computed and exact.
+                # W_E = 2 vect(Λ̄ ∘ M), W_I = 2 vect(M ∘ Λ̄) (1.3), computed and exact; ΔW = W* − W.
                 _, wb1, wb2, wb3 = qmul(t0, -t1, -t2, -t3, d0, d1, d2, d3)
                 _, wi1, wi2, wi3 = qmul(d0, d1, d2, d3, t0, -t1, -t2, -t3)
                 _, vb1, vb2, vb3 = qmul(l0, -l1, -l2, -l3, u0, u1, u2, u3)
                 _, vi1, vi2, vi3 = qmul(u0, u1, u2, u3, l0, -l1, -l2, -l3)
-                bx, by, bz = 2.0 * wb1 - 2.0 * vb1, 2.0 * wb2 - 2.0 * vb2, 2.0 * wb3 - 2.0 * vb3
-                ix, iy, iz = 2.0 * wi1 - 2.0 * vi1, 2.0 * wi2 - 2.0 * vi2, 2.0 * wi3 - 2.0 * vi3
+                bx, by, bz = 2.0 * vb1 - 2.0 * wb1, 2.0 * vb2 - 2.0 * wb2, 2.0 * vb3 - 2.0 * wb3
+                ix, iy, iz = 2.0 * vi1 - 2.0 * wi1, 2.0 * vi2 - 2.0 * wi2, 2.0 * vi3 - 2.0 * wi3
                 b2n = bx * bx + by * by + bz * bz
                 i2n = ix * ix + iy * iy + iz * iz
                 b14 = max(b14, b2n)

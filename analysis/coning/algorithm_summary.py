@@ -2,11 +2,11 @@
 
 :func:`summarize` backs ``strapdown algorithms show``; :func:`summaries` backs
 ``strapdown algorithms list``.  The local-error order comes from the symbolic
-series (:func:`strapdown.derivations.coning.series.local_error`) for
-algorithms within one step; for cross-step algorithms (indices ≤ 0) it is
-measured on a tumbling motion with no symmetry: the exponent of the one-step
-error ``|Δφ_exact − Δφ_alg|`` against the step, whose window starts
-``history`` samples before the step.
+series (:func:`strapdown.derivations.coning.series.local_error`), cross-step
+algorithms (indices ≤ 0) included.  :func:`cross_step_local_exponent` measures
+the same order numerically, on a tumbling motion with no symmetry (the exponent
+of the one-step error ``|Δφ_exact − Δφ_alg|`` against the step, whose window
+starts ``history`` samples before the step): an independent check of the series.
 """
 
 from __future__ import annotations
@@ -45,8 +45,6 @@ class AlgorithmSummary:
         ``Σ c_ij (j − i) − N³/12`` (zero: the second-order condition holds).
     order : int or None
         Order ρ: local error O(h^(ρ+1)); None when it vanishes through h⁷.
-    order_method : str
-        ``"series"`` (symbolic, exact) or ``"tumbling"`` (measured exponent, rounded).
     description : str
         One line.
     reference : str
@@ -60,7 +58,6 @@ class AlgorithmSummary:
     terms: tuple
     second_order_defect: Fraction
     order: int | None
-    order_method: str
     description: str
     reference: str
 
@@ -74,7 +71,6 @@ class AlgorithmSummary:
             "terms": [{"coefficient": str(c), "product": p} for c, p in self.terms],
             "second_order_defect": str(self.second_order_defect),
             "order": self.order,
-            "order_method": self.order_method,
             "description": self.description,
             "reference": self.reference,
         }
@@ -138,15 +134,12 @@ def summarize(algorithm: Algorithm) -> AlgorithmSummary:
     --------
     >>> from strapdown.derivations.coning.registry import get
     >>> s = summarize(get("savage-1+1"))
-    >>> (s.samples, s.history, s.order, s.order_method, str(s.second_order_defect))
-    (1, 1, 3, 'tumbling', '0')
+    >>> (s.samples, s.history, s.order, str(s.second_order_defect))
+    (1, 1, 3, '0')
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
-    if algorithm.history == 0:
-        order, method = S.local_error(algorithm).order, "series"
-    else:
-        order, method = int(round(cross_step_local_exponent(algorithm))) - 1, "tumbling"
+    order = S.local_error(algorithm).order
     return AlgorithmSummary(
         algorithm.name,
         algorithm.samples,
@@ -155,7 +148,6 @@ def summarize(algorithm: Algorithm) -> AlgorithmSummary:
         tuple((t.coefficient, _product(t)) for t in algorithm.terms),
         second_order_defect(algorithm),
         order,
-        method,
         algorithm.description,
         algorithm.reference,
     )

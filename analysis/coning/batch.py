@@ -41,9 +41,11 @@ class BatchResult:
     statistics : ErrorStatistics
         Drift fit and error statistics of every point.
     attitude_error : ndarray, shape (..., n + 1, 3), or None
-        ``δφ_I`` at every step end [rad] (``series=True`` only).
+        ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)`` (exact minus algorithm, frame I) at
+        every step end [rad] (``series=True`` only).
     dw_body, dw_inertial : ndarray, shape (..., n + 1, 3), or None
-        ``ΔW_E``, ``ΔW_I`` at every step end [m/s] (``series=True`` velocity runs only).
+        ``ΔW_E = W_E* − W_E`` (frame E), ``ΔW_I = W_I* − W_I`` (frame I) at every
+        step end [m/s] (``series=True`` velocity runs only).
     """
 
     algorithm: Algorithm
@@ -157,9 +159,9 @@ def compiled_series(algorithm: Algorithm, motions, sample_interval: float, steps
     Returns
     -------
     error : ndarray, shape (len(motions), steps + 1, 3)
-        Attitude error ``δφ_I`` [rad].
+        Attitude error ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)``, frame I [rad].
     dw_body, dw_inertial : ndarray, shape (len(motions), steps + 1, 3), or None
-        ``ΔW_E``, ``ΔW_I`` [m/s] (velocity runs).
+        ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I`` [m/s] (velocity runs).
     """
     count = len(motions)
     columns = [np.array([getattr(m, k) for m in motions], dtype=float) for k in ("eps", "nu", "nutation", "nu_dual", "nutation_dual")]
@@ -192,8 +194,8 @@ def simulate_batch(
     :func:`strapdown.analysis.coning.simulator.simulate` for the motion
     ``RegularPrecession(ε, ν, ϑ, ν°, ϑ°)`` sampled every h: the algorithm's
     attitude (and, with ``velocity``, apparent velocity) against the exact
-    solution (1.5), (4.4)–(4.5).  All points start from the same ``attitude0``
-    and ``w_inertial0``.
+    solution (1.5), (4.4)–(4.5), errors exact minus algorithm.  All points
+    start from the same ``attitude0`` and ``w_inertial0``.
 
     Parameters
     ----------

@@ -31,7 +31,7 @@ from ..core.dual import Dual
 from ..core.units import rad
 from .precession import RegularPrecession
 
-__all__ = ["PrintedFormulaChecks", "printed_formula_checks"]
+__all__ = ["PrintedFormulaChecks", "printed_formula_checks", "CHECK_POINTS", "CHECK_TIMES", "CHECK_SPAN", "CHECK_MOTION"]
 
 
 class PrintedFormulaChecks(NamedTuple):
@@ -51,6 +51,14 @@ class PrintedFormulaChecks(NamedTuple):
         max |μ_i − μ_i| with the sign of the second term of the printed μ_i flipped.
     u_inertial_error : float
         max |U_I printed − 2 R ∘ Q̄| [m/s], reading the garbled Λ° of (4.7) as ν°.
+    points : int
+        Random dual vectors on which (1.12) and its condition are checked.
+    times : int
+        Random times at which (4.7) is checked.
+    time_span : float
+        The times lie in ``[0, time_span]`` [s].
+    motion : RegularPrecession
+        The dual regular precession of the (4.7) check.
     """
 
     unit_condition_plus: float
@@ -59,6 +67,10 @@ class PrintedFormulaChecks(NamedTuple):
     mu_vec_error_printed: float
     mu_vec_error_fixed: float
     u_inertial_error: float
+    points: int
+    times: int
+    time_span: float
+    motion: RegularPrecession
 
 
 def _lambdify(args, expr):
@@ -85,12 +97,19 @@ def _printed_4_7():
     return tuple(_lambdify((t, eps, nu, nut, nu_d, nut_d), c) for c in read)
 
 
+#: Sizes of the checks of :func:`printed_formula_checks`: dual vectors, times, and their span [s].
+CHECK_POINTS, CHECK_TIMES, CHECK_SPAN = 200, 50, 100.0
+#: The dual precession of the (4.7) check: variant 2 of Lebedev & Panov (1989), section 6, at ε = 0.5.
+CHECK_MOTION = RegularPrecession(0.5, 2 * np.pi, rad(10.0), 10.0, 100.0)
+
+
 def printed_formula_checks(rng=None) -> PrintedFormulaChecks:
     """Evaluate the printed (1.12), its unit condition and (4.7) against the package.
 
-    (1.12) is checked on 200 random dual vectors, (4.7) at 50 random times in
-    [0, 100] s of the dual precession ε = 0.5, ν = 2π s⁻¹, ϑ = 10°, ν° = 10 m/s²,
-    ϑ° = 100 m/s (variant 2 of section 6).
+    (1.12) is checked on :data:`CHECK_POINTS` random dual vectors, (4.7) at
+    :data:`CHECK_TIMES` random times in [0, :data:`CHECK_SPAN`] s of the dual
+    precession :data:`CHECK_MOTION` (ε = 0.5, ν = 2π s⁻¹, ϑ = 10°, ν° = 10 m/s²,
+    ϑ° = 100 m/s: variant 2 of section 6).
 
     Parameters
     ----------
@@ -112,8 +131,8 @@ def printed_formula_checks(rng=None) -> PrintedFormulaChecks:
     True
     """
     rng = np.random.default_rng(rng)
-    phi = rng.normal(size=(200, 3))
-    phi_d = rng.normal(size=(200, 3))
+    phi = rng.normal(size=(CHECK_POINTS, 3))
+    phi_d = rng.normal(size=(CHECK_POINTS, 3))
     theta = quat.rotvec_to_quat(Dual(phi, phi_d))
     lam, mu = theta.re, theta.du
     mu0_printed, mui_printed = _printed_1_12()
@@ -128,11 +147,12 @@ def printed_formula_checks(rng=None) -> PrintedFormulaChecks:
     pd = np.sum(phi * phi_d, axis=-1)
     mui_fixed = (np.sin(n / 2) / n)[:, None] * phi_d + (n**-2 * (0.5 * np.cos(n / 2) - np.sin(n / 2) / n) * pd)[:, None] * phi
     mu_vec_fixed_err = np.abs(mui_fixed - mu[:, 1:]).max()
-    nu, nut, nu_d, nut_d = 2 * np.pi, rad(10.0), 10.0, 100.0
-    motion = RegularPrecession(0.5, nu, nut, nu_d, nut_d)
-    t = rng.uniform(0, 100, 50)
+    motion = CHECK_MOTION
+    t = rng.uniform(0, CHECK_SPAN, CHECK_TIMES)
     p = motion.biquaternion(t)
     u_i = 2 * quat.multiply(p.du, quat.conjugate(p.re))
-    printed = np.stack([np.broadcast_to(f(t, 0.5, nu, nut, nu_d, nut_d), t.shape) for f in _printed_4_7()], axis=-1)
+    args = (motion.eps, motion.nu, motion.nutation, motion.nu_dual, motion.nutation_dual)
+    printed = np.stack([np.broadcast_to(f(t, *args), t.shape) for f in _printed_4_7()], axis=-1)
     u_i_err = np.abs(u_i - printed).max()
-    return PrintedFormulaChecks(float(cond_plus), float(cond_printed), float(mu0_err), float(mu_vec_err), float(mu_vec_fixed_err), float(u_i_err))
+    return PrintedFormulaChecks(float(cond_plus), float(cond_printed), float(mu0_err), float(mu_vec_err), float(mu_vec_fixed_err), float(u_i_err),
+                                CHECK_POINTS, CHECK_TIMES, CHECK_SPAN, motion)  # fmt: skip

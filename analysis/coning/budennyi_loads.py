@@ -36,14 +36,20 @@ from ...derivations.coning.registry import get
 from ..core.units import RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import positive
 from .budennyi_table3 import Table3Conditions, drift_estimates, table3_conditions
-from .computational_load import DesignRow, LoadModel, design, largest_step, operation_count, step_load
+from .computational_load import TIME_BASES, DesignRow, LoadModel, design, largest_step, operation_count, quaternion_update_count, step_load
 from .precession import RegularPrecession
 
 __all__ = [
     "required_drifts",
+    "CountCheck",
+    "operation_count_checks",
     "LoadCell",
     "LoadReproduction",
     "reproduce_loads",
+    "SensitivityCell",
+    "load_model_sensitivity",
+    "CheapestAlgorithms",
+    "cheapest_algorithms",
     "ConsistencyCheck",
     "printed_consistency",
     "MissExplanation",
@@ -51,10 +57,14 @@ __all__ = [
     "FittedLoad",
     "PerSampleFit",
     "per_sample_fit",
+    "FitComparison",
+    "compare_per_sample_fit",
     "LoadCurve",
     "load_curves",
     "DesignPoint",
     "design_points",
+    "DesignSummary",
+    "summarize_designs",
 ]
 
 #: Column names of the printed loads: β_a and β* of Table 4, β* of Table 5.
@@ -70,6 +80,53 @@ def required_drifts() -> tuple:
         (Table 4, Table 5).
     """
     return tuple(u / RAD_PER_S_TO_DEG_PER_H for u in P.BUDENNYI_CONDITIONS.required_drift_deg_per_h)
+
+
+class CountCheck(NamedTuple):
+    """The operation count of one algorithm beside Table 2.
+
+    Attributes
+    ----------
+    algorithm : int
+        Algorithm number 1–5.
+    printed : tuple of int
+        (s, u) as printed: additions and multiplications of one step.
+    counted : tuple of int
+        (s, u) from :func:`~strapdown.analysis.coning.computational_load.operation_count`.
+    """
+
+    algorithm: int
+    printed: tuple
+    counted: tuple
+
+    @property
+    def equal(self) -> bool:
+        """True when the count equals the print."""
+        return self.printed == self.counted
+
+
+def operation_count_checks() -> tuple:
+    """The operation counts of the five algorithms against the s, u of Table 2.
+
+    Returns
+    -------
+    tuple of CountCheck
+        In the order of Table 2.
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), Table 2.
+
+    Examples
+    --------
+    >>> all(c.equal for c in operation_count_checks())
+    True
+    """
+    out = []
+    for c in P.BUDENNYI_TABLE_2:
+        n = operation_count(get(f"panov-4s-{c.algorithm}"))
+        out.append(CountCheck(c.algorithm, (c.additions, c.multiplications), (n.additions, n.multiplications)))
+    return tuple(out)
 
 
 class _Cell(NamedTuple):
@@ -157,6 +214,20 @@ class LoadReproduction:
         """Cells beyond the tolerance."""
         return tuple(c for c in self.cells if abs(c.relative_difference) > self.tolerance)
 
+    def series_terms(self, eps: float) -> tuple:
+        """The series lengths K the model's rule picks for the cells of one motion, in increasing order.
+
+        Parameters
+        ----------
+        eps : float
+            ε of the motion.
+
+        Returns
+        -------
+        tuple of int
+        """
+        return tuple(sorted({c.row.series_terms for c in self.cells if c.eps == eps}))
+
 
 @cache
 def _reproduce_loads(model: LoadModel, tolerance: float, conditions: Table3Conditions, simulation_duration: float) -> LoadReproduction:
@@ -198,6 +269,103 @@ def reproduce_loads(*, model: LoadModel | None = None, tolerance: float = 0.02, 
     (29, 24)
     """
     return _reproduce_loads(model or LoadModel(), positive(tolerance, "tolerance"), conditions or table3_conditions(), positive(simulation_duration, "simulation_duration"))
+
+
+class SensitivityCell(NamedTuple):
+    """How many printed loads one variant of the load model reproduces.
+
+    Attributes
+    ----------
+    time_base : str
+        ``"sample"`` or ``"step"`` (:class:`~strapdown.analysis.coning.computational_load.LoadModel`).
+    truncation_fraction : float
+        f of the series rule.
+    hits : int
+        Cells within the tolerance.
+    cells : int
+        All printed cells.
+    """
+
+    time_base: str
+    truncation_fraction: float
+    hits: int
+    cells: int
+
+
+def load_model_sensitivity(truncation_fractions=(1.0, 0.1, 0.01), *, time_bases=TIME_BASES, m: float | None = None, tolerance: float = 0.02) -> tuple:
+    """Cells of Tables 4–5 reproduced by each combination of the two rules of the load model.
+
+    Parameters
+    ----------
+    truncation_fractions : sequence of float
+        Values of f of the series rule, > 0.
+    time_bases : sequence of str, keyword-only
+        Time bases (default both).
+    m : float, keyword-only, optional
+        Cost of a multiplication in additions (default: the printed m of eq. (6)).
+    tolerance : float, keyword-only
+        Relative difference counted as reproduced.
+
+    Returns
+    -------
+    tuple of SensitivityCell
+        Time base by time base, f by f.
+    """
+    m = P.BUDENNYI_CONDITIONS.multiplication_cost if m is None else m
+    out = []
+    for tb in time_bases:
+        for f in truncation_fractions:
+            r = reproduce_loads(model=LoadModel(m, tb, f), tolerance=tolerance)
+            out.append(SensitivityCell(tb, float(f), len(r.hits), len(r.cells)))
+    return tuple(out)
+
+
+class CheapestAlgorithms(NamedTuple):
+    """The cheapest algorithm of both load tables under one motion, by the model and as printed.
+
+    Attributes
+    ----------
+    eps : float
+        ε of the motion.
+    model : tuple of int
+        The algorithms that are cheapest by the model in the β* columns of Tables 4 and 5.
+    printed : tuple of int
+        The same from the printed loads.
+    """
+
+    eps: float
+    model: tuple
+    printed: tuple
+
+    @property
+    def as_printed(self) -> bool:
+        """True when the model ranks as the paper does."""
+        return self.model == self.printed
+
+
+def cheapest_algorithms(reproduction: LoadReproduction | None = None) -> tuple:
+    """The ranking of the paper: which algorithm is cheapest in both β* columns, per motion.
+
+    Parameters
+    ----------
+    reproduction : LoadReproduction, optional
+        Default :func:`reproduce_loads` ``()``.
+
+    Returns
+    -------
+    tuple of CheapestAlgorithms
+        By increasing ε.
+    """
+    reproduction = reproduction or reproduce_loads()
+    out = []
+    for eps in sorted({c.eps for c in reproduction.cells}):
+        model, printed = set(), set()
+        for column in COLUMNS[1:]:
+            cells = [c for c in reproduction.cells if c.eps == eps and c.column == column]
+            model.add(min(cells, key=lambda c: c.row.load).algorithm)
+            printed.add(min(cells, key=lambda c: c.printed).algorithm)
+        out.append(CheapestAlgorithms(eps, tuple(sorted(model)), tuple(sorted(printed))))
+    return tuple(out)
 
 
 class ConsistencyCheck(NamedTuple):
@@ -261,8 +429,8 @@ def printed_consistency() -> tuple:
     for row in rows:
         rho = row.order
         r3 = t3[(row.algorithm, row.eps)]
-        if row.beta_a_4 is not None and r3.u_a is not None:
-            out.append(ConsistencyCheck((_label(row, COLUMNS[1]), _label(row, COLUMNS[0])), row.beta_star_4 / row.beta_a_4, (r3.u_star / r3.u_a) ** (1 / rho),
+        if row.beta_a_4 is not None and r3.u_a_deg_per_h is not None:
+            out.append(ConsistencyCheck((_label(row, COLUMNS[1]), _label(row, COLUMNS[0])), row.beta_star_4 / row.beta_a_4, (r3.u_star_deg_per_h / r3.u_a_deg_per_h) ** (1 / rho),
                                         "printed u*/u_a of Table 3"))  # fmt: skip
         out.append(ConsistencyCheck((_label(row, COLUMNS[2]), _label(row, COLUMNS[1])), row.beta_star_5 / row.beta_star_4, (u4 / u5) ** (1 / rho),
                                     "the two budgets [u]"))  # fmt: skip
@@ -270,7 +438,7 @@ def printed_consistency() -> tuple:
         for b in rows:
             same = a.eps == b.eps and a.order == b.order and counts[a.algorithm] == counts[b.algorithm]
             if same and a.algorithm > b.algorithm:
-                expected = (t3[(a.algorithm, a.eps)].u_star / t3[(b.algorithm, b.eps)].u_star) ** (1 / a.order)
+                expected = (t3[(a.algorithm, a.eps)].u_star_deg_per_h / t3[(b.algorithm, b.eps)].u_star_deg_per_h) ** (1 / a.order)
                 for col, ba, bb in ((COLUMNS[1], a.beta_star_4, b.beta_star_4), (COLUMNS[2], a.beta_star_5, b.beta_star_5)):
                     out.append(ConsistencyCheck((_label(a, col), _label(b, col)), ba / bb, expected, "equal operation counts (Table 2) and printed u* of Table 3"))
     return tuple(out)
@@ -308,11 +476,33 @@ class PerSampleFit(NamedTuple):
         Fitted quaternion-update cost per step H [addition-equivalents].
     cells : tuple of FittedLoad
         Every printed load of the motion.
+    samples : int
+        Samples N per step.
     """
 
     eps: float
     sigma_q: float
     cells: tuple
+    samples: int = 4
+
+    @property
+    def sigma_q_per_sample(self) -> float:
+        """σ_q / N [addition-equivalents per sample]."""
+        return self.sigma_q / self.samples
+
+    def within(self, tolerance: float = 0.02) -> tuple:
+        """The cells the fitted reading reproduces within ``tolerance``.
+
+        Parameters
+        ----------
+        tolerance : float
+            Relative difference counted as reproduced.
+
+        Returns
+        -------
+        tuple of FittedLoad
+        """
+        return tuple(c for c in self.cells if abs(c.model / c.printed - 1) <= tolerance)
 
 
 @cache
@@ -345,8 +535,74 @@ def per_sample_fit(*, conditions: Table3Conditions | None = None, simulation_dur
         grid = np.arange(0.0, 3000.0, 1.0)
         err = [sum((np.log((cost + q) / H / 1e3) - np.log(b)) ** 2 for _, _, b, cost, H in data) for q in grid]
         q = float(grid[int(np.argmin(err))])
-        out.append(PerSampleFit(eps, q, tuple(FittedLoad(k, col, b, (cost + q) / H / 1e3) for k, col, b, cost, H in data)))
+        out.append(PerSampleFit(eps, q, tuple(FittedLoad(k, col, b, (cost + q) / H / 1e3) for k, col, b, cost, H in data), conditions.samples))
     return tuple(out)
+
+
+class FitComparison(NamedTuple):
+    """The fitted per-sample reading set against the load model, motion by motion.
+
+    Attributes
+    ----------
+    fits : tuple of PerSampleFit
+        By increasing ε.
+    series_terms : tuple of tuple of int
+        For each fit, the series lengths K the model picks for that motion.
+    model_costs : tuple of tuple of float
+        For each fit, the model's quaternion-update cost σ_q at those K.
+    within : tuple of int
+        For each fit, the cells it reproduces within the tolerance.
+    tolerance : float
+        Relative difference counted as reproduced.
+    per_sample_difference : float
+        Difference of the two fitted costs per sample, last motion minus first.
+    two_term_cost : float
+        The model's cost of two more series terms (K = 2 → 3, times two).
+    """
+
+    fits: tuple
+    series_terms: tuple
+    model_costs: tuple
+    within: tuple
+    tolerance: float
+    per_sample_difference: float
+    two_term_cost: float
+
+    @property
+    def total_within(self) -> int:
+        """Cells of both motions reproduced by the fitted reading."""
+        return sum(self.within)
+
+    @property
+    def total_cells(self) -> int:
+        """All printed cells."""
+        return sum(len(f.cells) for f in self.fits)
+
+
+def compare_per_sample_fit(reproduction: LoadReproduction | None = None, *, tolerance: float = 0.02) -> FitComparison:
+    """The earlier, fitted reading (:func:`per_sample_fit`) against the model of :func:`reproduce_loads`.
+
+    Parameters
+    ----------
+    reproduction : LoadReproduction, optional
+        Default :func:`reproduce_loads` ``()``.
+    tolerance : float, keyword-only
+        Relative difference counted as reproduced.
+
+    Returns
+    -------
+    FitComparison
+    """
+    reproduction = reproduction or reproduce_loads()
+    tolerance = positive(tolerance, "tolerance")
+    m = reproduction.model.m
+    fits = per_sample_fit()
+    terms = tuple(reproduction.series_terms(f.eps) for f in fits)
+    costs = tuple(tuple(quaternion_update_count(k).cost(m) for k in ks) for ks in terms)
+    within = tuple(len(f.within(tolerance)) for f in fits)
+    difference = fits[-1].sigma_q_per_sample - fits[0].sigma_q_per_sample
+    two_terms = 2 * (quaternion_update_count(3).cost(m) - quaternion_update_count(2).cost(m))
+    return FitComparison(fits, terms, costs, within, tolerance, float(difference), float(two_terms))
 
 
 class LoadCurve(NamedTuple):
@@ -452,6 +708,52 @@ def design_points(freq_hz: float, *, eps_values, nutation: float, budgets: tuple
             for r in design(u, RegularPrecession(eps, nu, nutation), algorithms=algorithms, model=model):
                 out.append(DesignPoint(eps, u, r, nu * r.step))
     return tuple(out)
+
+
+class DesignSummary(NamedTuple):
+    """The cheapest design for each motion and budget, and the largest spin angle per step.
+
+    Attributes
+    ----------
+    cheapest : tuple of DesignPoint
+        One per (ε, budget): motions in the order given, budgets from the largest.
+    largest_nu_step : float
+        Largest νH [rad] of all designs.
+    """
+
+    cheapest: tuple
+    largest_nu_step: float
+
+
+def summarize_designs(points) -> DesignSummary:
+    """The cheapest algorithm of each motion and budget among :func:`design_points`.
+
+    Parameters
+    ----------
+    points : sequence of DesignPoint
+        From :func:`design_points`.
+
+    Returns
+    -------
+    DesignSummary
+
+    Raises
+    ------
+    ValueError
+        If ``points`` is empty.
+    """
+    points = tuple(points)
+    if not points:
+        raise ValueError("Expected `points` to hold at least one DesignPoint, got none")
+    eps_values = list(dict.fromkeys(p.eps for p in points))
+    budgets = sorted({p.required_drift for p in points}, reverse=True)
+    cheapest = []
+    for eps in eps_values:
+        for u in budgets:
+            group = [p for p in points if p.eps == eps and p.required_drift == u]
+            if group:
+                cheapest.append(min(group, key=lambda p: p.row.load))
+    return DesignSummary(tuple(cheapest), float(max(p.nu_step for p in points)))
 
 
 class MissExplanation(NamedTuple):

@@ -48,6 +48,8 @@ __all__ = [
     "reproduce_u_star",
     "DriftEstimate",
     "drift_estimates",
+    "Table3Agreement",
+    "table3_agreement",
     "LeadingEstimates",
     "leading_estimates",
     "ErrorHistory",
@@ -204,6 +206,20 @@ class UStarCell(NamedTuple):
     simulated: float
     relative_difference: float
 
+    def reproduced(self, tolerance: float) -> bool:
+        """Whether the simulation reproduces the printed u* within ``tolerance``.
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest relative difference counted as reproduced [-].
+
+        Returns
+        -------
+        bool
+        """
+        return abs(self.relative_difference) <= tolerance
+
 
 @cache
 def _reproduce_u_star(conditions: Table3Conditions, duration: float) -> tuple:
@@ -212,7 +228,7 @@ def _reproduce_u_star(conditions: Table3Conditions, duration: float) -> tuple:
     for row in P.BUDENNYI_TABLE_3:
         d = drifts[row.algorithm]
         ours = d.coning if row.eps == conditions.coning_eps else d.precession
-        out.append(UStarCell(row, ours, deg_per_h(ours) / row.u_star - 1.0))
+        out.append(UStarCell(row, ours, deg_per_h(ours) / row.u_star_deg_per_h - 1.0))
     return tuple(out)
 
 
@@ -268,17 +284,17 @@ class DriftEstimate(NamedTuple):
     @property
     def asymptotic_vs_printed(self) -> float | None:
         """``u_a / printed u_a − 1`` (in the printed unit); None where u_a is not printed."""
-        return None if self.printed.u_a is None else deg_per_h(self.asymptotic) / self.printed.u_a - 1
+        return None if self.printed.u_a_deg_per_h is None else deg_per_h(self.asymptotic) / self.printed.u_a_deg_per_h - 1
 
     @property
     def printed_vs_asymptotic(self) -> float | None:
         """``printed u_a / u_a − 1`` (in the printed unit); None where u_a is not printed."""
-        return None if self.printed.u_a is None else self.printed.u_a / deg_per_h(self.asymptotic) - 1
+        return None if self.printed.u_a_deg_per_h is None else self.printed.u_a_deg_per_h / deg_per_h(self.asymptotic) - 1
 
     @property
     def asymptotic_vs_printed_u_star(self) -> float:
         """``u_a / printed u* − 1`` (in the printed unit)."""
-        return deg_per_h(self.asymptotic) / self.printed.u_star - 1
+        return deg_per_h(self.asymptotic) / self.printed.u_star_deg_per_h - 1
 
     @property
     def asymptotic_vs_simulated(self) -> float:
@@ -328,6 +344,51 @@ def drift_estimates(*, conditions: Table3Conditions | None = None, simulation_du
     Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3), Table 3.
     """
     return _drift_estimates(_conditions(conditions), positive(simulation_duration, "simulation_duration"))
+
+
+class Table3Agreement(NamedTuple):
+    """How the package's estimates of Table 3 agree with the print and the simulation.
+
+    Attributes
+    ----------
+    worst_order_4 : float
+        Largest ``|u_a / printed u_a − 1|`` over the ρ = 4 rows with a printed u_a.
+    worst_order_6_vs_simulated : float
+        Largest ``|u_a / simulated u* − 1|`` over the ρ = 6 rows.
+    order_6 : tuple of DriftEstimate
+        The ρ = 6 rows.
+    unprinted : tuple of DriftEstimate
+        The rows whose u_a is not printed.
+    """
+
+    worst_order_4: float
+    worst_order_6_vs_simulated: float
+    order_6: tuple
+    unprinted: tuple
+
+
+def table3_agreement(estimates=None) -> Table3Agreement:
+    """Summary of :func:`drift_estimates`: the worst agreement of u_a with the print and with the simulation.
+
+    Parameters
+    ----------
+    estimates : sequence of DriftEstimate, optional
+        Default :func:`drift_estimates` ``()``.
+
+    Returns
+    -------
+    Table3Agreement
+
+    References
+    ----------
+    Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3.
+    """
+    rows = tuple(drift_estimates() if estimates is None else estimates)
+    order_4 = [abs(r.asymptotic_vs_printed) for r in rows if r.order == 4 and r.asymptotic_vs_printed is not None]
+    order_6 = tuple(r for r in rows if r.order == 6)
+    worst_6 = max((abs(r.asymptotic_vs_simulated) for r in order_6), default=float("nan"))
+    unprinted = tuple(r for r in rows if r.printed.u_a_deg_per_h is None)
+    return Table3Agreement(max(order_4, default=float("nan")), worst_6, order_6, unprinted)
 
 
 class ErrorHistory(NamedTuple):
@@ -407,17 +468,17 @@ class LeadingEstimates(NamedTuple):
     @property
     def printed_vs_mid_step(self) -> float:
         """``printed u_a / |mid_step| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.mid_step)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.mid_step)) - 1
 
     @property
     def printed_vs_full(self) -> float:
         """``printed u_a / |full| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.full)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.full)) - 1
 
     @property
     def printed_vs_small_angle(self) -> float:
         """``printed u_a / |small_angle| − 1`` (in the printed unit)."""
-        return self.printed.u_a / deg_per_h(abs(self.small_angle)) - 1
+        return self.printed.u_a_deg_per_h / deg_per_h(abs(self.small_angle)) - 1
 
     @property
     def full_vs_simulated(self) -> float:

@@ -1,6 +1,9 @@
 """Drift rate and accumulated error of an algorithm from the symbolic one-step series (numeric side).
 
-Sign convention: errors are exact minus algorithm (package docstring, "Local errors").
+Sign convention: errors are exact minus algorithm (package docstring, "Errors"),
+the same as the parallel computation of :mod:`strapdown.analysis.coning.simulator`:
+a signed drift here and the simulator's drift are the rate of one error
+rotation ``Λ_true ∘ Λ̄_computed``.
 
 The symbolic drift coefficients ``d_w(ε, ϑ)`` of
 :func:`strapdown.derivations.coning.drift.drift_coefficients` are compiled once
@@ -54,7 +57,7 @@ from ..core import quaternion as quat
 from ..core.cache import compiled
 from ..core.dual import Dual
 from ..core.units import RAD_PER_S_TO_DEG_PER_H
-from ..core.validation import as_array, as_float, in_open_interval, positive
+from ..core.validation import as_array, as_float, as_quaternion, in_open_interval, positive
 
 __all__ = [
     "RAD_PER_S_TO_DEG_PER_H",
@@ -62,6 +65,7 @@ __all__ = [
     "algorithm_key",
     "drift_terms",
     "asymptotic_drift",
+    "asymptotic_drift_vector",
     "asymptotic_order",
     "drift_series",
     "coning_drift_function",
@@ -245,6 +249,11 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weigh
     >>> round(float(u) * RAD_PER_S_TO_DEG_PER_H, 2)
     2.51
     """
+    return np.abs(_signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight))
+
+
+def _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight):
+    """``d_{ρ+1}(ε, ϑ) ν^{ρ+1} H^ρ``, signed (exact minus algorithm, along n); NaN where it vanishes."""
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
     vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
@@ -252,8 +261,69 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weigh
     vals, rho, nu, step = np.broadcast_arrays(vals, rho[..., None], nu[..., None], step[..., None])
     w = rho[..., 0] + 1
     lead = np.take_along_axis(vals, np.clip(w, 0, vals.shape[-1] - 1)[..., None], axis=-1)[..., 0]
-    out = np.abs(lead) * nu[..., 0] ** w * step[..., 0] ** (w - 1)
+    out = lead * nu[..., 0] ** w * step[..., 0] ** (w - 1)
     return np.where(rho[..., 0] >= 0, out, np.nan)
+
+
+def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, attitude0=(1.0, 0.0, 0.0, 0.0), max_weight: int = DEFAULT_MAX_WEIGHT):
+    """Asymptotic constant drift of the attitude as a signed vector in frame I [rad/s].
+
+    The secular part of the accumulated error (5.2) lies along the precession
+    axis n, so the drift vector is ``d_{ρ+1}(ε, ϑ) ν^{ρ+1} H^ρ n``, exact minus
+    algorithm: the rate of the error rotation ``Λ_true ∘ Λ̄_computed``, the
+    same quantity as the least-squares slope
+    :attr:`strapdown.analysis.coning.simulator.SimulationResult.drift` of the
+    parallel computation.  Its norm is :func:`asymptotic_drift`.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm.
+    eps : array_like
+        ε = μ/ν [-]; ε = −1 is coning.
+    nu : array_like
+        Spin rate ν [rad/s] (> 0).
+    nutation : array_like
+        Nutation angle ϑ [rad], in (0, π).
+    step : array_like
+        Algorithm step H = N h [s], > 0.
+    attitude0 : array_like, shape (4,), keyword-only
+        Initial attitude Λ(0) of the run (E → I), which places n in frame I
+        (:meth:`strapdown.analysis.coning.precession.RegularPrecession.precession_axis`).
+    max_weight : int, keyword-only
+        Highest weight of the series searched for the leading term (default 7).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Drift vector, components in frame I [rad/s]; NaN where the drift
+        vanishes through ``max_weight``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`asymptotic_drift`, and for an ``attitude0`` that is not a unit quaternion.
+
+    References
+    ----------
+    Lebedev & Panov (1989), eqs. (5.2)–(5.3); Budennyi, Kalinovsky, Panov et al. (Part 2), eq. (3).
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> u = asymptotic_drift_vector(get("panov-4s-1"), eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0), step=0.01)
+    >>> round(float(np.linalg.norm(u)) * RAD_PER_S_TO_DEG_PER_H, 2)   # asymptotic_drift [deg/h]
+    2.51
+    >>> bool(u @ np.array([0.0, np.sin(np.radians(1.0)), np.cos(np.radians(1.0))]) < 0)   # along −n, the cone axis
+    True
+    """
+    lam0 = as_quaternion(attitude0, "attitude0", unit=True)
+    if lam0.shape != (4,):
+        raise ValueError(f"Expected `attitude0` of shape (4,), got {lam0.shape}")
+    signed = _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight)
+    nutation = np.broadcast_to(as_array(nutation, "nutation"), signed.shape)
+    axis = quat.rotate(lam0, np.stack([np.zeros(signed.shape), np.sin(nutation), np.cos(nutation)], axis=-1))
+    return signed[..., None] * axis
 
 
 def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):

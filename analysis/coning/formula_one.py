@@ -42,6 +42,7 @@ __all__ = [
     "column_2_estimates",
     "AssignmentScore",
     "assignment_scores",
+    "best_alternative",
     "Table2Fit",
     "table2_fits",
 ]
@@ -164,7 +165,7 @@ class AssignmentScore(NamedTuple):
 def _assignment_scores(conditions, duration: float, tolerance: float) -> tuple:
     printed_table = dict(PANOV_TABLE_1)
     printed_table[2] = P.BUDENNYI_TABLE_1_COLUMN_2
-    u_star = {(row.algorithm, row.eps): row.u_star for row in P.BUDENNYI_TABLE_3}
+    u_star = {(row.algorithm, row.eps): row.u_star_deg_per_h for row in P.BUDENNYI_TABLE_3}
     runs: dict = {}
     out = []
     for assignment in basis_assignments():
@@ -208,6 +209,30 @@ def assignment_scores(*, conditions: Table3Conditions | None = None, duration: f
     Budennyi, Kalinovsky, Panov et al. (Part 2), formula (1), Tables 1, 3.
     """
     return _assignment_scores(conditions, positive(duration, "duration"), positive(tolerance, "tolerance"))
+
+
+def best_alternative(scores) -> AssignmentScore:
+    """The assignment other than the registry's that reproduces the most cells (column 2 corrected).
+
+    Parameters
+    ----------
+    scores : sequence of AssignmentScore
+        From :func:`assignment_scores`.
+
+    Returns
+    -------
+    AssignmentScore
+        Ties go to the most cells with Table 1 as printed, then to the first in order.
+
+    Raises
+    ------
+    ValueError
+        If ``scores`` holds no assignment other than the registry's.
+    """
+    others = [s for s in scores if not s.assignment.is_registry]
+    if not others:
+        raise ValueError("Expected `scores` to hold an assignment other than the registry's, got none")
+    return max(others, key=lambda s: (s.hits_corrected, s.hits_as_printed))
 
 
 class Table2Fit(NamedTuple):

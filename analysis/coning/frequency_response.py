@@ -112,14 +112,21 @@ class SimulatorCheck:
             return None
         return self.simulated / self.theory - 1.0
 
+    @property
+    def simulated_coefficient(self) -> float | None:
+        """The simulated drift as a value of D: ``simulated / (α² ω)`` [-] (None if not simulated)."""
+        if self.simulated is None:
+            return None
+        return self.simulated / (self.cone_angle**2 * self.nu)
+
 
 def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> SimulatorCheck:
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
 
     The motion is (4.1) with ε = −1, ϑ = α, ν = ω, the initial attitude the
-    identity (so the precession axis in I is ``n = (0, sin α, cos α)``); the
-    simulator's drift (computed minus exact, frame I) projected on n is the
-    drift along the cone axis ``a = −n`` in the convention exact minus algorithm.
+    identity (so the precession axis in I is ``n = (0, sin α, cos α)`` and the
+    cone axis ``a = −n``); the simulator's drift (exact minus algorithm, frame
+    I) projected on ``a`` is the drift ``u`` of the closed form, with its sign.
 
     Parameters
     ----------
@@ -162,12 +169,12 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         return SimulatorCheck(**common, simulated=None, note="fewer than 8 steps in the run")
     if abs(theory) < floor:
         return SimulatorCheck(**common, simulated=None, note="drift below the round-off floor of the run")
+    motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, RegularPrecession(-1.0, nu, alpha), h, duration)
+        run = simulate(algorithm, motion, h, duration)
     except ValueError as exc:
         return SimulatorCheck(**common, simulated=None, note=f"not run by the simulator: {exc}")
-    axis = np.array([0.0, math.sin(alpha), math.cos(alpha)])
-    return SimulatorCheck(**common, simulated=float(run.drift @ axis))
+    return SimulatorCheck(**common, simulated=float(run.drift @ -motion.precession_axis()))
 
 
 @dataclass(frozen=True)
@@ -222,8 +229,22 @@ class ConingResponse:
         x = positive(omega_h, "omega_h")
         if self.quartic_order is None:
             return None
-        d = float(np.asarray(coning_drift_function(self.algorithm)(x)))
-        return math.sqrt(abs(d) / abs(float(self.quartic_coefficient) * x**self.quartic_order))
+        return math.sqrt(abs(self.drift_at(x)) / abs(float(self.quartic_coefficient) * x**self.quartic_order))
+
+    def drift_at(self, omega_h: float) -> float:
+        """``D(x)`` at one x = ωh, from the closed form [-], signed (exact minus algorithm).
+
+        Parameters
+        ----------
+        omega_h : float
+            x = ωh [rad], > 0.
+
+        Returns
+        -------
+        float
+        """
+        x = positive(omega_h, "omega_h")
+        return float(np.asarray(coning_drift_function(self.algorithm)(x)))
 
     @property
     def leading(self) -> np.ndarray:
@@ -250,6 +271,16 @@ class FrequencyResponse:
 
     omega_h: np.ndarray
     responses: tuple
+
+    @property
+    def simulated_checks(self) -> tuple:
+        """Every simulated check of every algorithm."""
+        return tuple(c for r in self.responses for c in r.simulated_checks)
+
+    @property
+    def largest_relative_difference(self) -> float:
+        """Largest ``|simulated / theory − 1|`` over :attr:`simulated_checks` (NaN if none)."""
+        return max((abs(c.relative_difference) for c in self.simulated_checks), default=float("nan"))
 
 
 def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> ConingResponse:
@@ -347,11 +378,13 @@ class FiniteAngleCheck:
     max_weight : int
         Weight of the series (powers of ωh below it are exact, at every order in α).
     closed_form : float
-        ``α² ω D(ωh)`` [rad/s].
+        ``α² ω D(ωh)`` [rad/s], signed as ``series``.
     series : float
-        The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in α [rad/s].
+        The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in
+        α, along the cone axis, exact minus algorithm [rad/s].
     simulated : float or None
-        Parallel computation along the cone axis [rad/s] (None if not run, see ``note``).
+        Parallel computation: the simulator's drift along the cone axis, exact
+        minus algorithm [rad/s] (None if not run, see ``note``).
     note : str
         Why not simulated ("" if it was).
     """
@@ -365,6 +398,11 @@ class FiniteAngleCheck:
     series: float
     simulated: float | None
     note: str = ""
+
+    @property
+    def simulated_vs_series(self) -> float | None:
+        """``simulated / series − 1`` (None if not simulated)."""
+        return None if self.simulated is None else self.simulated / self.series - 1.0
 
 
 def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float, nu: float = 2 * math.pi * 10.0, max_weight: int = 11, periods: int = 200) -> FiniteAngleCheck:
@@ -404,9 +442,9 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     # drift_terms is along the precession axis n; the cone axis is a = −n
     series = -float(np.sum(vals * nu**w * H ** np.maximum(w - 1, 0)))
     closed = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
+    motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, RegularPrecession(-1.0, nu, alpha), h, periods * 2 * math.pi / nu)
+        run = simulate(algorithm, motion, h, periods * 2 * math.pi / nu)
     except ValueError as exc:
         return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, None, f"not run by the simulator: {exc}")
-    axis = np.array([0.0, math.sin(alpha), math.cos(alpha)])
-    return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ axis))
+    return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ -motion.precession_axis()))

@@ -9,9 +9,10 @@ data, in the same order of operations as
 pairwise terms folded by their left factor, then the nested and dot-weighted
 terms.  Dual arithmetic is expanded into real and dual parts by the generator,
 so a sculling run is a fused loop too.  Below it come the functions of
-:mod:`strapdown.analysis.coning._kernel_template` (exact increments by a
-angle addition from anchors computed directly every few samples, the step biquaternion (1.12), the
-product, the exact solution (1.5), (4.4)–(4.5), the error and its running
+:mod:`strapdown.analysis.coning._kernel_template` (exact increments by
+angle addition from anchors computed directly every few samples, the step
+biquaternion (1.12), the product, the exact solution (1.5), (4.4)–(4.5), the
+errors — exact minus algorithm, as in the numpy path — and their running
 statistics), and the whole module is compiled with ``numba.njit(cache=True)``.
 
 Generated modules are stored under ``<cache base>/kernels/``, named by the
@@ -460,7 +461,9 @@ def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> No
     k0, k1 : int
         First and last step index of the span.
     series : tuple of three ndarray, shape (P, n + 1, 3), optional
-        Error, ΔW_E and ΔW_I series, written at every step of the span.
+        Error series δφ_I, ΔW_E and ΔW_I (exact minus algorithm, as
+        :class:`~strapdown.analysis.coning.simulator.SimulationResult`), written
+        at every step of the span.
     """
     if series is None:
         dummy = np.zeros((1, 1, 3))

@@ -28,7 +28,7 @@ from .local_error import TumblingMotion, local_error
 from .precession import RegularPrecession
 from .simulator import simulate
 
-__all__ = ["DriftOrder", "drift_orders", "LocalErrorExponents", "local_error_exponents", "dot_term_study"]
+__all__ = ["DriftOrder", "drift_orders", "LocalErrorExponents", "local_error_exponents", "DotTermStudy", "dot_term_study"]
 
 
 class DriftOrder(NamedTuple):
@@ -106,6 +106,38 @@ class LocalErrorExponents(NamedTuple):
         """The mean exponent rounded: ρ + 1 for an algorithm of order ρ."""
         return round(sum(self.exponents) / len(self.exponents))
 
+    @property
+    def order(self) -> int:
+        """The (global) order ρ: :attr:`local_order` − 1."""
+        return self.local_order - 1
+
+
+class DotTermStudy(NamedTuple):
+    """Local-error exponents of (2.2) at orders 2, 4, 6, and of order 6 without its dot-product term.
+
+    Attributes
+    ----------
+    rows : tuple of LocalErrorExponents
+        ``lebedev-panov-2``, ``-4``, ``-6`` and ``lebedev-panov-6 without (p2·p3) term``.
+    """
+
+    rows: tuple
+
+    @property
+    def printed(self) -> LocalErrorExponents:
+        """(2.2) of order 6 as printed, with its dot-product term."""
+        return self.rows[2]
+
+    @property
+    def without_dot(self) -> LocalErrorExponents:
+        """(2.2) of order 6 without the ``(p2·p3)`` part of its last term."""
+        return self.rows[3]
+
+    @property
+    def printed_is_sixth_order(self) -> bool:
+        """True when the printed form has a local error O(H⁷): the order the paper states."""
+        return self.printed.order == 6
+
 
 def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None = None, times=(0.3, 1.1, 2.4), steps=(0.2, 0.1, 0.05)) -> LocalErrorExponents:
     """Exponent of the one-step error |δφ| against H, at each of ``times``.
@@ -134,7 +166,7 @@ def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None
     return LocalErrorExponents(algorithm.name, tuple(exps))
 
 
-def dot_term_study(**kwargs) -> tuple:
+def dot_term_study(**kwargs) -> DotTermStudy:
     """Local-error exponents of (2.2) at orders 2, 4, 6, and of order 6 without its dot-product term.
 
     The last term of (2.2), ``−64/45 (1 − p2·p3) p2 × p3``, carries a dot
@@ -148,8 +180,7 @@ def dot_term_study(**kwargs) -> tuple:
 
     Returns
     -------
-    tuple of LocalErrorExponents
-        ``lebedev-panov-2``, ``-4``, ``-6`` and ``lebedev-panov-6 without (p2·p3) term``.
+    DotTermStudy
 
     References
     ----------
@@ -157,4 +188,4 @@ def dot_term_study(**kwargs) -> tuple:
     """
     printed = get("lebedev-panov-6")
     no_dot = Algorithm("lebedev-panov-6 without (p2·p3) term", 4, tuple(t for t in printed.terms if not t.dots))
-    return tuple(local_error_exponents(alg, **kwargs) for alg in (get("lebedev-panov-2"), get("lebedev-panov-4"), printed, no_dot))
+    return DotTermStudy(tuple(local_error_exponents(alg, **kwargs) for alg in (get("lebedev-panov-2"), get("lebedev-panov-4"), printed, no_dot)))

@@ -144,6 +144,41 @@ class RegularPrecession:
         """
         return self._attitude(_time(t), self.nu, self.nutation)
 
+    def precession_axis(self, attitude0=(1.0, 0.0, 0.0, 0.0)) -> np.ndarray:
+        """Unit precession axis n in frame I of a run started at ``Λ(0) = attitude0``.
+
+        In the frame of the particular solution (4.4) the body precesses at the
+        rate μ = εν about a fixed axis; in the body axes at t = 0 it is
+        ``(0, sin ϑ, cos ϑ)``, and in frame I it is that vector turned by Λ(0).
+        The secular part of the attitude error of an algorithm lies along n
+        (Lebedev & Panov 1989, eqs. (5.2)–(5.3)); under coning (ε = −1, ν > 0)
+        the cone axis, along the mean inertial angular velocity, is −n.
+
+        Parameters
+        ----------
+        attitude0 : array_like, shape (4,)
+            Initial attitude Λ(0), unit quaternion (E → I).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            n, components in frame I [-].
+
+        Raises
+        ------
+        ValueError
+            If ``attitude0`` is not a unit quaternion of shape (4,).
+
+        Examples
+        --------
+        >>> RegularPrecession(-1.0, 2 * np.pi, np.pi / 2).precession_axis().round(12)
+        array([0., 1., 0.])
+        """
+        lam0 = as_quaternion(attitude0, "attitude0", unit=True)
+        if lam0.shape != (4,):
+            raise ValueError(f"Expected `attitude0` of shape (4,), got {lam0.shape}")
+        return quat.rotate(lam0, np.array([0.0, np.sin(self.nutation), np.cos(self.nutation)]))
+
     def biquaternion(self, t) -> Dual:
         """Particular solution ``P = Q + s R`` of ``2P' = P ∘ (ω + s a)``, eqs. (4.4)–(4.5).
 

@@ -47,6 +47,7 @@ __all__ = [
     "sculling_error_curve",
     "ScullingPoint",
     "sculling_simulation_checks",
+    "largest_difference",
 ]
 
 #: Relative difference accepted for a simulated value to count as reproducing an exact one.
@@ -226,6 +227,10 @@ class DriftOrder:
         ``log2`` of successive drift ratios.
     defect : Fraction
         Second-order defect (zero for every consistent algorithm).
+    design_order : int
+        The order the construction aims at: each of the K distinct pairwise
+        coefficients cancels one term of the coning-drift series in (Ωh)², so
+        ``2K + 2`` (our reading of the construction of Ignagni 1996).
     """
 
     algorithm: str
@@ -235,6 +240,7 @@ class DriftOrder:
     drift: np.ndarray
     orders: np.ndarray
     defect: Fraction
+    design_order: int
 
     @property
     def order(self) -> float:
@@ -269,7 +275,8 @@ def coning_drift_orders(names, *, nu: float = 2 * np.pi * 10, nutation: float = 
         alg = get(name)
         drift = np.array([float(simulate(alg, motion, h, cycles * 2 * np.pi / nu).drift_rate) for h in hs])
         orders = np.log(drift[:-1] / drift[1:]) / np.log(hs[:-1] / hs[1:])
-        out.append(DriftOrder(name, alg.samples, alg.history, hs, drift, orders, second_order_defect(alg)))
+        design = 2 * len(set(alg.pairwise.values())) + 2
+        out.append(DriftOrder(name, alg.samples, alg.history, hs, drift, orders, second_order_defect(alg), design))
     return tuple(out)
 
 
@@ -284,7 +291,8 @@ class ScullingCurve:
     nu_h : ndarray
         ν h values [rad] (h the sample interval).
     relative : ndarray
-        Error rate over the exact rectified acceleration ``½ θ₀ A cos(φ_a − φ_θ)``.
+        Error rate (exact minus algorithm) over the exact rectified acceleration
+        ``½ θ₀ A cos(φ_a − φ_θ)``; positive where the algorithm under-rectifies.
     slope : float
         Least-squares slope of ``log |relative|`` against ``log ν h`` over the
         lower half of the range (the order of the sculling error).
@@ -335,20 +343,45 @@ class ScullingPoint:
     nu_h : float
         ν h [rad].
     theory : float
-        :func:`rectification_error` rate [m/s²].
+        :func:`rectification_error` rate [m/s²], exact minus algorithm.
     simulated : float
-        Slope of the simulated ``ΔW_I`` along ``e_r × e_a`` [m/s²].
+        Slope of the simulated ``ΔW_I = W_I* − W_I`` along ``e_r × e_a`` [m/s²]
+        (exact minus algorithm, the same sign as ``theory``).
+    exact_rate : float
+        The exact rectified acceleration to first order, ``½ θ₀ A cos(φ_a − φ_θ)`` [m/s²].
     """
 
     algorithm: str
     nu_h: float
     theory: float
     simulated: float
+    exact_rate: float
 
     @property
     def relative_difference(self) -> float:
         """``simulated / theory − 1``."""
         return self.simulated / self.theory - 1.0
+
+    @property
+    def simulated_relative(self) -> float:
+        """The simulated rate over the exact rectified acceleration: the simulated point of :attr:`ScullingCurve.relative`."""
+        return self.simulated / self.exact_rate
+
+
+def largest_difference(checks) -> float:
+    """The largest ``|simulated / theory − 1|`` of a set of simulator checks.
+
+    Parameters
+    ----------
+    checks : sequence of ScullingPoint
+        From :func:`sculling_simulation_checks`.
+
+    Returns
+    -------
+    float
+        NaN for no checks.
+    """
+    return max((abs(c.relative_difference) for c in checks), default=float("nan"))
 
 
 def sculling_simulation_checks(points, *, angle_amplitude: float = 1e-3, accel_amplitude: float = 1.0, nu: float = 2 * np.pi * 10, cycles: float = 40.0) -> tuple:
@@ -378,5 +411,6 @@ def sculling_simulation_checks(points, *, angle_amplitude: float = 1e-3, accel_a
         alg = get(name)
         h = float(x) / nu
         r = simulate(alg, motion, h, cycles * 2 * np.pi / nu, velocity=True)
-        out.append(ScullingPoint(name, float(x), rectification_error(alg, motion, h).rate, float(r.velocity_error_rate @ axis)))
+        theory = rectification_error(alg, motion, h)
+        out.append(ScullingPoint(name, float(x), theory.rate, float(r.velocity_error_rate @ axis), theory.exact_rate))
     return tuple(out)

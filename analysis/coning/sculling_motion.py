@@ -20,7 +20,10 @@ constant part is the rectified specific force
     ⟨Q a Q̄⟩ = A J₁(θ₀) cos(φ_a − φ_θ) (e_r × e_a),
 
 which a velocity algorithm must reproduce; what it gets wrong accumulates as a
-constant velocity-error rate, the *sculling* (rectification) error.
+constant velocity-error rate, the *sculling* (rectification) error.  Like
+every error of the package it is exact minus algorithm (package docstring,
+"Errors"): the rate of ``W_I* − W_I``, positive when the algorithm
+under-rectifies.
 :func:`rectification_error` gives it for any algorithm from one step, exactly
 to first order in θ₀ A (the small-amplitude limit used by Ignagni 1998 and
 Savage 1998); :func:`strapdown.analysis.coning.simulator.simulate` gives it
@@ -349,11 +352,15 @@ class RectificationError:
     nu_h : float
         ν h [rad], the frequency in units of the sample rate.
     rate : float
-        Error rate of the apparent velocity along ``e_r × e_a`` [m/s²],
-        algorithm minus exact, to first order in θ₀ A.
+        Error rate of the apparent velocity along ``e_r × e_a`` [m/s²], exact
+        minus algorithm (the rate of ``W_I* − W_I``, as
+        :attr:`strapdown.analysis.coning.simulator.SimulationResult.velocity_error_rate`),
+        to first order in θ₀ A.
     relative : float
         ``rate`` over the exact rectified acceleration ``½ θ₀ A cos(φ_a − φ_θ)``
         (the same order), [-]; NaN when that vanishes.
+    exact_rate : float
+        That exact rectified acceleration along ``e_r × e_a``, first order in θ₀ A [m/s²].
     """
 
     algorithm: Algorithm
@@ -361,6 +368,7 @@ class RectificationError:
     nu_h: float
     rate: float
     relative: float
+    exact_rate: float
 
 
 def _phasors(motion: ScullingMotion, h, index):
@@ -402,7 +410,9 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
     pairwise terms, indices ≤ 0 reaching into earlier steps), against the exact
     ``∫ θ a dt``.  Every factor is a sinusoid of the step start t_k, so the mean
     over the steps is ``½ Re(x̂ ȳ)`` of the complex amplitudes; divided by the
-    step H it is the error rate.  Terms of degree 3 and higher (nested and dot
+    step H it is the rate of the algorithm's rectified velocity, and the exact
+    rectified acceleration minus it is the error rate (exact minus algorithm).
+    Terms of degree 3 and higher (nested and dot
     terms) contribute at order θ₀² A and beyond, and are left out.
 
     Parameters
@@ -435,7 +445,7 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
     >>> from strapdown.derivations.coning.registry import get
     >>> m = ScullingMotion(1e-3, 1.0, 2 * np.pi * 10)
     >>> e = rectification_error(get("two-sample"), m, 0.005)
-    >>> e.relative < 0   # the two-sample sculling algorithm under-rectifies
+    >>> e.relative > 0   # exact minus algorithm: the two-sample sculling algorithm under-rectifies
     True
     """
     if not isinstance(algorithm, Algorithm):
@@ -458,7 +468,7 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
             pj, bj = _phasors(motion, hm, j)
             total += mpmath.mpf(c.numerator) / c.denominator * (_mean(pi, bj) - _mean(bi, pj))
         exact_rate = mpmath.mpf(motion.angle_amplitude) * motion.accel_amplitude * mpmath.cos(mpmath.mpf(motion.accel_phase) - motion.angle_phase) / 2
-        rate = total / (n * hm) - exact_rate
+        rate = exact_rate - total / (n * hm)
         relative = float(rate / exact_rate) if exact_rate != 0 else float("nan")
-        return RectificationError(algorithm, h, motion.nu * h, float(rate), relative)
+        return RectificationError(algorithm, h, motion.nu * h, float(rate), relative, float(exact_rate))
 

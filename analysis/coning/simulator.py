@@ -18,9 +18,13 @@ step is an associative prefix product of the step quaternions
 (:func:`prefix_product`), of depth ``log2(steps)``.  Leading axes batch over
 parameter points.
 
-The attitude error is the rotation vector ``δφ_I = rotvec(Λ_alg ∘ Λ̄)`` in
-frame I; the constant drift rate is the norm of its least-squares slope over
-the run.
+Errors are exact minus algorithm (package docstring, "Errors"): the
+attitude error is the rotation vector ``δφ_I = rotvec(Λ* ∘ Λ̄)`` of the error
+rotation from the computed attitude Λ to the exact Λ*, resolved in frame I
+(``Λ* = exp(δφ_I) ∘ Λ``), and the apparent-velocity errors are
+``ΔW_E = W_E* − W_E`` (resolved in E) and ``ΔW_I = W_I* − W_I`` (in I).  The
+drift is the least-squares slope of ``δφ_I``, a vector in frame I with the same
+sign; the constant drift rate is its norm.
 
 Cross-step algorithms (indices ≤ 0, :attr:`Algorithm.history` > 0) read
 ``history`` samples before each step; the windows of consecutive steps
@@ -73,11 +77,15 @@ class SimulationResult:
     time : ndarray, shape (steps + 1,)
         Step ends t_k = k H [s], t_0 = 0.
     attitude_error : ndarray, shape (..., steps + 1, 3)
-        Attitude-error rotation vector ``rotvec(Λ_alg ∘ Λ̄_exact)`` in frame I [rad].
+        Attitude error δφ_I, exact minus algorithm: the rotation vector
+        ``rotvec(Λ_exact ∘ Λ̄_alg)`` of the error rotation, components in frame I
+        (``Λ_exact = exp(δφ_I) ∘ Λ_alg``) [rad].
     drift : ndarray, shape (..., 3)
-        Least-squares slope of ``attitude_error`` against time [rad/s].
+        Least-squares slope of ``attitude_error`` against time, frame I [rad/s]
+        (exact minus algorithm).
     dw_body, dw_inertial : ndarray, shape (..., steps + 1, 3), or None
-        ``W_E − W_E*`` and ``W_I − W_I*`` [m/s] (velocity runs only).
+        ``ΔW_E = W_E* − W_E`` (components in E) and ``ΔW_I = W_I* − W_I``
+        (components in I), exact minus algorithm [m/s] (velocity runs only).
     """
 
     algorithm: Algorithm
@@ -101,10 +109,12 @@ class SimulationResult:
 
     @property
     def velocity_error_rate(self) -> np.ndarray:
-        """Least-squares slope of ``dw_inertial`` against time [m/s²], shape ``(..., 3)``.
+        """Least-squares slope of ``dw_inertial`` against time, frame I [m/s²], shape ``(..., 3)``.
 
         Under a periodic motion this is the rectification error of the velocity
-        algorithm: the constant rate at which the apparent-velocity error grows.
+        algorithm: the constant rate at which the apparent-velocity error
+        ``W_I* − W_I`` grows (exact minus algorithm, as
+        :func:`strapdown.analysis.coning.sculling_motion.rectification_error`).
         """
         if self.dw_inertial is None:
             raise ValueError("Expected a velocity run for `velocity_error_rate`, got an attitude-only run (pass velocity=True)")
@@ -399,6 +409,8 @@ def simulate(
     Returns
     -------
     SimulationResult
+        Errors exact minus algorithm: ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)`` in
+        frame I, ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I``.
 
     Raises
     ------
@@ -423,6 +435,9 @@ def simulate(
     >>> r = simulate(get("panov-4s-1"), m, 0.0025, 1.0)
     >>> r.steps, round(float(r.drift_rate) * 180 / np.pi * 3600, 2)   # deg/h
     (100, 2.47)
+    >>> cone_axis = -np.array([0.0, np.sin(np.radians(1.0)), np.cos(np.radians(1.0))])   # −n, frame I
+    >>> bool(r.drift @ cone_axis > 0)   # exact minus algorithm: the computed attitude lags the coning
+    True
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
@@ -470,7 +485,10 @@ def simulate(
 
 
 def _compare(theta, motions, time, lam0, w0, error_out, dw_out) -> None:
-    """Write the attitude error (and ΔW_E, ΔW_I) of computed ``theta`` against the exact state."""
+    """Write the errors of the computed ``theta`` against the exact state, exact minus algorithm.
+
+    ``δφ_I = rotvec(Λ* ∘ Λ̄)``, ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I``.
+    """
     velocity = dw_out is not None
     if velocity:
         exact = [exact_state(m, time, lam0, w0) for m in motions]
@@ -480,15 +498,16 @@ def _compare(theta, motions, time, lam0, w0, error_out, dw_out) -> None:
         lam_true = np.stack([_exact_attitude(m, time, lam0) for m in motions])
         lam = theta
     conj_true = (lam_true[..., 0], -lam_true[..., 1], -lam_true[..., 2], -lam_true[..., 3])
-    err_q = np.stack(_qmul(lam, conj_true), axis=-1)
-    error_out[...] = quat.quat_to_rotvec(err_q, canonical=True, validate=False)
+    # Λ* ∘ Λ̄ is the conjugate of Λ ∘ Λ̄*, so rotvec(Λ* ∘ Λ̄) = −rotvec(Λ ∘ Λ̄*), exactly in
+    # floating point as well (the compiled kernels form it the same way).
+    error_out[...] = -quat.quat_to_rotvec(np.stack(_qmul(lam, conj_true), axis=-1), canonical=True, validate=False)
     if velocity:
         m = tuple(c.du for c in theta)
         lam_bar = (lam[0], -lam[1], -lam[2], -lam[3])
         w_body = _qmul(lam_bar, m)[1:]
         w_inertial = _qmul(m, lam_bar)[1:]
-        dw_out[0] = 2.0 * np.stack(w_body, axis=-1) - np.stack([e.w_body for e in exact])
-        dw_out[1] = 2.0 * np.stack(w_inertial, axis=-1) - np.stack([e.w_inertial for e in exact])
+        dw_out[0] = np.stack([e.w_body for e in exact]) - 2.0 * np.stack(w_body, axis=-1)
+        dw_out[1] = np.stack([e.w_inertial for e in exact]) - 2.0 * np.stack(w_inertial, axis=-1)
 
 
 def _exact_attitude(motion, time, lam0):

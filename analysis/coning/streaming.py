@@ -15,6 +15,10 @@ weights known in advance because the number of steps is.  The accumulator layout
 time, and by :func:`accumulate`, the numpy reference that adds a chunk of an
 error series.
 
+Errors are exact minus algorithm, as in
+:class:`~strapdown.analysis.coning.simulator.SimulationResult`: ``δφ`` is the
+rotation vector of ``Λ* ∘ Λ̄`` in frame I, ``ΔW = W* − W``.
+
 Columns: 0–2 ``Σ (k − n/2) δφ_k``; 3 ``Σ |δφ_k|²``; 4 ``max |δφ_k|²``; 5–7 the
 final ``δφ_n``; 8–10 and 11–13 the final ``ΔW_E``, ``ΔW_I``; 14, 15
 ``max |ΔW_E|²``, ``max |ΔW_I|²``; 16, 17 ``Σ |ΔW_E|²``, ``Σ |ΔW_I|²``.
@@ -43,15 +47,17 @@ class ErrorStatistics:
     steps : ndarray of int, shape (...)
         Steps n of each run (the run covers t = 0 … n H).
     drift : ndarray, shape (..., 3)
-        Least-squares slope of the attitude error ``δφ_I`` against time [rad/s].
+        Least-squares slope of the attitude error ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)``
+        (exact minus algorithm, frame I) against time [rad/s].
     final_error : ndarray, shape (..., 3)
-        ``δφ_I`` at the end of the run [rad].
+        ``δφ_I`` at the end of the run, frame I [rad].
     rms_error : ndarray, shape (...)
         Root mean square of ``|δφ_I|`` over the n + 1 step ends [rad].
     max_error : ndarray, shape (...)
         Largest ``|δφ_I|`` [rad].
     final_dw_body, final_dw_inertial : ndarray, shape (..., 3), or None
-        ``W_E − W_E*`` and ``W_I − W_I*`` at the end [m/s] (velocity runs only).
+        ``ΔW_E = W_E* − W_E`` (frame E) and ``ΔW_I = W_I* − W_I`` (frame I) at the
+        end, exact minus algorithm [m/s] (velocity runs only).
     max_dw_body, max_dw_inertial, rms_dw_body, rms_dw_inertial : ndarray, shape (...), or None
         Largest and root-mean-square ``|ΔW_E|``, ``|ΔW_I|`` [m/s] (velocity runs only).
     """
@@ -102,9 +108,10 @@ def accumulate(sums, first: int, steps, error, dw_body=None, dw_inertial=None) -
     steps : array_like of int, shape (P,)
         Steps n of each run (the fit weights are ``k − n/2``).
     error : ndarray, shape (P, m, 3)
-        Attitude errors ``δφ_I`` at the step indices ``first … first + m − 1`` [rad].
+        Attitude errors ``δφ_I`` (exact minus algorithm, frame I) at the step
+        indices ``first … first + m − 1`` [rad].
     dw_body, dw_inertial : ndarray, shape (P, m, 3), optional
-        ``ΔW_E``, ``ΔW_I`` at the same steps [m/s].
+        ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I`` at the same steps [m/s].
 
     Raises
     ------

@@ -29,6 +29,8 @@ __all__ = [
     "rad",
     "deg_per_h",
     "rad_per_s",
+    "deg_per_sqrt_h",
+    "micro_g_per_sqrt_hz",
 ]
 
 SECONDS_PER_HOUR = 3600.0
@@ -116,3 +118,35 @@ def rad_per_s(x):
         The same value(s) [rad/s].
     """
     return x * DEG_PER_H_TO_RAD_PER_S
+
+
+def deg_per_sqrt_h(x):
+    """Angle random walk rad/√s → deg/√h.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [rad/√s].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [deg/√h].
+    """
+    return deg(x) * math.sqrt(SECONDS_PER_HOUR)
+
+
+def micro_g_per_sqrt_hz(x):
+    """Velocity random walk m/s/√s → µg/√Hz (g the standard gravity).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [m/s/√s].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [µg/√Hz].
+    """
+    return x / STANDARD_GRAVITY * 1e6

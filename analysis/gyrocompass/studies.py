@@ -83,8 +83,9 @@ class BoundCase:
         return GaussianRocking(self.sigma, self.sigma) if self.model == "normal" else SineRocking(self.sigma, self.sigma)
 
 
-def _case(label, model, lat_deg, b0_deg, g0_deg, s_deg):
-    return BoundCase(label, model, rad(lat_deg), rad(b0_deg), rad(g0_deg), rad(s_deg))
+def _case(label, model, *angles):
+    # (latitude, β0, γ0, σ) as the study tables below write them, in degrees
+    return BoundCase(label, model, *(rad(a) for a in angles))
 
 
 #: Cases where the bounds (14), (15) fail, and why.

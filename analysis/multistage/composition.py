@@ -150,6 +150,26 @@ class YawReading:
     series_stage1: np.ndarray
     series_two_stage: np.ndarray
 
+    @property
+    def peak(self) -> float:
+        """The larger of the two peaks, after stage 1 and after two stages [rad]."""
+        return max(self.stage1_peak, self.two_stage_peak)
+
+    def stage1_yaw_at(self, t: float) -> float:
+        """Δψ after stage 1 at one of :attr:`times` [rad]; NaN if ``t`` is not among them.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+
+        Returns
+        -------
+        float
+        """
+        hit = np.flatnonzero(self.times == t)
+        return float(self.stage1_yaw[hit[0]]) if hit.size else float("nan")
+
 
 @dataclass(frozen=True)
 class YawStudy:
@@ -169,6 +189,20 @@ class YawStudy:
     identity: CompositeIdentity
     yaw_rate: float
 
+    def true_yaw(self, t):
+        """The true yaw relative to η at rest, ``Ω sin φ0 t`` [rad].
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time [s].
+
+        Returns
+        -------
+        float or ndarray
+        """
+        return self.yaw_rate * t
+
 
 def yaw_study(scenario: Scenario | None = None, *, step: float = 0.1, times=(600.0, 1000.0, 2000.0, 5000.0), rng=None, engine: str = "compiled") -> YawStudy:
     """Yaw errors of stage 1 and of the composite for both readings of the stage-1 correction.
@@ -178,7 +212,7 @@ def yaw_study(scenario: Scenario | None = None, *, step: float = 0.1, times=(600
     scenario : Scenario, optional
         Default: section 5 with the package's readings.
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     times : sequence of float
         Times at which to report the errors [s] (rounded to the grid).
     rng : numpy.random.Generator, int, SeedSequence or None
@@ -207,4 +241,4 @@ def yaw_study(scenario: Scenario | None = None, *, step: float = 0.1, times=(600
         )
     stage1_all = plotnikov_1999_stages(sc.gravity, sc.earth_radius, stage1_components=(0, 1, 2, 3))[0]
     identity = composite_identity(data, stage1_all, engine=engine)
-    return YawStudy(tuple(readings), identity, float(sc.earth_rate * np.sin(sc.latitude)))
+    return YawStudy(tuple(readings), identity, sc.vertical_earth_rate)

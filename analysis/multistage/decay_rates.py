@@ -181,7 +181,7 @@ def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=
     omega : array_like, shape (3,)
         Body rate [rad/s].
     step : float
-        Integration step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     duration : float, optional
         Run length [s]; default ``14 / rest_rate``.
     z0 : array_like, shape (4,)
@@ -247,7 +247,7 @@ def rate_checks(cases, *, step: float = 0.5, periods: float = 14.0) -> tuple:
     cases : sequence of (k, l, omega)
         Gains [1/s], [1/s²] and body rate [rad/s].
     step : float
-        Integration step of the simulation [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     periods : float
         Length of the simulation in units of ``1/exact rate``.
 

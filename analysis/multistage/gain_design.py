@@ -65,6 +65,7 @@ __all__ = [
     "initial_rate_transient",
     "DesignCheck",
     "check_design",
+    "largest_design_difference",
 ]
 
 _ANGLE = {"external": 1.0, "tilt": 1.0, "pure": 2.0}
@@ -474,7 +475,7 @@ def check_error_budget(budget: SchulerErrorBudget, *, duration: float = 6000.0, 
     duration : float
         Length of the run [s].
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
 
     Returns
     -------
@@ -514,7 +515,7 @@ def static_tilt_estimate(stage: Stage, tilt: float = 0.1, *, duration: float = 6
     duration : float
         Length of the run [s].
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
 
     Returns
     -------
@@ -631,7 +632,7 @@ def check_design(gains: StageGains, *, tilt: float = 0.01, duration: float = 150
     duration : float
         Length of the run [s].
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
 
     Returns
     -------
@@ -658,3 +659,19 @@ def check_design(gains: StageGains, *, tilt: float = 0.01, duration: float = 150
     sim = res.errors[0, :, 1]
     pred = -pitch * np.asarray(control.step_response(gains.loop(sc.gravity, sc.earth_radius).gyro_highpass(), T=res.time).outputs, dtype=float).reshape(-1)
     return DesignCheck(gains, res.time, sim, pred, float(np.abs(sim - pred).max()))
+
+
+def largest_design_difference(checks) -> float:
+    """The largest difference between a simulated designed stage and its loop, over several checks [rad].
+
+    Parameters
+    ----------
+    checks : sequence of DesignCheck
+        From :func:`check_design`.
+
+    Returns
+    -------
+    float
+        ``max`` of their :attr:`DesignCheck.max_difference`; NaN for none.
+    """
+    return max((c.max_difference for c in checks), default=float("nan"))

@@ -22,15 +22,28 @@ gives the linearised loops of the printed gains.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 
 from ..core import montecarlo
+from ..core.validation import positive
 from .stages import plotnikov_1999_stages, run_multistage
-from .tilt_loop import StageLoop
+from .tilt_loop import AccelSensitivity, StageLoop, acceleration_sensitivity
 from .trajectory import Scenario, sample
 
-__all__ = ["Reading", "ReadingResult", "standard_readings", "run_readings", "NamedLoop", "section5_loops"]
+__all__ = [
+    "Reading",
+    "ReadingResult",
+    "standard_readings",
+    "run_readings",
+    "PaperComparison",
+    "compare_with_paper",
+    "printed_envelope_at_rocking_start",
+    "NamedLoop",
+    "section5_loops",
+    "schuler_detuning",
+]
 
 
 def _section5():
@@ -167,6 +180,27 @@ class ReadingResult:
     yaw_at_switch: tuple
     time_of_peak: tuple = field(default=())
 
+    @property
+    def roll_ratio(self) -> float:
+        """Stage-1 roll peak over the two-stage roll peak: the reduction by stage 2 [-]."""
+        return self.peaks[0].roll / self.peaks[-1].roll
+
+    def peak_change(self, other: ReadingResult) -> float:
+        """Largest relative change of the two-stage yaw, pitch and roll peaks from this reading to ``other`` [-].
+
+        Parameters
+        ----------
+        other : ReadingResult
+            The other reading.
+
+        Returns
+        -------
+        float
+            ``max |other / self − 1|`` over the three angles after the last stage.
+        """
+        change = other.peaks[-1].relative_to(self.peaks[-1])
+        return float(max(abs(change.yaw), abs(change.pitch), abs(change.roll)))
+
 
 def run_readings(readings=None, *, base: Scenario | None = None, step: float = 0.2, rng=None, progress=None) -> tuple:
     """Simulate every reading (each distinct scenario is sampled once).
@@ -178,7 +212,7 @@ def run_readings(readings=None, *, base: Scenario | None = None, step: float = 0
     base : Scenario, optional
         Scenario the readings modify; default :class:`Scenario`.
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     rng : numpy.random.Generator, int, SeedSequence or None
         Sensor-noise source (the same stream for every reading).
     progress : callable, optional
@@ -208,6 +242,75 @@ def run_readings(readings=None, *, base: Scenario | None = None, step: float = 0
         t_peak = tuple(tuple(float(data.time[j]) for j in abs_err[s].argmax(axis=0)) for s in range(abs_err.shape[0]))
         out.append(ReadingResult(r, res.peaks(), (float(res.errors[0, i, 0]), float(res.errors[1, i, 0])), t_peak))
     return tuple(out)
+
+
+class PaperComparison(NamedTuple):
+    """What the readings decide against the printed results of section 5.
+
+    Attributes
+    ----------
+    stage1_pitch_near : tuple of ReadingResult
+        Readings whose stage-1 pitch peak is within ``tolerance`` of the printed one.
+    above_bound : tuple of ReadingResult
+        Readings whose two-stage pitch peak exceeds the printed bound.
+    roll_ratio_range : tuple of float
+        Smallest and largest :attr:`ReadingResult.roll_ratio` of the consistent
+        readings (rotating Earth, the Earth's rate, integral not rescaled).
+    earlier_truth : ReadingResult or None
+        The reading of the earlier truth model (no Coriolis force), if run.
+    tolerance : float
+        Relative distance from the printed stage-1 pitch counted as near.
+    """
+
+    stage1_pitch_near: tuple
+    above_bound: tuple
+    roll_ratio_range: tuple
+    earlier_truth: ReadingResult | None
+    tolerance: float
+
+
+def compare_with_paper(results, *, tolerance: float = 0.2) -> PaperComparison:
+    """Set the readings against the printed stage-1 pitch, two-stage bound and roll reduction.
+
+    Parameters
+    ----------
+    results : sequence of ReadingResult
+        From :func:`run_readings`.
+    tolerance : float, keyword-only
+        Relative distance from the printed stage-1 pitch peak counted as near [-].
+
+    Returns
+    -------
+    PaperComparison
+
+    References
+    ----------
+    Plotnikov (1999), section 5 (:data:`strapdown.derivations.multistage.published.PAPER`).
+    """
+    from ...derivations.multistage.published import PAPER
+
+    results = tuple(results)
+    tolerance = positive(tolerance, "tolerance")
+    pitch1, bound = PAPER.stage1_pitch_peak.value, PAPER.two_stage_pitch_bound.value
+    near = tuple(r for r in results if abs(r.peaks[0].pitch / pitch1 - 1.0) < tolerance)
+    over = tuple(r for r in results if r.peaks[-1].pitch > bound)
+    consistent = [r.roll_ratio for r in results if r.reading.truth == "rotating-earth" and r.reading.earth_rate is None and r.reading.switch != "rescale"]
+    span = (min(consistent), max(consistent)) if consistent else (float("nan"), float("nan"))
+    old = next((r for r in results if r.reading.truth == "no-coriolis"), None)
+    return PaperComparison(near, over, span, old, tolerance)
+
+
+def printed_envelope_at_rocking_start() -> float:
+    """The rocking envelope as printed, ``exp(−d(t − 600))`` with no onset, just after rocking starts [-].
+
+    Returns
+    -------
+    float
+        ``E`` at the printed start of rocking: far below any effect (no rocking at all).
+    """
+    s5 = _section5()
+    printed = Scenario(rocking_decay_origin=s5.envelope_origin, rocking_onset=0.0)
+    return float(printed.envelope(s5.rest_end + 1e-9))
 
 
 @dataclass(frozen=True)
@@ -253,3 +356,38 @@ def section5_loops(gravity: float = 9.81, earth_radius: float = 6.371e6) -> tupl
         NamedLoop("stage 2 from 600 s: Schuler k = 0, l = g/R", StageLoop.schuler(gravity, earth_radius)),
         NamedLoop("stage 2 with the printed l = 1.24e-3 s⁻²", StageLoop(*PRINTED_GAINS.stage2_after, gravity, earth_radius)),
     )
+
+
+def schuler_detuning(gravity: float = 9.81, earth_radius: float = 6.371e6, *, detuning: float = 0.01, damping_gain: float = 1e-3) -> tuple:
+    """How the tilt loop answers a horizontal acceleration at and near Schuler tuning, and with the printed gains.
+
+    The acceleration is the printed one of section 5 (20 m/s² for 20 s).  At
+    ``k = 0, l = g/R`` (3.11) the loop does not answer it; any other gains do.
+
+    Parameters
+    ----------
+    gravity : float
+        g [m/s²].
+    earth_radius : float
+        R [m].
+    detuning : float, keyword-only
+        Relative change of l away from g/R of the second row [-].
+    damping_gain : float, keyword-only
+        k of the damped third row [1/s].
+
+    Returns
+    -------
+    tuple of AccelSensitivity
+        ``(0, g/R)``; ``(0, (1 + detuning) g/R)``; ``(damping_gain, g/R)``;
+        stage 1 and stage 2 before the switch as printed.
+    """
+    from ...derivations.multistage.published import PRINTED_GAINS
+
+    s5 = _section5()
+    schuler = StageLoop.schuler(gravity, earth_radius).l
+    detuned = (1.0 + detuning) * gravity / earth_radius
+    gains = [(0.0, schuler), (0.0, detuned), (damping_gain, schuler), PRINTED_GAINS.stage1, PRINTED_GAINS.stage2_before]
+    out: list[AccelSensitivity] = []
+    for k, l in gains:
+        out.append(acceleration_sensitivity(StageLoop(k, l, gravity, earth_radius), s5.accel, s5.accel_duration))
+    return tuple(out)

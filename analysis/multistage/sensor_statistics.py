@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ...derivations.multistage.published import SECTION5
 from ..core import montecarlo
 from ..core.validation import as_int, nonnegative, positive
 from .sensors import SensorData, SensorErrors, corrupt
@@ -35,6 +36,9 @@ _QUANTITIES = ("yaw", "pitch", "roll", "tilt")
 @dataclass(frozen=True)
 class SensorErrorStatistics:
     """Statistics of the sensor errors, per axis (independent axes).
+
+    The sizes default to those printed in Plotnikov (1999), section 5
+    (:data:`strapdown.derivations.multistage.published.SECTION5`).
 
     Parameters
     ----------
@@ -60,10 +64,10 @@ class SensorErrorStatistics:
     [0.001, 0.001, 0.001]
     """
 
-    gyro_drift: float = 0.5e-7
-    accel_bias: float = 1e-3
-    gyro_scale: float = 1e-5
-    accel_scale: float = 1e-5
+    gyro_drift: float = SECTION5.gyro_drift
+    accel_bias: float = SECTION5.accel_bias
+    gyro_scale: float = SECTION5.scale_factor_error
+    accel_scale: float = SECTION5.scale_factor_error
     gyro_noise: float = 0.0
     accel_noise: float = 0.0
     distribution: str = "normal"
@@ -95,22 +99,22 @@ class SensorErrorStatistics:
         -------
         SensorErrorStatistics
         """
-        from ...derivations.multistage.published import SECTION5
-
         return cls(SECTION5.gyro_drift, SECTION5.accel_bias, SECTION5.scale_factor_error, SECTION5.scale_factor_error, gyro_noise, accel_noise, distribution)
 
-    def draw(self, rng) -> SensorErrors:
+    def draw(self, rng=None) -> SensorErrors:
         """One draw of the sensor errors.
 
         Parameters
         ----------
-        rng : numpy.random.Generator
-            Source of the draw (12 numbers, in a fixed order).
+        rng : numpy.random.Generator, int or None
+            Source of the draw (12 numbers, in a fixed order); a Generator is
+            used as it is, a seed or None (fresh entropy) makes one.
 
         Returns
         -------
         SensorErrors
         """
+        rng = np.random.default_rng(rng)
         if self.distribution == "normal":
             u = rng.standard_normal(12)
         else:
@@ -193,6 +197,24 @@ class PeakStatistics:
     statistics: SensorErrorStatistics
     seed_entropy: int
 
+    def spread(self, stage: int | None = None) -> float:
+        """Largest distance of a percentile of the yaw, pitch or roll peak from the error-free run [rad].
+
+        Parameters
+        ----------
+        stage : int, optional
+            Stage number, 1-based; default the last stage.
+
+        Returns
+        -------
+        float
+            ``max |percentile − nominal|`` over the levels and the three angles.
+        """
+        s = self.nominal.shape[0] - 1 if stage is None else as_int(stage, "stage", minimum=1) - 1
+        if s >= self.nominal.shape[0]:
+            raise ValueError(f"Expected `stage` in 1..{self.nominal.shape[0]}, got {s + 1}")
+        return float(np.abs(self.percentiles[:, s, :3] - self.nominal[s, :3]).max())
+
     def percentile(self, level: float, stage: int, quantity: str) -> float:
         """One percentile [rad].
 
@@ -243,7 +265,7 @@ def sensor_error_monte_carlo(
     stages : sequence of Stage, optional
         Default :func:`strapdown.analysis.multistage.stages.plotnikov_1999_stages`.
     step : float
-        Grid step [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     levels : sequence of float
         Percentile levels in [0, 100].
     rng : Generator | SeedSequence | int | None

@@ -109,7 +109,7 @@ class SensorData:
     time : ndarray, shape (N+1,)
         Grid t_n = n h [s].
     step : float
-        h [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     gyro : ndarray, shape (N, 3)
         Measured rotation-vector increments of the body over [t_n, t_{n+1}] [rad].
     accel : ndarray, shape (N, 3)

@@ -181,7 +181,7 @@ def stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, ga
     rho : float
         Norm-keeping gain ρ [1/s].
     step : float
-        h [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
 
     Returns
     -------

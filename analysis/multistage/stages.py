@@ -257,7 +257,7 @@ def run_stage(stage: Stage, step, rotation, force=None, *, gravity: float = 9.81
     stage : Stage
         The stage.
     step : float
-        Grid step h [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     rotation : array_like, shape (N, 4)
         Unit quaternion increments of the input frame over each step (the
         body x for stage 1, the frame η^(j) for stage j+1): ``Δq_n`` with
@@ -370,6 +370,35 @@ class StagePeaks(NamedTuple):
     roll: float
     tilt: float
 
+    def over(self, other: StagePeaks) -> StagePeaks:
+        """Component by component ``self / other``: e.g. the reduction of each peak by a second stage.
+
+        Parameters
+        ----------
+        other : StagePeaks
+            The denominators.
+
+        Returns
+        -------
+        StagePeaks
+            Ratios [-].
+        """
+        return StagePeaks(*(a / b for a, b in zip(self, other)))
+
+    def relative_to(self, other: StagePeaks) -> StagePeaks:
+        """Component by component ``self / other − 1`` [-].
+
+        Parameters
+        ----------
+        other : StagePeaks
+            The reference.
+
+        Returns
+        -------
+        StagePeaks
+        """
+        return StagePeaks(*(a / b - 1.0 for a, b in zip(self, other)))
+
 
 @dataclass(frozen=True)
 class MultistageResult:
@@ -431,6 +460,25 @@ class MultistageResult:
         p = np.abs(self.errors[:, sel, :]).max(axis=1)
         tilt = self.tilt()[:, sel].max(axis=1)
         return tuple(StagePeaks(float(a), float(b), float(c), float(d)) for (a, b, c), d in zip(p, tilt))
+
+    def peak_times(self, since: float = 0.0, until: float = np.inf) -> tuple:
+        """When the peaks of :meth:`peaks` occur, after each stage.
+
+        Parameters
+        ----------
+        since, until : float
+            Time window [s].
+
+        Returns
+        -------
+        tuple of StagePeaks
+            Times [s] of the largest |Δψ|, |Δθ|, |Δγ| and tilt (the first, if repeated).
+        """
+        sel = np.flatnonzero((self.time >= since) & (self.time <= until))
+        t = self.time[sel]
+        i = np.abs(self.errors[:, sel, :]).argmax(axis=1)
+        j = self.tilt()[:, sel].argmax(axis=1)
+        return tuple(StagePeaks(float(t[a]), float(t[b]), float(t[c]), float(t[d])) for (a, b, c), d in zip(i, j))
 
 
 def _half(dq):
@@ -564,7 +612,7 @@ def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.0
     stages : sequence of Stage, optional
         Default :func:`plotnikov_1999_stages`.
     step : float
-        Grid step h [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
     rng : numpy.random.Generator, int, SeedSequence or None
         Sensor-noise source.
     engine : {"compiled", "python"}

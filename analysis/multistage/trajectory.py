@@ -69,6 +69,8 @@ __all__ = [
     "Truth",
     "eta_azimuth",
     "truth",
+    "CoriolisTerm",
+    "coriolis_term",
     "grid",
     "sample",
     "ResidualCheck",
@@ -197,6 +199,11 @@ class Scenario:
     def schuler_frequency(self) -> float:
         """Schuler frequency ``√(g/R)`` [rad/s]."""
         return float(np.sqrt(self.gravity / self.earth_radius))
+
+    @property
+    def vertical_earth_rate(self) -> float:
+        """``Ω sin φ0``: the rate at which the true yaw relative to η grows at rest [rad/s]."""
+        return float(self.earth_rate * np.sin(self.latitude))
 
     @property
     def events(self) -> tuple:
@@ -397,6 +404,43 @@ def truth(scenario: Scenario, t) -> Truth:
     return Truth(lam, mu, angles, f_body, f_geo, lat, vel, wander)
 
 
+class CoriolisTerm(NamedTuple):
+    """The Coriolis part of the specific force of the northward motion (:func:`coriolis_term`).
+
+    Attributes
+    ----------
+    time : float
+        t [s].
+    velocity : float
+        Northward ground speed V [m/s].
+    acceleration : float
+        ``2Ω sin φ V``, the magnitude of the east specific force it needs [m/s²].
+    """
+
+    time: float
+    velocity: float
+    acceleration: float
+
+
+def coriolis_term(scenario: Scenario, t: float | None = None) -> CoriolisTerm:
+    """The Coriolis term ``−2Ω sin φ V`` of the east specific force at one time (default: the end of the run).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario.
+    t : float, optional
+        Time [s]; default ``scenario.duration``.
+
+    Returns
+    -------
+    CoriolisTerm
+    """
+    t = scenario.duration if t is None else float(t)
+    end = truth(scenario, np.array([t]))
+    return CoriolisTerm(t, float(end.velocity[0]), float(-end.specific_force_geographic[0, 2]))
+
+
 def _motion(sc: Scenario, t):
     """Position, attitudes relative to ζ and η, and the specific force (everything but λ)."""
     lat = sc.latitude_at(t)
@@ -426,7 +470,7 @@ def grid(scenario: Scenario, step) -> np.ndarray:
     ----------
     scenario : Scenario
     step : float
-        Grid step h [s].
+        Step H [s] of the stage recursion (one sensor sample per step: H = h).
 
     Returns
     -------
@@ -456,7 +500,7 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     ----------
     scenario : Scenario
     step : float
-        Sampling interval h [s]; must divide the duration and put every event on the grid.
+        Step H = h [s] (one sensor sample per step); must divide the duration and put every event on the grid.
     rng : numpy.random.Generator, int, SeedSequence or None
         Source of the sensor noise (see :func:`strapdown.analysis.multistage.sensors.corrupt`).
 

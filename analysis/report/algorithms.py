@@ -13,10 +13,11 @@ from __future__ import annotations
 import math
 
 from ...derivations.coning import published as P
+from ...derivations.coning.printed_checks import table2_checks
 from ...derivations.coning.registry import names
 from ..coning import budennyi_table3 as T3
 from ..coning import lebedev_panov_table as LP
-from ..coning.formula_one import assignment_scores, column_2_readings, table2_fits
+from ..coning.formula_one import assignment_scores, best_alternative, column_2_readings, table2_fits
 from ..coning.local_error import BUDENNYI_BASIS
 from ..coning.order_study import dot_term_study, drift_orders
 from ..coning.precession import RegularPrecession
@@ -39,11 +40,16 @@ ORDER_STUDY_MOTIONS = (RegularPrecession(-1.0, 2 * math.pi, rad(10.0)), RegularP
 def _printed_u_star(algorithm: int) -> str:
     """The printed u* of ``algorithm`` under coning and precession, "a and b"-ready."""
     rows = {r.eps: r for r in P.BUDENNYI_TABLE_3 if r.algorithm == algorithm}
-    return f"{rows[-1.0].u_star:g}", f"{rows[0.5].u_star:g}"
+    return f"{rows[-1.0].u_star_deg_per_h:g}", f"{rows[0.5].u_star_deg_per_h:g}"
 
 
 def _table2(algorithm: int):
     return next(c for c in P.BUDENNYI_TABLE_2 if c.algorithm == algorithm)
+
+
+def _printed_products(algorithm: int) -> tuple:
+    """δ4 · k of a printed column of Table 2 (the invariant the text compares)."""
+    return next(c for c in table2_checks() if c.algorithm == algorithm).printed_products
 
 
 def _signed(k) -> str:
@@ -99,9 +105,10 @@ def _intro() -> list:
         "Every number here is computed by the simulator (`strapdown.analysis.coning.simulator.simulate`): the algorithm is",
         "driven by the exact increments (2.1) of the regular precession (4.1) or its dual analogue (4.2)–(4.3),",
         "and the attitude Λ (or the biquaternion θ = Λ + sM) it computes is compared with the closed-form",
-        "solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989). The attitude error is the rotation vector",
-        "$\\delta\\varphi_I = \\mathrm{rotvec}(\\Lambda_{alg} \\circ \\bar\\Lambda)$ in frame I; the constant drift rate is the norm",
-        "of its least-squares slope over the run. $|\\Delta W_E|$, $|\\Delta W_I|$ are taken at the end of the run.",
+        "solution (1.5), (4.4)–(4.5) of Lebedev & Panov (1989). Errors are exact minus algorithm, as everywhere in the",
+        "package: the attitude error is the rotation vector $\\delta\\varphi_I = \\mathrm{rotvec}(\\Lambda_{exact} \\circ \\bar\\Lambda_{alg})$ of the",
+        "error rotation, in frame I, and $\\Delta W = W_{exact} - W_{alg}$; the constant drift rate is the norm of the",
+        "least-squares slope of $\\delta\\varphi_I$ over the run. $|\\Delta W_E|$, $|\\Delta W_I|$ are taken at the end of the run.",
         f"A printed cell counts as reproduced when the relative difference is within {TOLERANCE:.0%}.",
         "",
     ]
@@ -120,8 +127,8 @@ def _table3_section() -> list:
     ]
     for c in cells:
         p = c.printed
-        out.append(f"| panov-4s-{p.algorithm} | {p.eps:g} | {_fmt(deg_per_h(c.simulated))} | {_fmt(p.u_star)} | {_pct(c.relative_difference)} | {_fmt(p.u_a)} |")
-    n_ok = sum(abs(c.relative_difference) <= TOLERANCE for c in cells)
+        out.append(f"| panov-4s-{p.algorithm} | {p.eps:g} | {_fmt(deg_per_h(c.simulated))} | {_fmt(p.u_star_deg_per_h)} | {_pct(c.relative_difference)} | {_fmt(p.u_a_deg_per_h)} |")
+    n_ok = sum(c.reproduced(TOLERANCE) for c in cells)
     out += ["", f"{n_ok} of {len(cells)} cells reproduced within {TOLERANCE:.0%}.", ""]
     return out
 
@@ -144,7 +151,7 @@ def _mapping_section() -> list:
     for s in sorted(scores, key=lambda s: (-s.hits_corrected, -s.hits_as_printed, s.assignment.label)):
         mark = " (registry)" if s.assignment.is_registry else ""
         out.append(f"| {s.assignment.label}{mark} | {'yes' if s.satisfies_sum_rule else 'no'} | {s.hits_as_printed}/10 | {s.hits_corrected}/10 |")
-    best_other = max(s.hits_corrected for s in scores if not s.assignment.is_registry)
+    best_other = best_alternative(scores).hits_corrected
     ident = next(s for s in scores if s.assignment.is_registry)
     col2 = column_2_readings()
     u_c, u_p = _printed_u_star(2)
@@ -184,7 +191,7 @@ def _table2_section() -> list:
         "",
         f"The corrected algorithm 2 matches every printed k (k12 = {t2.k[1]}); the printed column gives k12 = {fits['Table 1 column 2 as printed'].fitted_k[1]:.0f}.",
         f"For algorithm 4 the printed k002 = {t4.k[2]} and k0001 = {_signed(t4.k[4])} disagree with the fit ({k4[2]:.0f}, {_signed(round(k4[4]))}); the",
-        f"degree-3 and degree-4 coefficients are common to all five algorithms (δ4 k002 = {_table2(3).delta * _table2(3).k[2]} = {k4[2]:.0f}/{t4.delta.denominator}),",
+        f"degree-3 and degree-4 coefficients are common to all five algorithms (δ4 k002 = {_printed_products(3)[2]} = {k4[2]:.0f}/{t4.delta.denominator}),",
         f"so {t4.k[2]} is a misprint of {k4[2]:.0f}.",
         "",
     ]
@@ -286,19 +293,18 @@ def _lp6_section() -> list:
         "| Algorithm | local-error exponents |",
         "|---|---|",
     ]
-    rows = dot_term_study()
-    for r in rows:
+    study = dot_term_study()
+    for r in study.rows:
         out.append(f"| {r.algorithm} | {', '.join(f'{e:.2f}' for e in r.exponents)} |")
-    printed, no_dot = (r.local_order for r in rows[2:4])
     verdict = (
         "The printed form is correct and the registry keeps it."
-        if printed == 7
+        if study.printed_is_sixth_order
         else "The printed form is NOT sixth order: the registry entry needs correcting."
     )
     out += [
         "",
-        f"The term as printed gives local order {printed} (a global order of {printed - 1}); without its",
-        f"dot-product part the local order is {no_dot}. {verdict}",
+        f"The term as printed gives local order {study.printed.local_order} (a global order of {study.printed.order}); without its",
+        f"dot-product part the local order is {study.without_dot.local_order}. {verdict}",
         "",
     ]
     return out
@@ -407,7 +413,7 @@ def _table2_erratum(fits) -> Erratum:
         f"k002 = {t4.k[2]}, k0001 = {_signed(t4.k[4])} (δ4 = {t4.delta})",
         f"k002 = {k4[2]:.0f}, k0001 = {_signed(round(k4[4]))}",
         f"The local error fitted on a tumbling motion gives k002 = {k4[2]:.2f}, k0001 = {k4[4]:.2f} (k03 = {k4[0]:.2f}, k110 = {k4[3]:.2f} match the print); "
-        f"these two coefficients are common to every algorithm that meets the second-order condition ({_table2(3).delta * _table2(3).k[2]} = {k4[2]:.0f}/{t4.delta.denominator}).",
+        f"these two coefficients are common to every algorithm that meets the second-order condition ({_printed_products(3)[2]} = {k4[2]:.0f}/{t4.delta.denominator}).",
         "algorithms",
         kind="misprint",
     )

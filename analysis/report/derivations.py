@@ -25,8 +25,8 @@ from ...derivations.coning.printed_checks import eq_2_4_check, structure_functio
 from ...derivations.coning.registry import get, names
 from ...derivations.coning.series_summary import drift_coefficients, exact_increment, local_error_summary, structure_summary
 from ..coning import budennyi_loads as L45
-from ..coning.budennyi_table3 import drift_estimates, leading_estimates
-from ..coning.computational_load import TIME_BASES, LoadModel, operation_count, quaternion_update, quaternion_update_count
+from ..coning.budennyi_table3 import drift_estimates, leading_estimates, table3_agreement
+from ..coning.computational_load import quaternion_update, quaternion_update_count
 from ..coning.drift_crosscheck import drift_ratios
 from ..coning.formula_one import column_2_estimates
 from ..coning.precession import RegularPrecession
@@ -195,7 +195,7 @@ def _table2_commentary(checks) -> list:
         "",
         f"Algorithm 2: with Table 1 as printed (a3 = 4/3, i.e. 4/3 (p1×p3 + p2×p4)) the derivation gives k12 = {col2.k12}, not {c2.printed[1]},",
         f"and drift rates of {deg_per_h(col2.asymptotic.coning):.3f} / {deg_per_h(col2.asymptotic.precession):.3f} deg/h against the printed "
-        f"u_a = {t_c.u_a:g} / {t_p.u_a:.3f} and u* = {t_c.u_star:g} / {t_p.u_star:g} (Table 3);",
+        f"u_a = {t_c.u_a_deg_per_h:g} / {t_p.u_a_deg_per_h:.3f} and u* = {t_c.u_star_deg_per_h:g} / {t_p.u_star_deg_per_h:g} (Table 3);",
         "the algorithm 4/3 (p1×p4 + p2×p3), i.e. a1 = a2 = 4/3, reproduces Table 2, u_a and u*. The registry uses it",
         "(errata: see the algorithms section). The reconstructed formula (1) (a1 → p2×p3, a2 → p1×p4,",
         "a3 → p1×p3 + p2×p4, a4 → p1×p2 + p3×p4) is otherwise confirmed: among all assignments of sets of pair",
@@ -308,30 +308,28 @@ def _table3_table() -> list:
     for r in rows:
         p = r.printed
         ours = deg_per_h(r.asymptotic)
-        ratio = "–" if p.u_a is None else f"{1 + r.asymptotic_vs_printed:.4f}"
+        ratio = "–" if p.u_a_deg_per_h is None else f"{1 + r.asymptotic_vs_printed:.4f}"
         pl = "–" if r.mid_step is None else f"{deg_per_h(r.mid_step):.4g}"
-        ua = "–" if p.u_a is None else f"{p.u_a:.3g}"
+        ua = "–" if p.u_a_deg_per_h is None else f"{p.u_a_deg_per_h:.3g}"
         lines.append(
-            f"| {p.algorithm} | {p.eps:g} | {r.order} | {p.u_star:.3g} | {deg_per_h(r.simulated):.4g} | {ua} | {ours:.4g} | {ratio} | {deg_per_h(r.series):.4g} | {pl} |"
+            f"| {p.algorithm} | {p.eps:g} | {r.order} | {p.u_star_deg_per_h:.3g} | {deg_per_h(r.simulated):.4g} | {ua} | {ours:.4g} | {ratio} | {deg_per_h(r.series):.4g} | {pl} |"
         )
     lines += _table3_commentary(rows)
     return lines
 
 
 def _table3_commentary(rows) -> list:
-    worst4 = max(abs(r.asymptotic_vs_printed) for r in rows if r.order == 4 and r.printed.u_a is not None)
-    rho6 = [r for r in rows if r.order == 6]
+    agree = table3_agreement(rows)
+    rho6 = agree.order_6
     sci = lambda values: ", ".join(f"{v:.3g}" for v in values)  # noqa: E731
-    vs_sim = max(abs(r.asymptotic_vs_simulated) for r in rho6)
-    unprinted = [r for r in rows if r.printed.u_a is None]
     lines = [
         "",
-        f"Every printed u_a with ρ = 4 is reproduced within {100 * worst4:.2g} %. For ρ = 6 (coning, algorithms "
+        f"Every printed u_a with ρ = 4 is reproduced within {100 * agree.worst_order_4:.2g} %. For ρ = 6 (coning, algorithms "
         f"{', '.join(str(r.printed.algorithm) for r in rho6)}) the derived u_a ({sci(deg_per_h(r.asymptotic) for r in rho6)}) agrees with the printed "
-        f"simulation u* ({sci(r.printed.u_star for r in rho6)}) and with ours within {100 * vs_sim:.1f} %; the printed u_a "
-        f"({sci(r.printed.u_a for r in rho6)}) are compared with both estimates below.",
+        f"simulation u* ({sci(r.printed.u_star_deg_per_h for r in rho6)}) and with ours within {100 * agree.worst_order_6_vs_simulated:.1f} %; the printed u_a "
+        f"({sci(r.printed.u_a_deg_per_h for r in rho6)}) are compared with both estimates below.",
     ]
-    lines += [f"The u_a of algorithm {r.printed.algorithm} at ε = {r.printed.eps:g}, not printed, is {deg_per_h(r.asymptotic):.4g} deg/h." for r in unprinted]
+    lines += [f"The u_a of algorithm {r.printed.algorithm} at ε = {r.printed.eps:g}, not printed, is {deg_per_h(r.asymptotic):.4g} deg/h." for r in agree.unprinted]
     lines += [""]
     lines += _order6_section()
     return lines
@@ -356,8 +354,8 @@ def _order6_section() -> list:
     for e in est:
         p = e.printed
         lines.append(
-            f"| {p.algorithm} | {p.u_a:.3g} | {deg_per_h(e.mid_step):.4g} | {deg_per_h(e.small_angle):.4g} | {deg_per_h(e.full):.4g} | {deg_per_h(e.transport):+.4g} | "
-            f"{p.u_star:.3g} | {deg_per_h(e.simulated):.4g} | {1 + e.printed_vs_mid_step:.4f} | {1 + e.printed_vs_small_angle:.4f} | {1 + e.printed_vs_full:.4f} |"
+            f"| {p.algorithm} | {p.u_a_deg_per_h:.3g} | {deg_per_h(e.mid_step):.4g} | {deg_per_h(e.small_angle):.4g} | {deg_per_h(e.full):.4g} | {deg_per_h(e.transport):+.4g} | "
+            f"{p.u_star_deg_per_h:.3g} | {deg_per_h(e.simulated):.4g} | {1 + e.printed_vs_mid_step:.4f} | {1 + e.printed_vs_small_angle:.4f} | {1 + e.printed_vs_full:.4f} |"
         )
     three = next(e for e in est if e.printed.algorithm == 3)
     five = next(e for e in est if e.printed.algorithm == 5)
@@ -458,8 +456,8 @@ def _design_section() -> list:
 
 def _load_model_text(model) -> list:
     m = model.m
-    counts = [(c, operation_count(get(f"panov-4s-{c.algorithm}"))) for c in P.BUDENNYI_TABLE_2]
-    same = all((c.additions, c.multiplications) == (n.additions, n.multiplications) for c, n in counts)
+    counts = L45.operation_count_checks()
+    same = all(c.equal for c in counts)
     terms = (2, 3, 4, 5)
     lines = [
         "## 9. Computational load (Tables 4–5)",
@@ -473,7 +471,7 @@ def _load_model_text(model) -> list:
         "  P = Σp in 3(N−1) additions, terms grouped by coefficient, a group that factors by bilinearity as",
         "  $(\\sum \\pm p_i)\\times(\\sum \\pm p_j)$ counted as one cross product). The counts "
         + ("equal Table 2 for all five algorithms: " if same else "differ from Table 2: ")
-        + ", ".join(f"{c.algorithm}: s = {n.additions}, u = {n.multiplications}" for c, n in counts)
+        + ", ".join(f"{c.algorithm}: s = {c.counted[0]}, u = {c.counted[1]}" for c in counts)
         + ".",
         "- **Quaternion update** $\\Lambda \\leftarrow \\Lambda\\circ\\lambda(\\Delta\\varphi)$ with the half-angle series cut after K terms "
         "(`quaternion_update`): "
@@ -519,14 +517,16 @@ def _load_cells_table(rep) -> list:
 
 
 def _load_sensitivity(rep) -> list:
-    fractions = (1.0, 0.1, 0.01)
-    counts = {(tb, f): len(L45.reproduce_loads(model=LoadModel(rep.model.m, tb, f)).hits) for tb in TIME_BASES for f in fractions}
+    cells = L45.load_model_sensitivity((1.0, 0.1, 0.01), m=rep.model.m, tolerance=rep.tolerance)
+    fractions = list(dict.fromkeys(c.truncation_fraction for c in cells))
+    bases = list(dict.fromkeys(c.time_base for c in cells))
+    by = {(c.time_base, c.truncation_fraction): c for c in cells}
     return [
-        "The two rules are parameters of `LoadModel`. Cells within 2 % for other choices:",
+        f"The two rules are parameters of `LoadModel`. Cells within {100 * rep.tolerance:g} % for other choices:",
         "",
         "| time base | " + " | ".join(f"f = {f:g}" for f in fractions) + " |",
         "|---|" + "---|" * len(fractions),
-        *(f"| {'h (sample)' if tb == 'sample' else 'H (step)'} | " + " | ".join(f"{counts[(tb, f)]} of {len(rep.cells)}" for f in fractions) + " |" for tb in TIME_BASES),
+        *(f"| {'h (sample)' if tb == 'sample' else 'H (step)'} | " + " | ".join(f"{by[(tb, f)].hits} of {by[(tb, f)].cells}" for f in fractions) + " |" for tb in bases),
         "",
     ]
 
@@ -552,31 +552,25 @@ def _load_misses(rep) -> list:
 
 
 def _load_comparison(rep) -> list:
-    fits = L45.per_sample_fit()
-    samples = P.BUDENNYI_CONDITIONS.samples
-    m = rep.model.m
+    comp = L45.compare_per_sample_fit(rep, tolerance=rep.tolerance)
     lines = [
         "**Comparison: the earlier reading with fitted constants.** $\\beta = (N\\sigma_{alg} + \\sigma_q)/H_{max}$ with σ_q fitted per motion",
         "to the printed loads:",
         "",
-        "| ε | fitted σ_q per step | per sample (σ_q/N) | cells within 2 % | series terms K of the model | model σ_q |",
+        f"| ε | fitted σ_q per step | per sample (σ_q/N) | cells within {100 * comp.tolerance:g} % | series terms K of the model | model σ_q |",
         "|---|---|---|---|---|---|",
     ]
-    for f in fits:
-        n = sum(abs(c.model / c.printed - 1) <= 0.02 for c in f.cells)
-        ks = sorted({c.row.series_terms for c in rep.cells if c.eps == f.eps})
+    for f, n, ks, costs in zip(comp.fits, comp.within, comp.series_terms, comp.model_costs):
         lines.append(
-            f"| {f.eps:g} | {f.sigma_q:.0f} | {f.sigma_q / samples:g} | {n} of {len(f.cells)} | {', '.join(map(str, ks))} | "
-            f"{', '.join(f'{quaternion_update_count(k).cost(m):g}' for k in ks)} |"
+            f"| {f.eps:g} | {f.sigma_q:.0f} | {f.sigma_q_per_sample:g} | {n} of {len(f.cells)} | {', '.join(map(str, ks))} | "
+            f"{', '.join(f'{c:g}' for c in costs)} |"
         )
-    total = sum(sum(abs(c.model / c.printed - 1) <= 0.02 for c in f.cells) for f in fits)
-    diff = (fits[-1].sigma_q - fits[0].sigma_q) / samples
     lines += [
         "",
-        f"That reading reproduces {total} of {sum(len(f.cells) for f in fits)} loads with two fitted constants. Expressed per sample, the two constants are",
+        f"That reading reproduces {comp.total_within} of {comp.total_cells} loads with two fitted constants. Expressed per sample, the two constants are",
         "the cost of the model's quaternion update at the series length its rule picks for each motion (two terms under coning, where",
-        f"the angle per step is small; four or five under precession, where it is ~0.3 rad), and their difference, {diff:g}, is about two series",
-        f"terms ({2 * (quaternion_update_count(3).cost(m) - quaternion_update_count(2).cost(m)):g}). The ranking of the paper follows: "
+        f"the angle per step is small; four or five under precession, where it is ~0.3 rad), and their difference, {comp.per_sample_difference:g}, is about two series",
+        f"terms ({comp.two_term_cost:g}). The ranking of the paper follows: "
         + _ranking_text(rep)
         + ".",
         "",
@@ -586,14 +580,10 @@ def _load_comparison(rep) -> list:
 
 def _ranking_text(rep) -> str:
     parts = []
-    for eps, motion in ((-1.0, "under coning"), (0.5, "under precession")):
-        model, printed = set(), set()
-        for column in ("β* (T4)", "β* (T5)"):
-            cells = [c for c in rep.cells if c.eps == eps and c.column == column]
-            model.add(min(cells, key=lambda c: c.row.load).algorithm)
-            printed.add(min(cells, key=lambda c: c.printed).algorithm)
-        verdict = "as printed" if model == printed else f"printed: {', '.join(map(str, sorted(printed)))}"
-        parts.append(f"{motion} algorithm {', '.join(map(str, sorted(model)))} is the cheapest in both tables ({verdict})")
+    motions = {-1.0: "under coning", 0.5: "under precession"}
+    for c in L45.cheapest_algorithms(rep):
+        verdict = "as printed" if c.as_printed else f"printed: {', '.join(map(str, c.printed))}"
+        parts.append(f"{motions.get(c.eps, f'at ε = {c.eps:g}')} algorithm {', '.join(map(str, c.model))} is the cheapest in both tables ({verdict})")
     return "; ".join(parts)
 
 
@@ -638,15 +628,14 @@ def _extension(plt, quick: bool):
 
 def _extension_commentary(points) -> list:
     lines = []
-    for eps, motion in ((-1.0, "coning"), (0.5, "precession")):
-        for u in sorted({p.required_drift for p in points}, reverse=True):
-            best = min((p for p in points if p.eps == eps and p.required_drift == u), key=lambda p: p.row.load)
-            lines.append(
-                f"Under {motion} at [u] = {_budget(deg_per_h(u))} deg/h the cheapest is {best.row.algorithm}: {best.row.sample_rate / 1e3:.3g} thousand samples/s, "
-                f"{best.row.load / 1e6:.3g} million operations/s, K = {best.row.series_terms}."
-            )
-    nu_step = max(p.nu_step for p in points)
-    lines.append(f"νH stays below {nu_step:.2g}, where the asymptotic estimate holds to a few per cent (section 7).")
+    motions = {-1.0: "coning", 0.5: "precession"}
+    summary = L45.summarize_designs(points)
+    for best in summary.cheapest:
+        lines.append(
+            f"Under {motions.get(best.eps, f'ε = {best.eps:g}')} at [u] = {_budget(deg_per_h(best.required_drift))} deg/h the cheapest is {best.row.algorithm}: "
+            f"{best.row.sample_rate / 1e3:.3g} thousand samples/s, {best.row.load / 1e6:.3g} million operations/s, K = {best.row.series_terms}."
+        )
+    lines.append(f"νH stays below {summary.largest_nu_step:.2g}, where the asymptotic estimate holds to a few per cent (section 7).")
     return lines
 
 
@@ -679,10 +668,10 @@ def _estimates_text(e) -> str:
 def _table3_algorithm_3(three, five, same: bool) -> Erratum:
     return Erratum(
         "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 3 under coning (ρ = 6)",
-        f"u_a = {three.printed.u_a:.3g} deg/h",
+        f"u_a = {three.printed.u_a_deg_per_h:.3g} deg/h",
         f"the small-cone-angle estimate c ϑ² ν (ν h)⁶ (c = 2/315): {deg_per_h(abs(three.small_angle)):.4g} deg/h, "
         f"{100 * abs(three.printed_vs_small_angle):.2f} % from the print; a legitimate approximation, not a misprint",
-        f"At the Table 3 conditions {_estimates_text(three)}; the full term agrees with the printed u* = {three.printed.u_star:.3g} "
+        f"At the Table 3 conditions {_estimates_text(three)}; the full term agrees with the printed u* = {three.printed.u_star_deg_per_h:.3g} "
         f"and with the simulator ({deg_per_h(three.simulated):.4g} deg/h) within {100 * abs(three.full_vs_simulated):.1f} %. "
         + ("The transport term is the same expression for algorithms 3 and 5 " if same else "The transport terms of algorithms 3 and 5 differ ")
         + f"({deg_per_h(three.transport):.3g} deg/h here), and algorithm 5's printed u_a is its mid-step estimate to "
@@ -698,7 +687,7 @@ def _table3_algorithm_3(three, five, same: bool) -> Erratum:
 def _table3_algorithm_5(five) -> Erratum:
     return Erratum(
         "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (ρ = 6)",
-        f"u_a = {five.printed.u_a:.3g} deg/h",
+        f"u_a = {five.printed.u_a_deg_per_h:.3g} deg/h",
         f"the papers' own estimate, the h⁷ error projected at the middle of the step: {deg_per_h(abs(five.mid_step)):.3g} deg/h, "
         f"{100 * abs(five.printed_vs_mid_step):.1f} % from the print; a legitimate, less accurate approximation, not a misprint",
         "The formula (3) behind u_a is lost in the stored text, which cites Panov (1995) for it, so the text does not decide which estimate "
@@ -706,7 +695,7 @@ def _table3_algorithm_5(five) -> Erratum:
         f"At the Table 3 conditions {_estimates_text(five)}.",
         "derivations",
         kind="ambiguous",
-        alternatives=f"the full leading term, {deg_per_h(abs(five.full)):.3g} deg/h, which agrees with the printed u* = {five.printed.u_star:.3g} "
+        alternatives=f"the full leading term, {deg_per_h(abs(five.full)):.3g} deg/h, which agrees with the printed u* = {five.printed.u_star_deg_per_h:.3g} "
         f"and the simulator ({deg_per_h(five.simulated):.4g} deg/h) within {100 * abs(five.full_vs_simulated):.1f} %: the better estimate, "
         "but not what the print uses.",
     )

@@ -36,7 +36,7 @@ def errata(ctx) -> list:
             "Lebedev & Panov (1989), condition after eq. (1.12)",
             "λ0μ0 − λ1μ1 − λ2μ2 − λ3μ3 = 0",
             "λ0μ0 + λ1μ1 + λ2μ2 + λ3μ3 = 0 (the dual part of |Λ|² = 1)",
-            f"On 200 random dual vectors the biquaternion obtained as the dual extension of the rotation-vector map gives "
+            f"On {c.points} random dual vectors the biquaternion obtained as the dual extension of the rotation-vector map gives "
             f"max |λ·μ| = {c.unit_condition_plus:.1e}, while the printed combination reaches {c.unit_condition_printed:.2f}.",
             "errata",
             kind="misprint",
@@ -56,7 +56,7 @@ def errata(ctx) -> list:
             "Λ° t (ε + cos ϑ)",
             "ν° t (ε + cos ϑ)",
             f"U_I = 2 R ∘ Q̄ computed from the biquaternion (4.4)–(4.5) matches (4.7) read with ν° to {c.u_inertial_error:.1e} m/s "
-            "over t ∈ [0, 100] s (ν° = 10 m/s², ϑ° = 100 m/s).",
+            f"over t ∈ [0, {c.time_span:g}] s (ν° = {c.motion.nu_dual:g} m/s², ϑ° = {c.motion.nutation_dual:g} m/s).",
             "errata",
             kind="misprint",
         ),

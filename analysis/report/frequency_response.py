@@ -14,7 +14,6 @@ import sympy as sp
 
 from ...derivations.coning.drift import X, coning_drift, optimal_coning_algorithm
 from ...derivations.coning.registry import get, names
-from ..coning.drift_theory import coning_drift_function
 from ..coning.frequency_response import CHECK_CONE_ANGLE, QUARTIC_WEIGHT, ROUND_OFF_MARGIN, coning_frequency_response, finite_angle_check
 from ..core.units import DEG
 from . import Section
@@ -96,7 +95,7 @@ def build(ctx) -> None:
     for r in response.responses:
         d = coning_drift(r.algorithm)
         kind = "" if r.algorithm.name in published else " (derived)"
-        value = float(np.asarray(coning_drift_function(r.algorithm)(TABLE_OMEGA_H)))
+        value = r.drift_at(TABLE_OMEGA_H)
         lines.append(
             f"| {r.algorithm.name}{kind} | {r.algorithm.samples} | {r.algorithm.history} | {r.order} | {_fraction(r.coefficient)} | "
             f"{_fraction(d.step_coefficient)} | {value:.3e} | ${sp.latex(d.function, symbol_names={X: 'x'})}$ |"
@@ -119,11 +118,9 @@ def build(ctx) -> None:
                 lines.append(f"| {r.algorithm.name} | {c.omega_h:g} | {c.theory:.4e} | – | {c.note} |")
             else:
                 lines.append(f"| {r.algorithm.name} | {c.omega_h:g} | {c.theory:.4e} | {c.simulated:.4e} | {c.relative_difference:+.1e} |")
-    done = [c for r in response.responses for c in r.simulated_checks]
-    worst = max((abs(c.relative_difference) for c in done), default=float("nan"))
     lines += [
         "",
-        f"{len(done)} points simulated; the largest relative difference is {worst:.1e}.",
+        f"{len(response.simulated_checks)} points simulated; the largest relative difference is {response.largest_relative_difference:.1e}.",
         "",
         "## Where the α² law stops: the α⁴ term",
         "",
@@ -151,7 +148,7 @@ def build(ctx) -> None:
         "|---|---|---|---|---|",
     ]
     for f in finite:
-        rel = "–" if f.simulated is None else f"{f.simulated / f.series - 1:+.1e}"
+        rel = "–" if f.simulated is None else f"{f.simulated_vs_series:+.1e}"
         lines.append(f"| {f.algorithm.name} | {f.closed_form:.3e} | {f.series:.4e} | {_sci(f.simulated)} | {rel} |")
     lines += [
         "",
@@ -190,7 +187,7 @@ def _figure(plt, response, published):
             sims = r.simulated_checks
             if sims:
                 xs = [c.omega_h for c in sims]
-                ys = [abs(c.simulated) / (c.cone_angle**2 * c.nu) for c in sims]
+                ys = [abs(c.simulated_coefficient) for c in sims]
                 ax.loglog(xs, ys, "o", color=color, ms=4, mfc="none")
         ax.set_title(title, fontsize=10)
         ax.grid(True, which="major", alpha=0.3)

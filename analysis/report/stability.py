@@ -40,10 +40,31 @@ def _g(x, digits: int = 3) -> str:
     return f"{x:.{digits}g}" if np.isfinite(x) else "—"
 
 
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _times_ten(x: float) -> str:
+    """A number the way the paper prints it: 1.24·10⁻³, 10⁻³, −3·10⁻²."""
+    mantissa, exponent = f"{abs(x):.9e}".split("e")
+    power = f"10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+    m = float(mantissa)
+    return ("−" if x < 0 else "") + (power if m == 1.0 else f"{m:.9g}·{power}")
+
+
 def _table(header, rows) -> list:
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return out + [""]
+
+
+#: Streams of the section, children of the report seed: the default run, the readings, the yaw study,
+#: the sensor-error Monte Carlo, the printed-formula checks (the rest unused).
+SEED_STREAMS = 8
+_READINGS_STREAM, _FORMULA_STREAM = 1, 4
+
+
+def _seeds(ctx) -> list:
+    return np.random.SeedSequence(ctx.seed).spawn(SEED_STREAMS)
 
 
 class _Run:
@@ -54,7 +75,7 @@ class _Run:
         from ..multistage.trajectory import Scenario
 
         self.ctx = ctx
-        self.seeds = np.random.SeedSequence(ctx.seed).spawn(8)
+        self.seeds = _seeds(ctx)
         self.scenario = Scenario()
         self.step = 0.2 if ctx.quick else 0.04
         self.result = simulate(self.scenario, step=self.step, rng=self.seeds[0])
@@ -112,7 +133,8 @@ def _lyapunov(ctx) -> list:
         "rate = half the slope of log V fitted over the second half of the run):",
         "",
     ]
-    cases = [(0.01, 5e-5, (0.0, 0.0, 0.0)), (0.01, 5e-5, (0.0, 0.01, 0.0)), (0.05, 1e-4, (0.01, 0.0, 0.02))]
+    k1, l1 = PRINTED_GAINS.stage1
+    cases = [(k1, l1, (0.0, 0.0, 0.0)), (k1, l1, (0.0, 0.01, 0.0)), (0.05, 1e-4, (0.01, 0.0, 0.02))]
     checks = rate_checks(cases[1:2] if ctx.quick else cases)
     rows = [(f"{c.k:g}", f"{c.l:g}", "(" + ", ".join(f"{w:g}" for w in c.omega) + ")", f"{c.rest:.4e}", f"{c.exact:.4e}", f"{c.simulated:.4e}", f"{c.guaranteed:.4e}") for c in checks]
     lines += _table(("k [1/s]", "l [1/s²]", "ω [rad/s]", "rest rate (roots)", "exact rate (eigenvalues)", "simulated", "strict-W guarantee"), rows)
@@ -128,7 +150,7 @@ def _lyapunov(ctx) -> list:
 # ---------------------------------------------------------------------------
 def _linearisation(g, r) -> list:
     from ...derivations.multistage.schuler import derive
-    from ..multistage.tilt_loop import StageLoop, acceleration_sensitivity
+    from ..multistage.readings import schuler_detuning
 
     sch = derive()
     lines = [
@@ -163,17 +185,15 @@ def _linearisation(g, r) -> list:
         "any other gains, e.g.:",
         "",
     ]
-    rows = []
-    for k, l in [(0.0, g / r), (0.0, 1.01 * g / r), (1e-3, g / r), PRINTED_GAINS.stage1, PRINTED_GAINS.stage2_before]:
-        s = acceleration_sensitivity(StageLoop(k, l, g, r), SECTION5.accel, SECTION5.accel_duration)
-        rows.append((f"{s.k:g}", f"{s.l:.6g}", f"{s.dc_gain:.4g}", f"{s.peak:.4g}"))
-    return lines + _table(("k [1/s]", "l [1/s²]", "E/A at s = 0 [rad per m/s²]", "peak tilt error, 20 m/s² for 20 s [rad]"), rows)
+    rows = [(f"{s.k:g}", f"{s.l:.6g}", f"{s.dc_gain:.4g}", f"{s.peak:.4g}") for s in schuler_detuning(g, r)]
+    heading = f"peak tilt error, {SECTION5.accel:g} m/s² for {SECTION5.accel_duration:g} s [rad]"
+    return lines + _table(("k [1/s]", "l [1/s²]", "E/A at s = 0 [rad per m/s²]", heading), rows)
 
 
 # ---------------------------------------------------------------------------
 # 3. python-control
 # ---------------------------------------------------------------------------
-def _loops_section(ctx, g, r) -> list:
+def _loops_section(ctx, g, r, schuler_frequency) -> list:
     from ..multistage.readings import section5_loops
     from ..multistage.tilt_loop import complementary_filter
 
@@ -192,10 +212,9 @@ def _loops_section(ctx, g, r) -> list:
         loop = named.loop
         wn, zeta, p = loop.damp()
         poles = ", ".join(f"{z.real:.3g}{z.imag:+.3g}j" for z in p)
-        rows.append(
-            (named.label, f"{loop.k:g}", f"{loop.l:.4g}", poles, ", ".join(_g(z + 0.0) for z in zeta), ", ".join(_g(x) for x in wn), loop.stability, f"{loop.peak_tilt_error(20.0, 20.0):.4g}")
-        )
-    lines += _table(("loop", "K [1/s]", "L [1/s²]", "poles [1/s]", "ζ", "ω_n [rad/s]", "stability", "peak tilt error, 20 m/s² × 20 s [rad]"), rows)
+        peak = loop.peak_tilt_error(SECTION5.accel, SECTION5.accel_duration)
+        rows.append((named.label, f"{loop.k:g}", f"{loop.l:.4g}", poles, ", ".join(_g(z + 0.0) for z in zeta), ", ".join(_g(x) for x in wn), loop.stability, f"{peak:.4g}"))
+    lines += _table(("loop", "K [1/s]", "L [1/s²]", "poles [1/s]", "ζ", "ω_n [rad/s]", "stability", f"peak tilt error, {SECTION5.accel:g} m/s² × {SECTION5.accel_duration:g} s [rad]"), rows)
     filt = complementary_filter(loops[2].loop, np.logspace(-5, 0, 200))
     lines += [
         "Schuler tuning is *marginally* stable (poles $\\pm i\\sqrt{g/R}$): errors present when the gains switch",
@@ -217,18 +236,18 @@ def _loops_section(ctx, g, r) -> list:
     ]
     _root_locus_figure(ctx, loops, g, r)
     _responses_figure(ctx, loops)
-    _bode_figure(ctx, loops, g, r)
+    _bode_figure(ctx, loops, schuler_frequency)
     return lines
 
 
 def _root_locus_figure(ctx, loops, g, r) -> None:
     import matplotlib.pyplot as plt
 
-    from ..multistage.tilt_loop import root_locus_k, root_locus_l
+    from ..multistage.tilt_loop import StageLoop, root_locus_k, root_locus_l
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
     ks = np.concatenate([[0.0], np.logspace(-4, -0.5, 120)])
-    for l, col in [(PRINTED_GAINS.stage1[1], "C0"), (PRINTED_GAINS.stage2_before[1], "C1"), (g / r, "C2")]:
+    for l, col in [(PRINTED_GAINS.stage1[1], "C0"), (PRINTED_GAINS.stage2_before[1], "C1"), (StageLoop.schuler(g, r).l, "C2")]:
         loci = root_locus_k(l, ks).loci
         axes[0].plot(loci.real.ravel(), loci.imag.ravel(), ".", ms=2, color=col, label=f"l = {l:.3g} s⁻², k from 0 to 0.3")
     ls = np.concatenate([[0.0], np.logspace(-7, -3, 120)])
@@ -274,7 +293,7 @@ def _responses_figure(ctx, loops) -> None:
     ctx.savefig(fig, "figures/stability-responses.png")
 
 
-def _bode_figure(ctx, loops, g, r) -> None:
+def _bode_figure(ctx, loops, schuler_frequency) -> None:
     import matplotlib.pyplot as plt
 
     from ..multistage.tilt_loop import complementary_filter
@@ -285,10 +304,10 @@ def _bode_figure(ctx, loops, g, r) -> None:
         f = complementary_filter(named.loop, omega)
         short = named.label.split(" (")[0]
         line = axes[0].loglog(f.omega, f.gyro_magnitude, "-", label=f"gyro high-pass H_g, {short}")[0]
-        axes[1].semilogx(f.omega, np.degrees(f.gyro_phase), "-", color=line.get_color())
+        axes[1].semilogx(f.omega, units.deg(f.gyro_phase), "-", color=line.get_color())
         axes[0].loglog(f.omega, f.accel_magnitude, "--", color=line.get_color(), label=f"accelerometer low-pass H_a, {short}")
-        axes[1].semilogx(f.omega, np.degrees(f.accel_phase), "--", color=line.get_color())
-    axes[0].axvline(np.sqrt(g / r), color="0.5", lw=0.8)
+        axes[1].semilogx(f.omega, units.deg(f.accel_phase), "--", color=line.get_color())
+    axes[0].axvline(schuler_frequency, color="0.5", lw=0.8)
     axes[0].set_ylim(1e-4, 3)
     axes[0].set_ylabel("|H|")
     axes[1].set_ylabel("phase [deg]")
@@ -327,7 +346,7 @@ def _design(ctx, run) -> list:
     ]
     lines += _table(("reference", "requested ω_n [rad/s]", "requested ζ", "c", "k [1/s]", "l [1/s²]", "ω_n of the loop", "ζ of the loop"), rows)
     checks = [gd.check_design(gd.design_gains(1e-2, zeta, reference=ref), duration=1500.0, step=1.0 if ctx.quick else 0.5) for ref in ("pure", "tilt") for zeta in (0.3, 0.7, 1.0)]
-    worst = max(c.max_difference for c in checks)
+    worst = gd.largest_design_difference(checks)
     lines += [
         "Each design simulated — the stage started level on a body pitched by 0.01 rad (ideal sensors, Ω = 0) — decays like its",
         f"loop, the step response of $H_g = s^2/(s^2 + Ks + L)$ from python-control, to {worst:.1e} rad for ζ = 0.3, 0.7, 1 with both",
@@ -404,30 +423,26 @@ def _budget_figure(ctx, check, run) -> None:
 # ---------------------------------------------------------------------------
 def _truth_model(run) -> list:
     from ..multistage import earth
-    from ..multistage.trajectory import Scenario, specific_force_residual
+    from ..multistage.trajectory import Scenario, coriolis_term, specific_force_residual
 
     sc = run.scenario
     good = specific_force_residual(sc)
     bad = specific_force_residual(Scenario(truth="no-coriolis"))
-    from ..multistage.trajectory import truth
-
-    end = truth(sc, np.array([sc.duration]))
-    v_end = float(end.velocity[0])
-    cor = float(-end.specific_force_geographic[0, 2])
+    cor = coriolis_term(sc)
     gh = earth.horizontal_centripetal(sc.latitude, sc.earth_rate, sc.earth_radius)
     return [
         "## 5. The example of section 5",
         "",
         "### Truth model",
         "",
-        "The body moves over a spherical Earth turning at Ω = 7.292115·10⁻⁵ rad/s with plumb-bob gravity g down the radius",
+        f"The body moves over a spherical Earth turning at Ω = {_times_ten(sc.earth_rate)} rad/s with plumb-bob gravity g down the radius",
         "(`analysis/multistage/earth.py`, `trajectory.py`). At rest it is fixed to the Earth; the rocking angles are Krylov angles",
         "relative to the geographic frame (north, up, east); the stages estimate the attitude relative to the azimuth-free",
         "horizontal frame η of section 1, which turns relative to the geographic frame by $-\\int\\Omega\\sin\\varphi\\,dt$ (so the true yaw",
-        f"relative to η grows by Ω sin φ = {sc.earth_rate * np.sin(sc.latitude):.3e} rad/s at rest). The gyros deliver the increments of the exact",
+        f"relative to η grows by Ω sin φ = {sc.vertical_earth_rate:.3e} rad/s at rest). The gyros deliver the increments of the exact",
         "inertial attitude; the accelerometers the mean specific force of the same motion,",
         "$f = \\dot V + (2\\Omega + \\rho)\\times V - g = (\\dot V,\\; g - V^2/R,\\; -2\\Omega\\sin\\varphi\\,V)$ in (north, up, east) —",
-        f"Coriolis and centripetal terms included (at {v_end:g} m/s the Coriolis term is {cor:.3f} m/s²).",
+        f"Coriolis and centripetal terms included (at {cor.velocity:g} m/s the Coriolis term is {cor.acceleration:.3f} m/s²).",
         "",
         "**Residual check.** The inertial velocity of the body, from the geometry alone, must change by the integral of the",
         "specific force (rotated with the true attitude) plus the gravitation $G = -g\\,u + \\Omega\\times(\\Omega\\times r)$. Over",
@@ -443,11 +458,14 @@ def _truth_model(run) -> list:
 
 
 def _printed_envelope_at_start() -> float:
-    """The envelope as printed (origin 600 s, no onset) just after rocking starts."""
-    from ..multistage.trajectory import Scenario
+    from ..multistage.readings import printed_envelope_at_rocking_start
 
-    printed = Scenario(rocking_decay_origin=SECTION5.envelope_origin, rocking_onset=0.0)
-    return float(printed.envelope(SECTION5.rest_end + 1e-9))
+    return printed_envelope_at_rocking_start()
+
+
+def _printed_envelope() -> str:
+    """The printed envelope formula with the printed numbers."""
+    return f"exp(−{SECTION5.envelope_decay:g}(t − {SECTION5.envelope_origin:g}))"
 
 
 def _assumptions(run) -> list:
@@ -455,19 +473,20 @@ def _assumptions(run) -> list:
     return [
         "### Readings (every constant a parameter of `Scenario`, `plotnikov_1999_stages` and `Reading`)",
         "",
-        f"* Timeline as printed: rest at φ0 = 45°, rocking from {sc.rocking_start:g} s, northward {sc.accel:g} m/s² from",
+        f"* Timeline as printed: rest at φ0 = {units.deg(sc.latitude):g}°, rocking from {sc.rocking_start:g} s, northward {sc.accel:g} m/s² from",
         f"  {sc.accel_start:g} s for {sc.accel_duration:g} s then constant velocity, end at {sc.duration:g} s.",
-        "* Rocking envelope, printed $E = \\exp(-0.1(t-600))$ for t = 1000…5000 s, which is "
+        f"* Rocking envelope, printed $E = \\exp(-{SECTION5.envelope_decay:g}(t-{SECTION5.envelope_origin:g}))$ for t = {SECTION5.rest_end:g}…{SECTION5.duration:g} s, which is "
         f"{_printed_envelope_at_start():.1e} when rocking starts. The text cannot decide",
-        "  what was meant; the default (likely reading) puts the origin at the start of rocking, $E = \\exp(-0.1(t - t_r))$, with a",
-        f"  smooth onset $1 - e^{{-(t-t_r)/{sc.rocking_onset:g}\\,\\mathrm{{s}}}}$ (not in the paper) so that the yaw (phase π/2) does not jump by 0.2 rad.",
-        "  $\\exp(-0.001(t-600))$ and the printed form are among the readings below.",
-        "* Sensor errors: scale factors 10⁻³ %; gyro drift 0.5·10⁻⁷ s⁻¹ and accelerometer bias 10⁻³ m/s² with signs (+, −, +)",
+        f"  what was meant; the default (likely reading) puts the origin at the start of rocking, $E = \\exp(-{SECTION5.envelope_decay:g}(t - t_r))$, with a",
+        f"  smooth onset $1 - e^{{-(t-t_r)/{sc.rocking_onset:g}\\,\\mathrm{{s}}}}$ (not in the paper) so that the yaw (phase π/2) does not jump by {SECTION5.rocking_amplitude[0]:g} rad.",
+        f"  $\\exp(-0.001(t-{SECTION5.envelope_origin:g}))$ and the printed form are among the readings below.",
+        f"* Sensor errors: scale factors {_times_ten(100 * SECTION5.scale_factor_error)} %; gyro drift {_times_ten(SECTION5.gyro_drift)} s⁻¹ and accelerometer bias "
+        f"{_times_ten(SECTION5.accel_bias)} m/s² with signs (+, −, +)",
         "  (\"with different signs by component\"); no noise (none is given: the Monte Carlo below draws signs and noise).",
         "* Stage 1: variant 2 without the kinematic term, μ⁺ from (1.9)–(1.10) as section 5 says, corrected on the",
         "  components 1 and 3 with c = 1 (the tilt quaternion carries half angles; the printed c = 2 makes the stage settle at",
-        "  half the tilt — a reading below). Stage 2: (2.1)–(2.2) with (1.4) and c = 2; gains as printed; at 600 s it switches to",
-        "  k⁽¹⁾ = 0, l⁽¹⁾ = g/R (the printed 1.24·10⁻³ is √(g/R)); the integral state is carried through the switch",
+        f"  half the tilt — a reading below). Stage 2: (2.1)–(2.2) with (1.4) and c = 2; gains as printed; at {PRINTED_GAINS.switch_time:g} s it switches to",
+        f"  k⁽¹⁾ = 0, l⁽¹⁾ = g/R (the printed {_times_ten(PRINTED_GAINS.stage2_after[1])} is √(g/R)); the integral state is carried through the switch",
         "  (rescaled and bumpless are readings below). ρ = 1 s⁻¹ (not given). ν(0) = ν₁(0) = 1 as printed.",
         "* Errors are Krylov-angle differences, estimate minus truth, after stage 1 ($\\nu$) and after two stages",
         "  ($\\nu^+ = \\nu_1\\circ\\nu$, (2.6)), as in section 5.",
@@ -477,13 +496,14 @@ def _assumptions(run) -> list:
 
 def _default_result(ctx, run) -> list:
     p1, p2 = run.peaks
-    window = run.result.peaks(since=run.scenario.accel_start, until=run.scenario.accel_start + 600.0)
-    tilt_acc = [w.tilt for w in window]
+    since, until = run.scenario.accel_start, run.scenario.accel_start + 600.0  # the 10 minutes after the acceleration starts
+    w1, w2 = run.result.peaks(since=since, until=until)
+    ratio, window_ratio = p1.over(p2), w1.over(w2)
     lines = [f"### Result (default reading, step {run.step:g} s)", ""]
     rows = [
-        ("after stage 1", _e(p1.yaw), _e(p1.pitch), _e(p1.roll), _e(p1.tilt), _e(tilt_acc[0])),
-        ("after two stages", _e(p2.yaw), _e(p2.pitch), _e(p2.roll), _e(p2.tilt), _e(tilt_acc[1])),
-        ("ratio", f"{p1.yaw / p2.yaw:.2f}", f"{p1.pitch / p2.pitch:.2f}", f"{p1.roll / p2.roll:.2f}", f"{p1.tilt / p2.tilt:.2f}", f"{tilt_acc[0] / tilt_acc[1]:.2f}"),
+        ("after stage 1", _e(p1.yaw), _e(p1.pitch), _e(p1.roll), _e(p1.tilt), _e(w1.tilt)),
+        ("after two stages", _e(p2.yaw), _e(p2.pitch), _e(p2.roll), _e(p2.tilt), _e(w2.tilt)),
+        ("ratio", f"{ratio.yaw:.2f}", f"{ratio.pitch:.2f}", f"{ratio.roll:.2f}", f"{ratio.tilt:.2f}", f"{window_ratio.tilt:.2f}"),
         (
             "paper (section 5)",
             f"{PAPER.yaw_stage1.value:.1e} → {PAPER.yaw_two_stage.value:.1e}",
@@ -493,7 +513,7 @@ def _default_result(ctx, run) -> list:
             "",
         ),
     ]
-    lines += _table(("", "peak \\|Δψ\\| [rad]", "peak \\|Δθ\\| [rad]", "peak \\|Δγ\\| [rad]", "peak tilt [rad]", "peak tilt, 1200 ≤ t ≤ 1800 s [rad]"), rows)
+    lines += _table(("", "peak \\|Δψ\\| [rad]", "peak \\|Δθ\\| [rad]", "peak \\|Δγ\\| [rad]", "peak tilt [rad]", f"peak tilt, {since:g} ≤ t ≤ {until:g} s [rad]"), rows)
     lines += ["![Angle errors after one and two stages](figures/stability-scenario.png)", ""]
     _scenario_figure(ctx, run)
     return lines
@@ -523,28 +543,29 @@ def _scenario_figure(ctx, run) -> None:
 def _remaining_errors(run) -> list:
     from ..multistage import earth
     from ..multistage.gain_design import initial_rate_transient, section5_budget
+    from ..multistage.tilt_loop import schuler_period
 
     sc = run.scenario
     res = run.result
-    after = res.peaks(since=PRINTED_GAINS.switch_time)[1]
-    before = res.peaks(until=PRINTED_GAINS.switch_time)[1]
+    switch = PRINTED_GAINS.switch_time
+    after = res.peaks(since=switch)[1]
+    before = res.peaks(until=switch)[1]
     budget = section5_budget(sc)
     predicted = budget.peaks(sc.duration)
     without = section5_budget(sc, include_centripetal=False).peaks(sc.duration)
     gh = earth.horizontal_centripetal(sc.latitude, sc.earth_rate, sc.earth_radius)
-    i_pitch = int(np.argmax(np.abs(res.errors[1, :, 1])))
+    when = res.peak_times()[1]
     transient = initial_rate_transient(sc)
-    i_roll = int(np.argmax(np.abs(res.errors[1, :, 2])))
     return [
         "### What remains after two stages, quantitatively",
         "",
-        f"* **Pitch** (peak {after.pitch:.3e} rad at t = {res.time[i_pitch]:.0f} s, after the switch): the Schuler-tuned stage 2 answers",
+        f"* **Pitch** (peak {after.pitch:.3e} rad at t = {when.pitch:.0f} s, after the switch): the Schuler-tuned stage 2 answers",
         f"  the unsensed centripetal acceleration {gh:.4f} m/s² as an acceleration the accelerometers miss. Entered settled at",
-        "  600 s, its budget is $\\Delta\\theta = b_1/g - (\\Omega^2R\\sin\\varphi\\cos\\varphi/g)(1 - \\cos\\Omega_s(t - 600))$ with the",
-        f"  x₁ bias $b_1$ = {sc.sensors.accel_bias[0]:g} m/s²: peak {predicted.pitch:.3e} rad, half a Schuler period ({np.pi / sc.schuler_frequency:.0f} s) after the",
-        f"  switch — {abs(predicted.pitch / after.pitch - 1) * 100:.1f} % from the simulation (figure above). Without the centripetal",
+        f"  {switch:g} s, its budget is $\\Delta\\theta = b_1/g - (\\Omega^2R\\sin\\varphi\\cos\\varphi/g)(1 - \\cos\\Omega_s(t - {switch:g}))$ with the",
+        f"  x₁ bias $b_1$ = {sc.sensors.accel_bias[0]:g} m/s²: peak {predicted.pitch:.3e} rad, half a Schuler period ({schuler_period(sc.gravity, sc.earth_radius) / 2:.0f} s) after the",
+        f"  switch — {abs(predicted.relative_to(after).pitch) * 100:.1f} % from the simulation (figure above). Without the centripetal",
         f"  term the budget gives {without.pitch:.1e} rad; with Ω = 0 (readings table) the pitch error falls to the sensor level.",
-        f"* **Roll** (peak {before.roll:.3e} rad at t = {res.time[i_roll]:.0f} s, before the switch): both stages start with an empty",
+        f"* **Roll** (peak {before.roll:.3e} rad at t = {when.roll:.0f} s, before the switch): both stages start with an empty",
         f"  integral while the Earth-fixed body turns at Ω cos φ = {transient.rate:.3e} rad/s about north. The damped stage 2",
         f"  takes that rate into its integral with the drift response of its loop: linear prediction {transient.peak:.3e} rad at",
         f"  t = {transient.time:.0f} s. After the switch the two-stage roll stays below {after.roll:.1e} rad.",
@@ -561,11 +582,11 @@ def _readings(ctx, run) -> tuple:
     readings = standard_readings()
     if ctx.quick:
         readings = (readings[0], readings[5], readings[7])
-    results = run_readings(readings, step=0.2, rng=run.seeds[1], progress=ctx.progress)
+    results = run_readings(readings, step=0.2, rng=run.seeds[_READINGS_STREAM], progress=ctx.progress)
     rows = []
     for r in results:
         p1, p2 = r.peaks
-        rows.append((r.reading.label, _e(p1.yaw, 2), _e(p1.pitch, 2), _e(p1.roll, 2), _e(p2.yaw, 2), _e(p2.pitch, 2), _e(p2.roll, 2), f"{r.yaw_at_switch[0]:+.2e}", f"{p1.roll / p2.roll:.1f}"))
+        rows.append((r.reading.label, _e(p1.yaw, 2), _e(p1.pitch, 2), _e(p1.roll, 2), _e(p2.yaw, 2), _e(p2.pitch, 2), _e(p2.roll, 2), f"{r.yaw_at_switch[0]:+.2e}", f"{r.roll_ratio:.1f}"))
     rows.append(
         (
             "**paper** (section 5)",
@@ -583,41 +604,40 @@ def _readings(ctx, run) -> tuple:
         "### Readings the text leaves open (step 0.2 s)",
         "",
         "Each row changes the default in one place (two rows change a pair). Peaks over the whole run [rad]; the yaw of stage 1",
-        "at the gain switch (600 s) is given because the paper's −3·10⁻² reads best there (see the yaw study); the roll ratio is",
+        f"at the gain switch ({PRINTED_GAINS.switch_time:g} s) is given because the paper's {_times_ten(PAPER.yaw_stage1.value)} reads best there (see the yaw study); the roll ratio is",
         "the stage-1 peak over the two-stage peak.",
         "",
     ]
     lines += _table(
-        ("reading", "stage 1: \\|Δψ\\|", "\\|Δθ\\|", "\\|Δγ\\|", "two stages: \\|Δψ\\|", "\\|Δθ\\|", "\\|Δγ\\|", "stage-1 Δψ at 600 s", "roll ratio"),
+        ("reading", "stage 1: \\|Δψ\\|", "\\|Δθ\\|", "\\|Δγ\\|", "two stages: \\|Δψ\\|", "\\|Δθ\\|", "\\|Δγ\\|", f"stage-1 Δψ at {PRINTED_GAINS.switch_time:g} s", "roll ratio"),
         rows,
     )
     return lines, results
 
 
 def _readings_discussion(results) -> list:
-    pitch1 = PAPER.stage1_pitch_peak.value
-    bound = PAPER.two_stage_pitch_bound.value
-    near = [r.reading.label for r in results if abs(r.peaks[0].pitch / pitch1 - 1.0) < 0.2]
-    over = [f"{r.reading.label} ({r.peaks[1].pitch:.1e} rad)" for r in results if r.peaks[1].pitch > bound]
-    consistent = [r for r in results if r.reading.truth == "rotating-earth" and r.reading.earth_rate is None and r.reading.switch != "rescale"]
-    ratios = [r.peaks[0].roll / r.peaks[1].roll for r in consistent]
-    old = next((r for r in results if r.reading.truth == "no-coriolis"), None)
+    from ..multistage.readings import compare_with_paper
+
+    cmp = compare_with_paper(results)
+    near = [r.reading.label for r in cmp.stage1_pitch_near]
+    over = [f"{r.reading.label} ({r.peaks[1].pitch:.1e} rad)" for r in cmp.above_bound]
+    low, high = cmp.roll_ratio_range
     lines = [
         "What the table decides and what it does not:",
         "",
-        f"* **Stage-1 pitch.** Readings within 20 % of the printed {pitch1:.1e} rad: " + ("; ".join(near) if near else "none") + ". Only a pair of",
-        "  changes (2 m/s² *and* (1.4) for (1.10)) comes close, so the text cannot decide; the printed 20 m/s² with (1.10) stays the default.",
-        f"* **Two-stage pitch.** Above the printed bound {bound:.1e} rad: " + ("; ".join(over) if over else "no reading") + ". Rescaling the",
+        f"* **Stage-1 pitch.** Readings within {100 * cmp.tolerance:g} % of the printed {PAPER.stage1_pitch_peak.value:.1e} rad: " + ("; ".join(near) if near else "none") + ". Only a pair of",
+        f"  changes (2 m/s² *and* (1.4) for (1.10)) comes close, so the text cannot decide; the printed {SECTION5.accel:g} m/s² with (1.10) stays the default.",
+        f"* **Two-stage pitch.** Above the printed bound {PAPER.two_stage_pitch_bound.value:.1e} rad: " + ("; ".join(over) if over else "no reading") + ". Rescaling the",
         "  integral at the switch throws away the Earth rate it holds (an error of order Ω cos φ/Ω_s): the carried or bumpless",
         "  integral is the likely reading.",
-        f"* **Roll.** Reduced {min(ratios):.1f}–{max(ratios):.1f}× by the second stage in the consistent readings (paper: {PAPER.roll_reduction.value:g}×).",
+        f"* **Roll.** Reduced {low:.1f}–{high:.1f}× by the second stage in the consistent readings (paper: {PAPER.roll_reduction.value:g}×).",
     ]
-    if old is not None:
-        lines.append(f"  The earlier truth model's two-stage roll, {old.peaks[1].roll:.1e} rad, came from its own missing Coriolis force, not from the Earth.")
+    if cmp.earlier_truth is not None:
+        lines.append(f"  The earlier truth model's two-stage roll, {cmp.earlier_truth.peaks[1].roll:.1e} rad, came from its own missing Coriolis force, not from the Earth.")
     lines += [
         "* **c.** The printed c = 2 with (1.10) halves the static tilt estimate (below), yet the section-5 peaks hardly tell the",
         "  readings apart because the manoeuvre dominates stage 1: section 5 cannot decide c; c = 1 is the likely reading.",
-        "* **Envelope.** The printed origin (600 s) and the start of rocking (1000 s) give the same peaks (the rocking is gone in",
+        f"* **Envelope.** The printed origin ({SECTION5.envelope_origin:g} s) and the start of rocking ({SECTION5.rest_end:g} s) give the same peaks (the rocking is gone in",
         "  seconds either way); a decay of 10⁻³ s⁻¹ keeps it through the run and raises mainly the stage-1 roll.",
         "",
     ]
@@ -636,7 +656,7 @@ def _yaw(ctx, run) -> list:
     for r in study.readings:
         name = "components 1, 3" if r.components == (1, 3) else "all four components"
         for t, a, b in zip(r.times, r.stage1_yaw, r.two_stage_yaw):
-            rows.append((name, f"{t:.0f}", f"{study.yaw_rate * t:.3e}", f"{a:+.3e}", f"{b:+.3e}"))
+            rows.append((name, f"{t:.0f}", f"{study.true_yaw(t):.3e}", f"{a:+.3e}", f"{b:+.3e}"))
     lines = [
         "### Yaw through the composition",
         "",
@@ -659,14 +679,14 @@ def _yaw(ctx, run) -> list:
         "",
     ]
     lines += _table(("stage 1 corrects", "t [s]", "true yaw Ω sin φ t [rad]", "Δψ after stage 1 [rad]", "Δψ after two stages [rad]"), rows)
-    at_switch = all_four.stage1_yaw[list(all_four.times).index(PRINTED_GAINS.switch_time)] if PRINTED_GAINS.switch_time in list(all_four.times) else float("nan")
+    at_switch = all_four.stage1_yaw_at(PRINTED_GAINS.switch_time)
     lines += [
         f"With all four components the stage-1 yaw error at the gain switch is {at_switch:+.2e} rad — the paper's",
         f"{PAPER.yaw_stage1.value:+.0e} rad — and keeps growing ({all_four.stage1_peak:.2e} rad peak), while after two stages it stays",
         f"below {all_four.two_stage_peak:.1e} rad (paper: {PAPER.yaw_two_stage.value:+.1e}). The all-four reading explains the printed",
         "stage-1 yaw and the reduction by stage 2; it is a likely reading, not decided by the text, and it does not reproduce",
         "the printed two-stage value. With components 1, 3 (default) neither yaw error exceeds "
-        f"{max(horizontal.stage1_peak, horizontal.two_stage_peak):.1e} rad.",
+        f"{horizontal.peak:.1e} rad.",
         "",
         "![Yaw errors for both readings of stage 1](figures/stability-yaw.png)",
         "",
@@ -709,16 +729,15 @@ def _sensor_statistics(ctx, run) -> list:
         "`analysis/multistage/sensor_statistics.py`. Each trial draws, per axis, the gyro drift and the accelerometer bias from",
         f"N(0, σ²) with the printed sizes as σ ({stats.gyro_drift:g} rad/s, {stats.accel_bias:g} m/s²), the scale factors likewise",
         f"(σ = {stats.gyro_scale:g}), and adds white noise: angle random walk {stats.gyro_noise:g} rad/√s "
-        f"({units.deg(stats.gyro_noise) * np.sqrt(units.SECONDS_PER_HOUR):.2g} deg/√h) and velocity",
-        f"random walk {stats.accel_noise:g} m/s/√s ({stats.accel_noise / units.STANDARD_GRAVITY * 1e6:.2g} µg/√Hz) — the paper gives no noise. Trials are seeded in blocks from the",
+        f"({units.deg_per_sqrt_h(stats.gyro_noise):.2g} deg/√h) and velocity",
+        f"random walk {stats.accel_noise:g} m/s/√s ({units.micro_g_per_sqrt_hz(stats.accel_noise):.2g} µg/√Hz) — the paper gives no noise. Trials are seeded in blocks from the",
         "spawn keys of one root seed (`core.montecarlo.collect`, the seeding of the azimuth Monte Carlo), so the peaks are",
         "bit-identical for any chunking and number of workers (tested with two processes).",
         "",
     ]
     lines += _table(("", "peak", "no sensor errors [rad]", *(f"{lv:g} % [rad]" for lv in mc.levels)), rows)
-    spread = float(np.abs(mc.percentiles[:, 1, :3] - mc.nominal[1, :3]).max())
     lines += [
-        f"Sensor errors of the paper's grade move the two-stage peaks by at most {spread:.1e} rad (these percentiles) around the",
+        f"Sensor errors of the paper's grade move the two-stage peaks by at most {mc.spread():.1e} rad (these percentiles) around the",
         "error-free run: the two-stage pitch is set by the Earth's rotation (above), the stage-1 peaks by the manoeuvre.",
         "",
         "![Distribution of the two-stage peak errors](figures/stability-sensor-statistics.png)",
@@ -806,13 +825,13 @@ def build(ctx) -> None:
         "Source: Plotnikov (1999), sections 1–5. Every number below is computed by the package when this report is built;",
         "the paper's values appear only as reference data (`derivations/multistage/published.py`), with their place in the paper.",
         "",
-        f"Constants: g = {g} m/s², R = {r:.0f} m, Schuler frequency √(g/R) = {np.sqrt(g / r):.6e} rad/s, "
+        f"Constants: g = {g} m/s², R = {r:.0f} m, Schuler frequency √(g/R) = {run.scenario.schuler_frequency:.6e} rad/s, "
         f"Schuler period 2π√(R/g) = {tsch:.1f} s ({tsch / 60:.2f} min). Latitude {units.deg(run.scenario.latitude):g}°.",
         "",
     ]
     lines += _lyapunov(ctx)
     lines += _linearisation(g, r)
-    lines += _loops_section(ctx, g, r)
+    lines += _loops_section(ctx, g, r, run.scenario.schuler_frequency)
     lines += _design(ctx, run)
     lines += _truth_model(run)
     lines += _assumptions(run)
@@ -848,20 +867,21 @@ def errata(ctx) -> list:
     from ..multistage.readings import run_readings, standard_readings
     from ..multistage.stages import Stage
     from ..multistage.tilt_loop import StageLoop
+    from ..multistage.trajectory import Scenario
 
-    c = check_printed_formulas(rng=np.random.SeedSequence(ctx.seed).spawn(1)[0])
+    seeds = _seeds(ctx)
+    c = check_printed_formulas(rng=seeds[_FORMULA_STREAM])
     std = standard_readings()
     default, printed_env, slow_env, accel2, accel2_pure, printed_c, all_four, rescale, bumpless = run_readings(
-        (std[0], std[1], std[2], std[3], std[5], std[6], std[7], std[9], std[10]), step=0.2, rng=ctx.seed
+        (std[0], std[1], std[2], std[3], std[5], std[6], std[7], std[9], std[10]), step=0.2, rng=seeds[_READINGS_STREAM]
     )
-
-    def two_stage_change(other):
-        a, b = np.array(default.peaks[1][:3]), np.array(other.peaks[1][:3])
-        return float(np.abs(b / a - 1.0).max())
-
     tilt = derive_tilt()
-    g, r = 9.81, 6.371e6
+    sc = Scenario()
+    g, r = sc.gravity, sc.earth_radius
+    schuler_l = StageLoop.schuler(g, r).l
+    printed_l = PRINTED_GAINS.stage2_after[1]
     peak_printed = StageLoop(*PRINTED_GAINS.stage2_after, g, r).peak_tilt_error(SECTION5.accel, SECTION5.accel_duration)
+    switch = PRINTED_GAINS.switch_time
     k1, l1 = PRINTED_GAINS.stage1
     half = static_tilt_estimate(Stage.constant(k1, l1, "tilt", c=2.0), 0.1)
     whole = static_tilt_estimate(Stage.constant(k1, l1, "tilt", c=1.0), 0.1)
@@ -877,26 +897,26 @@ def errata(ctx) -> list:
             kind="misprint",
         ),
         Erratum(
-            "Plotnikov (1999), section 5, l⁽¹⁾ after 600 s",
-            "l⁽¹⁾ = (1.24·10⁻³) s⁻²",
-            f"l⁽¹⁾ = (1.24·10⁻³)² = g/R = {g / r:.4e} s⁻² (the square was lost)",
+            f"Plotnikov (1999), section 5, l⁽¹⁾ after {switch:g} s",
+            f"l⁽¹⁾ = ({_times_ten(printed_l)}) s⁻²",
+            f"l⁽¹⁾ = ({_times_ten(printed_l)})² = g/R = {schuler_l:.4e} s⁻² (the square was lost)",
             f"Decided by the paper's own condition: the text says the Schuler conditions hold, which (3.11) makes l = g/R; "
-            f"√(g/R) = {np.sqrt(g / r):.5e} s⁻¹ is the printed number. With the printed value the linearised stage's peak tilt error "
-            f"for 20 m/s² over 20 s is {peak_printed:.3g} rad instead of 0.",
+            f"√(g/R) = {sc.schuler_frequency:.5e} s⁻¹ is the printed number. With the printed value the linearised stage's peak tilt error "
+            f"for {SECTION5.accel:g} m/s² over {SECTION5.accel_duration:g} s is {peak_printed:.3g} rad instead of 0.",
             "stability",
             kind="misprint",
         ),
         Erratum(
             "Plotnikov (1999), section 5, rocking envelope",
-            "E = exp(−0.1(t − 600)) for t = 1000…5000 s",
-            "likely reading: E = exp(−0.1(t − 1000)), the origin at the start of rocking (default)",
-            f"The text cannot decide: as printed E(1000 s) = {_printed_envelope_at_start():.1e}, i.e. no rocking at all. Against the default, the "
-            f"two-stage peak errors change by at most {100 * two_stage_change(printed_env):.1f} % with the printed form and "
-            f"{100 * two_stage_change(slow_env):.1f} % with exp(−0.001(t − 600)) (readings table of the stability report).",
+            f"E = {_printed_envelope()} for t = {SECTION5.rest_end:g}…{SECTION5.duration:g} s",
+            f"likely reading: E = exp(−{SECTION5.envelope_decay:g}(t − {SECTION5.rest_end:g})), the origin at the start of rocking (default)",
+            f"The text cannot decide: as printed E({SECTION5.rest_end:g} s) = {_printed_envelope_at_start():.1e}, i.e. no rocking at all. Against the default, the "
+            f"two-stage peak errors change by at most {100 * default.peak_change(printed_env):.1f} % with the printed form and "
+            f"{100 * default.peak_change(slow_env):.1f} % with exp(−0.001(t − {SECTION5.envelope_origin:g})) (readings table of the stability report).",
             "stability",
             kind="ambiguous",
             alternatives=(
-                f"exp(−0.1(t − 600)) as printed (stage-1 roll peak {printed_env.peaks[0].roll:.2e} rad); exp(−0.001(t − 600)), rocking through the run "
+                f"{_printed_envelope()} as printed (stage-1 roll peak {printed_env.peaks[0].roll:.2e} rad); exp(−0.001(t − {SECTION5.envelope_origin:g})), rocking through the run "
                 f"(stage-1 roll peak {slow_env.peaks[0].roll:.2e} rad against {default.peaks[0].roll:.2e})"
             ),
         ),
@@ -935,9 +955,9 @@ def errata(ctx) -> list:
         ),
         Erratum(
             "Plotnikov (1999), section 5, acceleration",
-            "V̇ζ₁ = 20 m/s² for t = 1200…1220 s",
-            "likely reading: 20 m/s² as printed (default)",
-            f"The text cannot decide: with (1.10) and 20 m/s² the stage-1 pitch peak is {default.peaks[0].pitch:.3f} rad against the printed "
+            f"V̇ζ₁ = {SECTION5.accel:g} m/s² for t = {SECTION5.accel_start:g}…{SECTION5.accel_start + SECTION5.accel_duration:g} s",
+            f"likely reading: {SECTION5.accel:g} m/s² as printed (default)",
+            f"The text cannot decide: with (1.10) and {SECTION5.accel:g} m/s² the stage-1 pitch peak is {default.peaks[0].pitch:.3f} rad against the printed "
             f"{PAPER.stage1_pitch_peak.value:.1e}; no single change of the reading matches the print (readings table of the stability report).",
             "stability",
             kind="ambiguous",
@@ -952,19 +972,19 @@ def errata(ctx) -> list:
             "likely reading for the printed yaw: all four components of (1.10); the package's default stays 1, 3 (the reading whose errors the stability report explains)",
             "The text cannot decide. (1.4) has only the components 1 and 3; (1.10) has all four, and correcting them all pulls the stage-1 yaw to "
             "the ψ = 0 of (1.10) — the stage-1 yaw error β of (3.8), ψ₁⁺ = β + const, that stage 2 takes up — which the composite (2.6) undoes "
-            "(every stage-1 correction cancels in ν₁∘ν, derived symbolically). With all four components the stage-1 yaw error at the 600 s switch is "
+            f"(every stage-1 correction cancels in ν₁∘ν, derived symbolically). With all four components the stage-1 yaw error at the {switch:g} s switch is "
             f"{all_four.yaw_at_switch[0]:+.2e} rad (printed {PAPER.yaw_stage1.value:+.0e}), growing to {all_four.peaks[0].yaw:.2e} rad by the end; after two "
             f"stages its peak is {all_four.peaks[1].yaw:.1e} rad (printed {PAPER.yaw_two_stage.value:+.1e}).",
             "stability",
             kind="ambiguous",
             alternatives=(
-                f"components 1, 3 (default): stage-1 yaw error at 600 s {default.yaw_at_switch[0]:+.1e} rad, peaks {default.peaks[0].yaw:.1e} (stage 1) and "
+                f"components 1, 3 (default): stage-1 yaw error at {switch:g} s {default.yaw_at_switch[0]:+.1e} rad, peaks {default.peaks[0].yaw:.1e} (stage 1) and "
                 f"{default.peaks[1].yaw:.1e} rad (two stages) — it cannot give the printed yaw numbers"
             ),
         ),
         Erratum(
             "Plotnikov (1999), section 5, the integral at the gain switch of stage 2",
-            "\"from t = 600 s only integral correction with the Schuler conditions\"",
+            f"\"from t = {switch:g} s only integral correction with the Schuler conditions\"",
             "likely reading: the integral state carried through the switch (default)",
             "The text cannot decide. Rescaling the integral by l_new/l_old discards the Earth rate it holds; carrying it, or a bumpless switch, "
             f"keeps the two-stage pitch below the printed bound {PAPER.two_stage_pitch_bound.value:.1e} rad (readings table).",

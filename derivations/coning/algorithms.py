@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-__all__ = ["Term", "Algorithm", "MAX_HISTORY", "TOML_LIMITS", "TomlLimits", "load_toml", "second_order_defect"]
+__all__ = ["Term", "Algorithm", "MAX_HISTORY", "TOML_LIMITS", "TomlLimits", "load_toml", "second_order_defect", "SecondOrderConditionError"]
 
 Expr = int | tuple
 
@@ -347,6 +347,30 @@ def _depth(value, level: int = 0) -> int:
     return deepest + 1 if isinstance(value, (dict, list)) and value else deepest
 
 
+class SecondOrderConditionError(ValueError):
+    """A file's algorithm misses the second-order condition ``Σ c_ij (j − i) = N³/12``.
+
+    Raised by :func:`load_toml` unless ``allow_inconsistent=True``; a front end can
+    catch it to tell its user how to accept the algorithm in its own terms.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    total : Fraction
+        ``Σ c_ij (j − i)`` of the algorithm.
+    expected : Fraction
+        ``N³/12``.
+    """
+
+    def __init__(self, path, total, expected):
+        self.path, self.total, self.expected = path, total, expected
+        super().__init__(
+            f"{path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {total}, "
+            f"expected N³/12 = {expected} (load it with `allow_inconsistent=True` to accept it)"
+        )
+
+
 def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TOML_LIMITS) -> Algorithm:
     """Read a user algorithm from a TOML file (syntax in the module docstring).
 
@@ -373,8 +397,9 @@ def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TO
     ValueError
         Malformed file (the message names the file, the key and the problem),
         a file beyond ``limits``, a file that cannot be read (missing, a
-        directory, a device, no permission, not UTF-8), or an algorithm that
-        misses the second-order condition.
+        directory, a device, no permission, not UTF-8).
+    SecondOrderConditionError
+        An algorithm that misses the second-order condition (a ``ValueError``).
     """
     path = Path(path)
     data = _parse(path, limits)
@@ -420,9 +445,5 @@ def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TO
     alg = Algorithm(name, samples, tuple(terms), str(data.get("description", "")), str(data.get("reference", str(path.name))))
     defect = second_order_defect(alg)
     if defect != 0 and not allow_inconsistent:
-        total = defect + Fraction(samples**3, 12)
-        raise ValueError(
-            f"{path}: algorithm misses the second-order condition: Σ c_ij (j − i) = {total}, "
-            f"expected N³/12 = {Fraction(samples**3, 12)} (pass --allow-inconsistent to accept it)"
-        )
+        raise SecondOrderConditionError(path, defect + Fraction(samples**3, 12), Fraction(samples**3, 12))
     return alg

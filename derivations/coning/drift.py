@@ -13,7 +13,7 @@ error that one step adds in frame I is therefore the same vector turned by
 its projection on the precession axis, divided by the step H.
 
 Sign convention: errors are *exact minus algorithm* (package docstring,
-"Local errors").
+"Errors").
 
 Three levels are derived here.
 

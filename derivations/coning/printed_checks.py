@@ -71,6 +71,11 @@ class Table2Check(NamedTuple):
         """δ4 · k of the derived coefficients: the invariant of the local error (the coefficients of h⁵)."""
         return tuple(self.delta * d for d in self.derived)
 
+    @property
+    def printed_products(self) -> tuple:
+        """δ4 · k of the printed coefficients."""
+        return tuple(self.delta * Fraction(k) for k in self.printed)
+
 
 def table2_checks() -> tuple:
     """Table 2 of Budennyi, Kalinovsky, Panov et al., derived cell by cell.

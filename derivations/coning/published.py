@@ -126,17 +126,17 @@ class BudennyiTable3Row(NamedTuple):
         ε = μ/ν: −1 (coning) or 0.5 (precession).
     order : int
         ρ, the printed order of the drift.
-    u_star : float
-        u*: constant drift rate by parallel computation [deg/h].
-    u_a : float or None
-        u_a: the asymptotic estimate (3) [deg/h]; None where not printed.
+    u_star_deg_per_h : float
+        u*: constant drift rate by parallel computation [deg/h], as printed.
+    u_a_deg_per_h : float or None
+        u_a: the asymptotic estimate (3) [deg/h], as printed; None where not printed.
     """
 
     algorithm: int
     eps: float
     order: int
-    u_star: float
-    u_a: float | None
+    u_star_deg_per_h: float
+    u_a_deg_per_h: float | None
 
 
 #: Table 3: constant drift rate [deg/h] at ϑ = 1°, f = 10 Hz, H = 0.01 s.
@@ -283,7 +283,7 @@ class LebedevPanovCell(NamedTuple):
     variants : tuple of int
         The variants the printed value stands for (the drift row covers 1–3, |ΔW_I| one cell for 2 and 3).
     value : float
-        The printed value [deg/h or m/s].
+        The printed value, in :attr:`unit` [deg/h or m/s].
     """
 
     quantity: str
@@ -291,6 +291,11 @@ class LebedevPanovCell(NamedTuple):
     eps: float
     variants: tuple
     value: float
+
+    @property
+    def unit(self) -> str:
+        """Unit of :attr:`value` as printed: ``"deg/h"`` for the drift, ``"m/s"`` for |ΔW_E|, |ΔW_I|."""
+        return "deg/h" if self.quantity == "drift" else "m/s"
 
 
 #: The table of section 6 (the ρ = 6 rows of |ΔW_E|, |ΔW_I| do not reproduce: errata).

@@ -28,7 +28,7 @@ Two representations, each where it is cheapest:
   is truncated and dot-product factors such as ``(p_2·p_3) p_2×p_3`` are as
   easy as cross products.
 
-**Sign convention** (the package docstring, "Local errors"): the local error
+**Sign convention** (the package docstring, "Errors"): the local error
 is ``δφ = Δφ_exact − Δφ_algorithm`` on the same ω(t).  Its parts are returned
 in units of ``H`` (set ``H = 1``); multiply the weight-w part by
 ``H^w = N^w h^w``.  In R³ the nested products are not independent (Jacobi
