@@ -32,6 +32,11 @@ DRIFT = ["drift", "--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", 
 VELOCITY = ["velocity-error"] + DRIFT[1:]
 LOCAL_ERROR = ["derive", "local-error", "--algorithm", "two-sample"]
 AZIMUTH = ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1"]
+ALIGN = ["align", "--lat-deg", "45", "--duration", "10", "--sample-rate-hz", "10", "--trials", "16"]
+SCULLING = ["velocity-error", "--algorithm", "panov-4s-1", "--motion", "sculling", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"]
+CONING_DRIFT = ["derive", "coning-drift", "--algorithm", "two-sample"]
+STABILITY = ["stability", "--k", "0.01", "--l", "5e-5"]
+MULTISTAGE = ["multistage", "--duration", "200", "--step", "0.1"]
 
 #: (class, argv, expect, names): cases beyond the one-option mutations of the fuzz table.
 EXTRA_CASES = [
@@ -45,9 +50,16 @@ EXTRA_CASES = [
     ("work beyond the limits", AZIMUTH + ["--samples", "1e9", "--workers", "1000"], "refuse", ("--workers", "--memory-limit-mb", "--time-limit")),
     ("work beyond the limits", ["multistage", "--duration", "1e9"], "refuse", ("--time-limit", "--memory-limit-mb")),
     ("work beyond the limits", ["multistage", "--duration", "100", "--step", "1e-9"], "refuse", ("--time-limit", "--memory-limit-mb")),
-    ("work beyond the limits", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--averaging-time-s", "1e12"], "refuse", ("--time-limit", "--memory-limit-mb")),
+    ("work beyond the limits", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--averaging-time", "1e12"], "refuse", ("--time-limit", "--memory-limit-mb")),
     ("work beyond the limits", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--sample-rate-hz", "1e12"], "refuse", ("--time-limit", "--memory-limit-mb")),
     ("work beyond the limits", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--points", "1e9"], "refuse", ("--time-limit", "--memory-limit-mb", "--points")),
+    ("work beyond the limits", ALIGN[:-1] + ["1e12", "--method", "analytic"], "refuse", ("--time-limit", "--memory-limit-mb")),
+    ("work beyond the limits", ALIGN[:4] + ["1e9", "--method", "inertial"], "refuse", ("--time-limit", "--memory-limit-mb")),
+    ("work beyond the limits", ALIGN[:4] + ["3000", "--sample-rate-hz", "100", "--trials", "128", "--method", "kalman", "--epoch", "0.01"], "refuse", ("--time-limit", "--memory-limit-mb")),
+    ("work beyond the limits", ALIGN + ["--method", "analytic", "--workers", "1e4"], "refuse", ("--workers", "--memory-limit-mb")),
+    ("work beyond the limits", ALIGN + ["--method", "analytic", "--time-limit", "0.1"], "refuse", ("--time-limit",)),
+    ("work beyond the limits", SCULLING[:-1] + ["1e9"], "refuse", ("--time-limit", "--memory-limit-mb")),
+    ("work beyond the limits", ["multistage", "--duration", "1e6", "--step", "0.01", "--stage1-components", "all", "--switch", "bumpless"], "refuse", ("--time-limit", "--memory-limit-mb")),
     ("work beyond the limits", DRIFT + ["--time-limit", "-1"], "refuse", ("--time-limit",)),
     ("work beyond the limits", DRIFT + ["--memory-limit-mb", "nan"], "refuse", ("--memory-limit-mb",)),
     # counts in scientific notation are accepted
@@ -55,11 +67,13 @@ EXTRA_CASES = [
     ("count in scientific notation", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--samples", "2.5e4", "--seed", "1e3", "--json"], "accept", ()),
     ("count in scientific notation", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--points", "3e0", "--json"], "accept", ()),
     ("count in scientific notation", ["multistage", "--duration", "2e2", "--step", "1e-1", "--seed", "1e1", "--json"], "accept", ()),
+    ("count in scientific notation", ALIGN[:-1] + ["1.6e1", "--seed", "1e1", "--method", "analytic", "--json"], "accept", ()),
+    ("count in scientific notation", LOCAL_ERROR + ["--max-order", "5e0", "--json"], "accept", ()),
     # physically meaningless inputs
     ("physically meaningless input", ["stability", "--k", "-1", "--l", "1", "--json"], "either", ("--k", "unstable")),
     ("physically meaningless input", ["stability", "--k", "1", "--l", "-1", "--json"], "either", ("--l", "unstable")),
-    ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--g", "-9.81", "--json"], "either", ("--g",)),
-    ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--R", "0", "--json"], "refuse", ("--R",)),
+    ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--gravity-m-s2", "-9.81", "--json"], "refuse", ("--gravity-m-s2",)),
+    ("physically meaningless input", ["stability", "--k", "0.01", "--l", "5e-5", "--earth-radius", "0", "--json"], "refuse", ("--earth-radius",)),
     ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--beta0-deg", "95", "--samples", "2e4", "--json"], "refuse", ("--beta0-deg",)),
     ("physically meaningless input", ["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--gamma0-deg", "-90", "--json"], "refuse", ("--gamma0-deg",)),
     ("physically meaningless input", ["azimuth", "--lat-deg", "45", "--sigma-xi-deg", "400", "--sigma-eta-deg", "1", "--samples", "2e4", "--json"], "refuse", ("--sigma-xi-deg",)),
@@ -71,7 +85,44 @@ EXTRA_CASES = [
     ("physically meaningless input", ["design", "--required-drift-deg-per-h", "1e-300", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--json"], "either", ("--required-drift-deg-per-h",)),
     ("physically meaningless input", ["design", "--required-drift-deg-per-h", "1e300", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--json"], "either", ("--required-drift-deg-per-h",)),
     ("physically meaningless input", ["multistage", "--duration", "200", "--step", "300", "--json"], "either", ("--step",)),
-    ("physically meaningless input", ["multistage", "--duration", "200", "--step", "0.1", "--latitude", "90", "--json"], "either", ("--latitude",)),
+    ("physically meaningless input", ["multistage", "--duration", "200", "--step", "0.1", "--lat-deg", "90", "--json"], "refuse", ("--lat-deg",)),
+    # the options of the multistage readings, the stability design, the sculling motion, alignment and the coning drift
+    ("physically meaningless input", MULTISTAGE + ["--accel-m-s2", "1e300", "--json"], "either", ("--accel-m-s2",)),
+    ("physically meaningless input", MULTISTAGE + ["--accel-duration", "1e9", "--json"], "either", ("--accel-duration",)),
+    ("physically meaningless input", MULTISTAGE + ["--rocking-decay-per-s", "-1", "--json"], "refuse", ("--rocking-decay-per-s",)),
+    ("physically meaningless input", MULTISTAGE + ["--rocking-origin", "-1e300", "--json"], "either", ("--rocking-origin",)),
+    ("physically meaningless input", MULTISTAGE + ["--stage1-c", "-2", "--json"], "refuse", ("--stage1-c",)),
+    ("physically meaningless input", MULTISTAGE + ["--stage1-reference", "pure", "--stage1-c", "1e300", "--json"], "either", ("--stage1-c",)),
+    ("physically meaningless input", ["stability", "--natural-frequency-rad-s", "1e300", "--damping", "0.7", "--json"], "either", ("--natural-frequency-rad-s",)),
+    ("physically meaningless input", ["stability", "--natural-frequency-rad-s", "0.005", "--damping", "-0.1", "--json"], "refuse", ("--damping",)),
+    ("physically meaningless input", ["stability", "--natural-frequency-rad-s", "0.005", "--damping", "0", "--json"], "either", ("--damping", "unstable")),
+    ("physically meaningless input", ["stability", "--natural-frequency-rad-s", "0.005", "--json"], "refuse", ("--damping",)),
+    ("physically meaningless input", ["stability", "--k", "0", "--l", "0", "--json"], "refuse", ("--k", "unstable")),
+    ("physically meaningless input", STABILITY + ["--accel-m-s2", "1e300", "--json"], "either", ("--accel-m-s2",)),
+    ("physically meaningless input", STABILITY + ["--horizon", "1e300", "--json"], "either", ("--horizon",)),
+    ("physically meaningless input", STABILITY + ["--horizon", "1", "--json"], "refuse", ("--horizon",)),
+    ("physically meaningless input", SCULLING + ["--angle-amplitude-deg", "1e300", "--json"], "either", ("--angle-amplitude-deg",)),
+    ("physically meaningless input", SCULLING + ["--angle-amplitude-deg", "170", "--json"], "either", ("--angle-amplitude-deg",)),
+    ("physically meaningless input", SCULLING + ["--accel-amplitude-m-s2", "-1e300", "--json"], "either", ("--accel-amplitude-m-s2",)),
+    ("physically meaningless input", SCULLING + ["--accel-axis", "x", "--json"], "refuse", ("--accel-axis",)),
+    ("physically meaningless input", SCULLING + ["--eps", "-1", "--json"], "refuse", ("--eps",)),
+    ("physically meaningless input", VELOCITY + ["--angle-phase-deg", "10", "--json"], "refuse", ("--angle-phase-deg",)),
+    ("physically meaningless input", ["velocity-error"] + [x for x in VELOCITY[1:] if x not in ("--eps", "-1")] + ["--json"], "refuse", ("--eps",)),
+    ("physically meaningless input", VELOCITY + ["--nutation-dual-m-s", "1e300", "--json"], "either", ("--nutation-dual-m-s",)),
+    ("physically meaningless input", ALIGN + ["--method", "analytic", "--rocking", "sine", "--amplitude-deg", "95", "--json"], "refuse", ("--amplitude-deg",)),
+    ("physically meaningless input", ALIGN + ["--method", "analytic", "--rocking", "sine", "--amplitude-deg", "1", "--period", "0.1", "--json"], "refuse", ("--period",)),
+    ("physically meaningless input", ALIGN + ["--method", "analytic", "--rocking", "white", "--amplitude-deg", "1", "--bandwidth-hz", "6", "--json"], "refuse", ("--bandwidth-hz",)),
+    ("physically meaningless input", ALIGN + ["--method", "kalman", "--rocking", "narrowband", "--amplitude-deg", "1", "--assumed-damping", "1.5", "--json"], "refuse", ("--assumed-damping",)),
+    ("physically meaningless input", ALIGN + ["--method", "kalman", "--epoch", "100", "--json"], "refuse", ("--epoch", "--duration")),
+    ("physically meaningless input", ALIGN + ["--method", "analytic", "--lat-deg", "89.9999", "--json"], "either", ("--lat-deg",)),
+    ("physically meaningless input", ALIGN + ["--method", "analytic", "--rocking", "sine", "--json"], "refuse", ("--amplitude-deg",)),
+    ("physically meaningless input", ALIGN + ["--method", "inertial", "--assumed-period", "5", "--json"], "refuse", ("--assumed-period",)),
+    ("physically meaningless input", CONING_DRIFT + ["--omega-h-rad", "1e300", "--json"], "either", ("--omega-h-rad",)),
+    ("physically meaningless input", CONING_DRIFT + ["--omega-h-rad", "1e-300", "--json"], "either", ("--omega-h-rad",)),
+    ("physically meaningless input", CONING_DRIFT + ["--omega-h-rad", "3.14159,6.3,100", "--json"], "either", ("--omega-h-rad",)),
+    ("physically meaningless input", CONING_DRIFT + ["--omega-h-rad", "0", "--json"], "refuse", ("--omega-h-rad",)),
+    ("physically meaningless input", LOCAL_ERROR + ["--max-order", "2", "--json"], "refuse", ("--max-order",)),
+    ("physically meaningless input", LOCAL_ERROR + ["--max-order", "1e6", "--json"], "refuse", ("--max-order",)),
     # command-line syntax
     ("command-line syntax", [], "refuse", ("COMMAND", "required")),
     ("command-line syntax", ["no-such-command"], "refuse", ("no-such-command",)),
@@ -85,6 +136,17 @@ EXTRA_CASES = [
     ("command-line syntax", ["stability"], "refuse", ("--k", "--l")),
     ("command-line syntax", ["report", "--only"], "refuse", ("--only",)),
     ("command-line syntax", ["report", "--only", "nope", "--out", "/nonexistent/x"], "refuse", ("--only",)),
+    ("command-line syntax", ["algorithms"], "refuse", ("SUBCOMMAND", "required")),
+    ("command-line syntax", ["algorithms", "show"], "refuse", ("NAME", "--algorithm")),
+    ("command-line syntax", ["algorithms", "show", "two-sample", "--algorithm", "optimal-3"], "refuse", ("NAME", "--algorithm")),
+    ("command-line syntax", ["algorithms", "show", "no-such-algorithm"], "refuse", ("no-such-algorithm",)),
+    ("command-line syntax", ["algorithms", "list", "--algorithm", "two-sample"], "refuse", ("--algorithm",)),
+    ("command-line syntax", ["align", "--lat-deg", "45"], "refuse", ("--method",)),
+    ("command-line syntax", ["align", "--method", "analytic", "--lat-deg", "45", "--formula", "paper", "--observation", "velocity"], "refuse", ("--observation",)),
+    ("command-line syntax", ["derive", "coning-drift"], "refuse", ("--algorithm",)),
+    ("command-line syntax", ["derive", "coning-drift", "--algorithm", "two-sample", "--omega-h-rad"], "refuse", ("--omega-h-rad",)),
+    ("command-line syntax", ["stability", "--k", "0.01", "--l", "5e-5", "--natural-frequency-rad-s", "0.01", "--damping", "0.5"], "refuse", ("--k", "--natural-frequency-rad-s")),
+    ("command-line syntax", ["velocity-error", "--algorithm", "panov-4s-1", "--motion", "tumbling"], "refuse", ("--motion",)),
 ]
 
 
@@ -159,8 +221,26 @@ def test_os_error_names_the_option_whose_value_it_quotes(monkeypatch, capsys, tm
 def test_library_names_become_options(capsys):
     assert cli.main(["multistage", "--duration", "0"]) == 2
     assert capsys.readouterr().err.startswith("strapdown multistage: error: argument --duration: Expected `duration` > 0")
-    assert cli.main(["stability", "--k", "0.01", "--l", "5e-5", "--R", "-1"]) == 2  # `earth_radius` → --R, by its help text
-    assert capsys.readouterr().err.startswith("strapdown stability: error: argument --R: ")
+    assert cli.main(["stability", "--k", "0.01", "--l", "5e-5", "--earth-radius", "-1"]) == 2  # `earth_radius` → --earth-radius, by its dest
+    assert capsys.readouterr().err.startswith("strapdown stability: error: argument --earth-radius: Expected `earth_radius` > 0")
+    assert cli.main(["stability", "--natural-frequency-rad-s", "-1", "--damping", "0.7"]) == 2  # by its dest and unit suffix
+    assert capsys.readouterr().err.startswith("strapdown stability: error: argument --natural-frequency-rad-s: Expected `natural_frequency` > 0")
+    assert cli.main(["multistage", "--accel-m-s2", "nan"]) == 2
+    assert capsys.readouterr().err.startswith("strapdown multistage: error: argument --accel-m-s2: Expected `accel` to be finite")
+
+
+def test_messages_about_several_options_name_those_typed(capsys):
+    assert cli.main(["multistage", "--duration", "200", "--step", "0.03"]) == 2
+    assert capsys.readouterr().err.startswith("strapdown multistage: error: arguments --step and --duration: Expected `step` to divide the `duration`")
+    assert cli.main(["multistage", "--step", "0.03"]) == 2  # --duration left at its default: only --step is named
+    assert capsys.readouterr().err.startswith("strapdown multistage: error: argument --step: Expected `step` to divide the `duration`")
+    # a gain designed from --natural-frequency-rad-s overflows: not blamed on --l, which was not typed
+    assert cli.main(["stability", "--natural-frequency-rad-s", "1e300", "--damping", "0.7"]) == 2
+    err = capsys.readouterr().err
+    assert "argument --l" not in err and err.rstrip().endswith("(given: --natural-frequency-rad-s 1e300, --damping 0.7)")
+    # a choice that happens to be a word of the message is not taken for a quoted value
+    assert cli.main(["stability", "--natural-frequency-rad-s", "1e-300", "--damping", "0.7", "--reference", "tilt"]) == 2
+    assert "argument --reference" not in capsys.readouterr().err
 
 
 def test_directory_as_algorithm_file(capsys, tmp_path):
@@ -277,18 +357,29 @@ def test_estimates_grow_with_the_request():
 
 
 def test_options_that_do_not_apply_are_refused(capsys):
-    assert cli.main(AZIMUTH + ["--rocking", "normal", "--period-s", "5", "--samples", "2e4"]) == 2
-    assert capsys.readouterr().err == "strapdown azimuth: error: --period-s applies only to --rocking sine or narrowband, got --rocking normal\n"
+    assert cli.main(AZIMUTH + ["--rocking", "normal", "--period", "5", "--samples", "2e4"]) == 2
+    assert capsys.readouterr().err == "strapdown azimuth: error: --period does not apply to --rocking normal (it applies to --rocking sine or narrowband)\n"
     assert cli.main(AZIMUTH + ["--rocking", "sine", "--damping", "0.2", "--samples", "2e4"]) == 2
-    assert "--damping applies only to --rocking narrowband" in capsys.readouterr().err
-    assert cli.main(AZIMUTH + ["--rocking", "sine", "--period-s", "5", "--samples", "2e4", "--json"]) == 0
+    assert "--damping does not apply to --rocking sine (it applies to --rocking narrowband)" in capsys.readouterr().err
+    assert cli.main(AZIMUTH + ["--rocking", "sine", "--period", "5", "--samples", "2e4", "--json"]) == 0
+    capsys.readouterr()
+    assert cli.main(["azimuth-design", "--budget-deg", "0.1", "--lat-deg", "45", "--exact-phase"]) == 2  # a flag
+    assert capsys.readouterr().err == "strapdown azimuth-design: error: --exact-phase does not apply to --rocking narrowband (it applies to --rocking sine)\n"
+    assert cli.main(["align", "--method", "analytic", "--lat-deg", "45", "--velocity-noise-m-s", "0.01"]) == 2
+    assert "--velocity-noise-m-s does not apply to --method analytic (it applies to --method kalman)" in capsys.readouterr().err
+    assert cli.main(SCULLING + ["--nutation-dual-m-s", "1"]) == 2
+    assert capsys.readouterr().err == "strapdown velocity-error: error: --nutation-dual-m-s does not apply to --motion sculling (it applies to --motion precession)\n"
+    assert cli.main(VELOCITY + ["--rotation-axis", "z"]) == 2
+    assert capsys.readouterr().err == "strapdown velocity-error: error: --rotation-axis does not apply to --motion precession (it applies to --motion sculling)\n"
 
 
 def test_ranges_are_stated_in_the_unit_typed(capsys):
     assert cli.main(AZIMUTH + ["--beta0-deg", "95"]) == 2
-    assert capsys.readouterr().err == "strapdown azimuth: error: argument --beta0-deg: Expected `beta0-deg` in (-90, 90) degrees, got 95\n"
-    assert cli.main(["multistage", "--latitude", "90"]) == 2
-    assert capsys.readouterr().err == "strapdown multistage: error: Expected `--latitude` in (-90, 90) degrees, got 90\n"
+    assert capsys.readouterr().err == "strapdown azimuth: error: Expected `--beta0-deg` in (-90, 90) degrees, got 95\n"
+    assert cli.main(["align", "--method", "analytic", "--lat-deg", "45", "--gamma0-deg", "-90"]) == 2
+    assert capsys.readouterr().err == "strapdown align: error: Expected `--gamma0-deg` in (-90, 90) degrees, got -90\n"
+    assert cli.main(["multistage", "--lat-deg", "90"]) == 2
+    assert capsys.readouterr().err == "strapdown multistage: error: Expected `--lat-deg` in (-90, 90) degrees, got 90\n"
     assert cli.main(DRIFT[:6] + ["200"] + DRIFT[7:]) == 2
     assert capsys.readouterr().err == "strapdown drift: error: Expected `--nutation-deg` in (0, 180) degrees, got 200\n"
 
@@ -408,7 +499,7 @@ def test_progress_on_a_terminal_and_nothing_otherwise():
 
 
 def test_activity_display_for_long_commands_without_a_bar():
-    proc, fd = _spawn_on_terminal(["multistage", "--duration", "4000", "--step", "0.02"])  # a few seconds
+    proc, fd = _spawn_on_terminal(["multistage", "--duration", "4000", "--step", "0.01"])  # 4e5 steps: several seconds with the compiled recursion
     try:
         seen = _read_until(fd, b"elapsed")
         proc.wait(timeout=300)

@@ -10,13 +10,16 @@ For every option of every command (and subcommand):
 * **units as suffixes**: a unit other than seconds and metres is the option's
   last word (``[deg]`` → ``--lat-deg``, ``[deg/h]`` → ``-deg-per-h``, ``[Hz]`` →
   ``-hz``, ``[m/s²]`` → ``-m-s2``, ``[m/s]`` → ``-m-s``, ``[rad]`` → ``-rad``,
-  ``[MB]`` → ``-mb``); seconds and metres carry none (``--duration``, not
+  ``[deg/√h]`` → ``-deg-per-rt-h``, ``[ppm]`` → ``-ppm``, ``[arcsec]`` →
+  ``-arcsec``, ``[MB]`` → ``-mb``); seconds and metres carry none (``--duration``, not
   ``--duration-s``); gains in ``[1/s]``, ``[1/s²]`` keep their paper symbol;
 * **defaults shown**: the help of an option that is not required names its
   default, ``(default 5)`` or ``(default: reports)``, with the value argparse
   really uses;
 * **names listed**: ``--algorithm`` lists the valid algorithm names (or points
-  to ``strapdown algorithms list``) and ``report --only`` the section names.
+  to ``strapdown algorithms list``) and ``report --only`` the section names;
+  an option with a fixed set of choices shows them (argparse does, as
+  ``{a,b}``, unless a metavar hides them: then its help lists them).
 
 Commands that do not comply yet are listed in :data:`PENDING` (strict xfail:
 a command taken off the list must pass).
@@ -33,15 +36,10 @@ from cli_contract import leaf_parsers
 from strapdown.analysis.report import section_names
 from strapdown.derivations.coning.registry import names as algorithm_names
 
-#: Commands whose options are still being renamed to the scheme (strict xfail).
-PENDING = {
-    "azimuth",  # --period-s, --averaging-time-s carry a seconds suffix; units missing in brackets
-    "azimuth-design",
-    "design",  # --m, --quaternion-cost: no kind in brackets
-    "multistage",  # --latitude [deg] without suffix, --accel [m/s²] without suffix
-    "stability",  # --R is not kebab-case; --accel [m/s²], --g [m/s²] without suffix
-    "velocity-error",  # --nu-dual [m/s²], --nutation-dual [m/s] without suffix; --attitude0 without kind
-}
+#: Commands whose options are still being renamed to the scheme (strict xfail: a command that
+#: complies while listed fails as XPASS).  Every command complies now; a new one that cannot yet
+#: is listed here with the reason.
+PENDING: set = set()
 
 #: Unit in the help → required last words of the option (None: none allowed; "gain": no rule).
 SUFFIX = {
@@ -56,6 +54,10 @@ SUFFIX = {
     "m/s": "m-s",
     "rad": "rad",
     "rad/s": "rad-s",
+    "deg/√h": "deg-per-rt-h",
+    "m/s/√h": "m-s-per-rt-h",
+    "ppm": "ppm",
+    "arcsec": "arcsec",
     "MB": "mb",
     "1/s": "gain",
     "1/s²": "gain",
@@ -78,6 +80,7 @@ def _in_required_group(parser, action) -> bool:
 
 
 def _shows_default(help_text: str, default) -> bool:
+    default = getattr(default, "value", default)  # Commands.only_with wraps the default to tell it from a value typed
     m = DEFAULT.search(help_text)
     if m is None:
         return False
@@ -118,6 +121,8 @@ def problems(name: str, parser) -> list:
                             out.append(f"{flag}: a value in [{unit}] ends in -{suffix}")
         if not action.required and not _in_required_group(parser, action) and not _shows_default(help_text, action.default):
             out.append(f"{flag}: help does not show its default {action.default!r} as '(default ...)'")
+        if action.choices is not None and action.metavar is not None and not all(str(c) in help_text for c in action.choices):
+            out.append(f"{flag}: its metavar hides the choices and the help does not list them all")
         if flag == "--algorithm":
             listed = all(n in help_text for n in algorithm_names())
             if not listed and "strapdown algorithms list" not in help_text:
@@ -148,6 +153,7 @@ def test_the_check_can_fail():
     p.add_argument("--period-s", type=float, default=8.0, help="period [s] (default 8)")
     p.add_argument("--gain", type=float, default=1.0, help="a gain [1/s] (default 2)")
     p.add_argument("--speed", type=float, default=1.0, help="a speed [furlong/fortnight] (default 1)")
+    p.add_argument("--model", choices=("a", "b"), metavar="M", default="a", help="the model (default a)")
     found = problems("x", p)
     assert any("--Bad_Name: not kebab-case" in f for f in found)
     assert any("--Bad_Name: help states no unit" in f for f in found)
@@ -155,3 +161,20 @@ def test_the_check_can_fail():
     assert any("--period-s: a value in [s] carries no unit suffix" in f for f in found)
     assert any("--gain: help does not show its default 1.0" in f for f in found)
     assert any("[furlong/fortnight] is not in the scheme" in f for f in found)
+    assert any("--model: its metavar hides the choices" in f for f in found)
+
+
+def test_defaults_of_options_that_apply_only_with_others_are_checked():
+    """:meth:`Commands.only_with` wraps the default: the check reads the value the command sees."""
+    import argparse
+
+    from strapdown.analysis.cli import Commands
+
+    commands = Commands(argparse.ArgumentParser().add_subparsers())
+    p = commands.add("x", None, "x")
+    p.add_argument("--rocking", choices=("a", "b"), default="a", help="rocking (default a)")
+    p.add_argument("--period", type=float, default=8.0, help="period [s] (default 9)")
+    p.add_argument("--damping", type=float, default=0.1, help="damping [dimensionless] (default 0.1)")
+    commands.only_with(p, "--period", "--rocking", ("b",))
+    commands.only_with(p, "--damping", "--rocking", ("b",))
+    assert problems("x", p) == ["--period: help does not show its default 8.0 as '(default ...)'"]

@@ -144,7 +144,7 @@ def test_coning_drift_published_values(name, order, coefficient, step_coefficien
 def test_coning_drift_cross_step_file_and_values(tmp_path, capsys):
     f = tmp_path / "savage.toml"
     f.write_text(SAVAGE_TOML, encoding="utf-8")
-    data = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f), "--omega-h", "0.01,0.5"])
+    data = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f), "--omega-h-rad", "0.01,0.5"])
     assert (data["history"], data["order"], data["coefficient"]) == (1, 4, "1/60")
     small, large = data["values"]
     assert small["D"] == pytest.approx(small["leading"], rel=1e-4) and large["D"] < large["leading"]
@@ -155,7 +155,7 @@ def test_coning_drift_cross_step_file_and_values(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "argv, needle",
-    [(["--algorithm", "nope"], "nope"), (["--algorithm", "two-sample", "--omega-h", "-1"], "--omega-h"), (["--algorithm", "two-sample", "--omega-h", "a"], "--omega-h")],
+    [(["--algorithm", "nope"], "nope"), (["--algorithm", "two-sample", "--omega-h-rad", "-1"], "--omega-h-rad"), (["--algorithm", "two-sample", "--omega-h-rad", "a"], "--omega-h-rad")],
 )
 def test_coning_drift_bad_input_exit_2(argv, needle, capsys):
     assert main(["derive", "coning-drift"] + argv) == 2

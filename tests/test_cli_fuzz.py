@@ -20,8 +20,12 @@ from hypothesis import strategies as st
 
 #: A valid, fast invocation of every command (the fuzz mutates one option at a time).
 BASELINES = {
+    "algorithms list": [],
+    "algorithms show": ["--algorithm", "two-sample"],
+    "align": ["--method", "analytic", "--lat-deg", "45", "--duration", "10", "--sample-rate-hz", "10", "--trials", "16"],
     "azimuth": ["--lat-deg", "45", "--sigma-xi-deg", "0.5", "--sigma-eta-deg", "0.5", "--samples", "20000"],
     "azimuth-design": ["--budget-deg", "0.1", "--lat-deg", "45", "--points", "3"],
+    "derive coning-drift": ["--algorithm", "two-sample", "--omega-h-rad", "0.1"],
     "derive local-error": ["--algorithm", "two-sample"],
     "derive lyapunov": [],
     "design": ["--required-drift-deg-per-h", "1e-3", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10"],
@@ -30,7 +34,45 @@ BASELINES = {
     "report": None,  # writes files: fuzzed by test_report_output.py and the table below
     "reproduce tables": [],
     "stability": ["--k", "0.01", "--l", "5e-5"],
-    "velocity-error": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5", "--nutation-dual", "0.1"],
+    "velocity-error": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5", "--nutation-dual-m-s", "0.1"],
+}
+
+#: Further valid invocations of a command whose options apply only with some values of another
+#: (a rocking model, a method, a motion): the options written in a variant and not in the baseline
+#: are fuzzed in it too (in the baseline they are refused as not applying).
+VARIANTS = {
+    "align": [
+        ["--method", "analytic", "--lat-deg", "45", "--duration", "10", "--sample-rate-hz", "10", "--trials", "16", "--formula", "paper",
+         "--rocking", "sine", "--amplitude-deg", "0,0.5,0.5", "--period", "7", "--lever-arm", "0.5,0,0",
+         "--gyro-bias-deg-per-h", "0,0.01,0", "--accel-bias-m-s2", "1e-4,0,0", "--gyro-scale-ppm", "10", "--accel-scale-ppm", "10,20,30",
+         "--gyro-bias-sigma-deg-per-h", "0.01", "--accel-bias-sigma-m-s2", "1e-4", "--arw-deg-per-rt-h", "0.001", "--vrw-m-s-per-rt-h", "0.001",
+         "--gyro-quantum-arcsec", "0.1", "--accel-quantum-m-s", "1e-5", "--heading-deg", "10", "--beta0-deg", "1", "--gamma0-deg", "-1"],
+        ["--method", "inertial", "--lat-deg", "45", "--duration", "10", "--sample-rate-hz", "10", "--trials", "16", "--observation", "velocity", "--epoch", "1",
+         "--rocking", "white", "--amplitude-deg", "0.2", "--bandwidth-hz", "2"],
+        ["--method", "kalman", "--lat-deg", "45", "--duration", "10", "--sample-rate-hz", "10", "--trials", "16", "--epoch", "0.5",
+         "--rocking", "narrowband", "--amplitude-deg", "0.3", "--period", "6", "--damping", "0.2", "--lever-arm", "0.5,0,0", "--disturbance", "shaping",
+         "--prior-heading-deg", "1", "--prior-tilt-deg", "0.1", "--velocity-noise-m-s", "0.001",
+         "--assumed-period", "5", "--assumed-damping", "0.3", "--assumed-amplitude-deg", "0.2"],
+    ],
+    "azimuth": [
+        ["--lat-deg", "45", "--sigma-xi-deg", "0.5", "--sigma-eta-deg", "0.5", "--samples", "20000", "--rocking", "narrowband", "--period", "6", "--damping", "0.2", "--workers", "2"],
+    ],
+    "azimuth-design": [
+        ["--budget-deg", "0.1", "--lat-deg", "45", "--points", "3", "--rocking", "sine", "--averaging-time", "30", "--sample-rate-hz", "5", "--level", "0.9"],
+    ],
+    "multistage": [
+        ["--duration", "200", "--step", "0.1", "--truth", "no-coriolis", "--stage1-reference", "tilt", "--stage1-c", "2", "--stage1-components", "all",
+         "--switch", "bumpless", "--rocking-decay-per-s", "0.01", "--rocking-origin", "10", "--accel-m-s2", "5", "--accel-duration", "30", "--lat-deg", "30"],
+    ],
+    "stability": [
+        ["--natural-frequency-rad-s", "0.005", "--damping", "0.7", "--reference", "tilt", "--gravity-m-s2", "9.8", "--earth-radius", "6.4e6",
+         "--accel-m-s2", "5", "--accel-duration", "30", "--horizon", "20000"],
+    ],
+    "velocity-error": [
+        ["--algorithm", "panov-4s-1", "--motion", "sculling", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5",
+         "--angle-amplitude-deg", "0.1", "--accel-amplitude-m-s2", "1", "--angle-phase-deg", "10", "--accel-phase-deg", "20",
+         "--rotation-axis", "x", "--accel-axis", "z", "--w0-m-s", "1,0,0", "--attitude0", "1,0,0,0"],
+    ],
 }
 
 #: Limits passed to every fuzzed command that has them, so that no accepted case runs long.
@@ -41,12 +83,21 @@ NUMBER_REFUSED = ["nan", "inf", "-inf", "1e999", "abc", ""]
 NUMBER_EITHER = ["0", "-1", "1e300", "-1e300", "1e-300"]
 COUNT_REFUSED = ["nan", "1.5", "abc", ""]
 COUNT_EITHER = ["0", "-1", "1e15", "99999999999999999999999"]
+_TRIPLE_REFUSED = ["1,2", "a,b,c", "nan,0,0", "1e999,0,0", "", "1,2,3,4"]
+_TRIPLE_EITHER = ["1e300,0,0", "-5,0,1e-300", "-1e300"]
 TEXT_REFUSED = {
     "--algorithm": ["no-such-algorithm", "", "x" * 5000, "../../etc/passwd"],
-    "--w0": ["1,2", "a,b,c", "nan,0,0", "1e999,0,0", "", "1,2,3,4"],
+    "--w0-m-s": _TRIPLE_REFUSED,
     "--attitude0": ["0,0,0,0", "nan,0,0,0", "1,0,0", "inf,0,0,0"],
+    "--omega-h-rad": ["", "0", "-1", "a", "nan", "inf", "1,,2", "0.1,-0.1"],
+    **{flag: _TRIPLE_REFUSED for flag in ("--lever-arm", "--gyro-bias-deg-per-h", "--accel-bias-m-s2", "--gyro-scale-ppm", "--accel-scale-ppm", "--amplitude-deg", "--assumed-amplitude-deg")},
 }
-TEXT_EITHER = {"--attitude0": ["1e-300,0,0,0", "1e300,1e300,0,0", "-1,0,0,0"], "--w0": ["1e300,0,0", "-5,0,1e-300"]}
+TEXT_EITHER = {
+    "--attitude0": ["1e-300,0,0,0", "1e300,1e300,0,0", "-1,0,0,0"],
+    "--w0-m-s": _TRIPLE_EITHER,
+    "--omega-h-rad": ["1e-300", "1e300", "3.14159", "0.1," * 200 + "0.1"],
+    **{flag: _TRIPLE_EITHER for flag in ("--lever-arm", "--gyro-bias-deg-per-h", "--accel-bias-m-s2", "--gyro-scale-ppm", "--accel-scale-ppm", "--amplitude-deg", "--assumed-amplitude-deg")},
+}
 
 
 def _with(argv: list, flag: str, value: str) -> list:
@@ -77,8 +128,34 @@ def _kind(action) -> str:
     return "text"
 
 
+def _mutations(name: str, parser, base: list, only=None) -> list:
+    """The cases of one valid invocation ``base``: every option (or those in ``only``) mutated in turn."""
+    cases = []
+    for flag, action in options(parser):
+        if flag in FAST or (only is not None and flag not in only):
+            continue
+        kind = _kind(action)
+        if kind == "number":
+            cases += [("non-finite or non-numeric number", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in NUMBER_REFUSED]
+            cases += [("extreme number", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in NUMBER_EITHER]
+        elif kind == "count":
+            cases += [("non-integral count", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in COUNT_REFUSED]
+            cases += [("extreme count", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in COUNT_EITHER]
+        elif kind == "choice":
+            cases.append(("unknown choice", command_argv(name, _with(base, flag, "no-such-choice")), "refuse", (flag,)))
+        else:
+            cases += [("malformed text", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in TEXT_REFUSED.get(flag, [])]
+            cases += [("extreme text", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in TEXT_EITHER.get(flag, [])]
+        if action.required:
+            without = list(base)
+            i = without.index(flag)
+            del without[i : i + 2]
+            cases.append(("missing required option", command_argv(name, without), "refuse", (flag,)))
+    return cases
+
+
 def table() -> list:
-    """(class, argv, expect, names) for every command and option."""
+    """(class, argv, expect, names) for every command and option, and for the options of every variant."""
     cases = []
     for name, parser in leaf_parsers().items():
         base = BASELINES.get(name)
@@ -86,26 +163,11 @@ def table() -> list:
             continue
         cases.append(("valid baseline", command_argv(name, base), "accept", ()))
         cases.append(("unknown option", command_argv(name, base + ["--no-such-option", "1"]), "refuse", ("--no-such-option",)))
-        for flag, action in options(parser):
-            if flag in FAST:
-                continue
-            kind = _kind(action)
-            if kind == "number":
-                cases += [("non-finite or non-numeric number", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in NUMBER_REFUSED]
-                cases += [("extreme number", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in NUMBER_EITHER]
-            elif kind == "count":
-                cases += [("non-integral count", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in COUNT_REFUSED]
-                cases += [("extreme count", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in COUNT_EITHER]
-            elif kind == "choice":
-                cases.append(("unknown choice", command_argv(name, _with(base, flag, "no-such-choice")), "refuse", (flag,)))
-            else:
-                cases += [("malformed text", command_argv(name, _with(base, flag, v)), "refuse", (flag,)) for v in TEXT_REFUSED.get(flag, [])]
-                cases += [("extreme text", command_argv(name, _with(base, flag, v)), "either", (flag,)) for v in TEXT_EITHER.get(flag, [])]
-            if action.required:
-                without = list(base)
-                i = without.index(flag)
-                del without[i : i + 2]
-                cases.append(("missing required option", command_argv(name, without), "refuse", (flag,)))
+        cases += _mutations(name, parser, base)
+        for variant in VARIANTS.get(name, []):
+            cases.append(("valid baseline", command_argv(name, variant), "accept", ()))
+            written = {token for token in variant if token.startswith("--")} - set(base)  # the others are fuzzed in the baseline
+            cases += [c for c in _mutations(name, parser, variant, only=written) if c[0] != "missing required option"]
     return cases
 
 
@@ -204,12 +266,25 @@ def file_cases(root):
 FILE_LABELS = list(HOSTILE_TOML) + ["a directory", "missing file", "device /dev/zero", "device /dev/null", "a FIFO (would block on open)", "symbolic link loop"]
 
 
-@pytest.mark.parametrize("command", ["derive local-error", "drift"])
+def algorithm_file_commands() -> list:
+    """Every command with a baseline that reads ``--algorithm-file``."""
+    return [name for name, parser in leaf_parsers().items() if BASELINES.get(name) is not None and "--algorithm-file" in dict(options(parser))]
+
+
+def with_algorithm_file(command: str, path: str) -> list:
+    """The baseline of ``command`` with its ``--algorithm NAME`` replaced by ``--algorithm-file path``."""
+    base = list(BASELINES[command])
+    if "--algorithm" in base:
+        i = base.index("--algorithm")
+        del base[i : i + 2]
+    return command_argv(command, base + ["--algorithm-file", path])
+
+
+@pytest.mark.parametrize("command", algorithm_file_commands())
 @pytest.mark.parametrize("label", FILE_LABELS)
 def test_hostile_algorithm_files_refused_fast(toml_dir, command, label):
     path = dict(file_cases(toml_dir))[label]
-    base = [x for x in BASELINES[command] if x not in ("--algorithm", "two-sample", "panov-4s-1")]
-    outcome = run(command_argv(command, base + ["--algorithm-file", path]))
+    outcome = run(with_algorithm_file(command, path))
     assert not violations(outcome, expect="refuse", names=("--algorithm-file",), limit=2.0), outcome
 
 

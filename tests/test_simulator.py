@@ -261,7 +261,7 @@ def test_cli_drift_json(capsys):
 
 _VEL = [
     *("velocity-error", "--algorithm", "lebedev-panov-4", "--eps", "-1", "--freq-hz", "1", "--nutation-deg", "10"),
-    *("--nu-dual", "0.5", "--nutation-dual", "10", "--w0", "10,0,0", "--attitude0", "2,0.1,0,0"),
+    *("--nu-dual-m-s2", "0.5", "--nutation-dual-m-s", "10", "--w0-m-s", "10,0,0", "--attitude0", "2,0.1,0,0"),
     *("--sample-interval", "0.01", "--duration", "2"),
 ]
 
@@ -280,11 +280,11 @@ def test_cli_velocity_error_json_normalises_attitude(capsys):
 @pytest.mark.parametrize(
     "change, fragment",
     [
-        (("--w0", "1,2"), "--w0"),
-        (("--w0", "1,x,3"), "--w0"),
+        (("--w0-m-s", "1,2"), "--w0-m-s"),
+        (("--w0-m-s", "1,x,3"), "--w0-m-s"),
         (("--attitude0", "0,0,0,0"), "--attitude0"),
         (("--attitude0", "1,0,0,inf"), "--attitude0"),
-        (("--nu-dual", "nan"), "--nu-dual"),
+        (("--nu-dual-m-s2", "nan"), "--nu-dual-m-s2"),
     ],
 )
 def test_cli_velocity_error_bad_input_exits_2(change, fragment, capsys):

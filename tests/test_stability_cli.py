@@ -60,16 +60,16 @@ def test_stability_units_in_options(capsys):
 @pytest.mark.parametrize(
     "argv,match",
     [
-        (["--k", "nan", "--l", "1e-5"], "`--k` to be finite"),
-        (["--k", "0.01", "--l", "inf"], "`--l` to be finite"),
+        (["--k", "nan", "--l", "1e-5"], "argument --k: Expected `k` to be finite"),
+        (["--k", "0.01", "--l", "inf"], "argument --l: Expected `l` to be finite"),
         (["--k", "fast", "--l", "1e-5"], "invalid float"),
         (["--k", "0.01"], "--l"),
-        (["--k", "0.01", "--l", "1e-5", "--accel-duration", "0"], "`--accel-duration` > 0"),
-        (["--k", "0.01", "--l", "1e-5", "--horizon", "5"], "`--horizon` >="),
+        (["--k", "0.01", "--l", "1e-5", "--accel-duration", "0"], "argument --accel-duration: Expected `accel_duration` > 0"),
+        (["--k", "0.01", "--l", "1e-5", "--horizon", "5"], "argument --horizon: Expected `horizon` >="),
         (["--schuler", "--k", "0.1"], "one of"),
-        (["--schuler", "--earth-radius", "-1"], "`--earth-radius` > 0"),
+        (["--schuler", "--earth-radius", "-1"], "argument --earth-radius: Expected `earth_radius` > 0"),
         (["--natural-frequency-rad-s", "0.01"], "both"),
-        (["--natural-frequency-rad-s", "-0.01", "--damping", "0.5"], "`--natural-frequency-rad-s` > 0"),
+        (["--natural-frequency-rad-s", "-0.01", "--damping", "0.5"], "argument --natural-frequency-rad-s: Expected `natural_frequency` > 0"),
     ],
 )
 def test_stability_bad_input(capsys, argv, match):
@@ -97,7 +97,7 @@ def test_multistage_short(capsys):
 
 def test_multistage_zero_length(capsys):
     code, _, err = run(capsys, "multistage", "--duration", "0")
-    assert code == 2 and "`--duration` > 0" in err
+    assert code == 2 and "argument --duration: Expected `duration` > 0" in err
 
 
 @pytest.mark.parametrize("argv,match", [(["--lat-deg", "95"], "`--lat-deg` in (-90, 90) degrees"), (["--stage1-c", "0"], "`--stage1-c` > 0"), (["--step", "0.03"], "`step`")])

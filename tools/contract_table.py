@@ -4,10 +4,12 @@ Usage::
 
     python tools/contract_table.py            # Markdown table: input class, cases, met the contract
     python tools/contract_table.py --failures  # also one line per case that does not
+    python tools/contract_table.py --by-command  # also the cases of each command
 
 The cases are those of ``tests/test_cli_fuzz.py`` (one option of a valid
-command mutated at a time, hostile algorithm files) and of
-``tests/test_cli_contract.py`` (exception classes, budgets, physical ranges);
+command, or of a variant for a rocking model, method or motion, mutated at a
+time; hostile algorithm files for every command that reads them) and of
+``tests/test_cli_contract.py`` (work limits, counts, physical ranges, command-line syntax);
 the contract is checked by ``tests/cli_contract.py``.
 """
 
@@ -31,17 +33,28 @@ def _cases(tmp: Path) -> list:
 
     cases = [(kind, argv, expect, names, 5.0) for kind, argv, expect, names in fuzz.CASES]
     for _label, path in fuzz.file_cases(tmp):
-        for command in ("derive local-error", "drift"):
-            base = [x for x in fuzz.BASELINES[command] if x not in ("--algorithm", "two-sample", "panov-4s-1")]
-            cases.append((f"hostile algorithm file ({command})", fuzz.command_argv(command, base + ["--algorithm-file", path]), "refuse", ("--algorithm-file",), 2.0))
+        for command in fuzz.algorithm_file_commands():
+            cases.append((f"hostile algorithm file ({command})", fuzz.with_algorithm_file(command, path), "refuse", ("--algorithm-file",), 2.0))
     for kind, argv, expect, names in contract.EXTRA_CASES:
         cases.append((kind, argv, expect, names, 5.0))
     return cases
 
 
+def _command(argv) -> str:
+    """The command a case runs (``"derive coning-drift"``), or ``"(none)"`` for a bare or unknown one."""
+    from strapdown.analysis.cli import COMMANDS
+
+    words = [a for a in argv if not a.startswith("-")][:2]
+    for n in (2, 1):
+        if " ".join(words[:n]) in COMMANDS:
+            return " ".join(words[:n])
+    return " ".join(words[:1]) if words[:1] in (["derive"], ["algorithms"], ["reproduce"]) else "(none)"
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--failures", action="store_true", help="print every case that breaks the contract")
+    parser.add_argument("--by-command", action="store_true", help="print a second table: cases per command")
     args = parser.parse_args()
     import test_cli_fuzz
 
@@ -49,20 +62,30 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         cases = _cases(Path(tmp))
         tried, met = collections.Counter(), collections.Counter()
+        per_command, per_command_met = collections.Counter(), collections.Counter()
         failures = []
         for kind, argv, expect, names, limit in cases:
             outcome = run(argv, timeout=120.0)
             problems = violations(outcome, expect=expect, names=names, limit=limit, json_out="--json" in argv, argv=argv)
+            command = _command(argv)
             tried[kind] += 1
+            per_command[command] += 1
             if problems:
                 failures.append((kind, argv, problems))
             else:
                 met[kind] += 1
+                per_command_met[command] += 1
     print("| input class | cases | met the contract |")
     print("|---|---:|---:|")
     for kind in sorted(tried):
         print(f"| {kind} | {tried[kind]} | {met[kind]} |")
     print(f"| **all** | **{sum(tried.values())}** | **{sum(met.values())}** |")
+    if args.by_command:
+        print()
+        print("| command | cases | met the contract |")
+        print("|---|---:|---:|")
+        for command in sorted(per_command):
+            print(f"| {command} | {per_command[command]} | {per_command_met[command]} |")
     if args.failures:
         for kind, argv, problems in failures:
             print(f"- {kind}: `{' '.join(argv)[:160]}`: {'; '.join(problems)[:300]}")

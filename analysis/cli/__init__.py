@@ -18,6 +18,15 @@ The contract of every command
   operating-system errors (a directory given as a file, an unreadable file, a
   read-only output directory), and for ``MemoryError``, ``RecursionError`` and
   arithmetic errors (division by zero, overflow).
+* Who names the option: a check in a command module names it as typed
+  (``Expected `--lat-deg` in (-90, 90) degrees, got 90``) and checks only what
+  the command line alone knows (values in the unit typed, relations between
+  options, the sizes of a work estimate, options the library knows under
+  another name); every other value goes to the library unchecked, whose message
+  names the Python argument, and the edge puts the option in front
+  (``argument --duration: Expected `duration` > 0, got 0.0``).  An option that
+  applies only with some values of another is declared with
+  :meth:`Commands.only_with` and refused, not ignored, with the others.
 * Ctrl-C prints one line and exits with status 130.
 * Numerical warnings (numpy's ``RuntimeWarning``) never reach stderr; other
   warnings are printed as one line each.
@@ -118,7 +127,7 @@ def _apply_rules(args) -> None:
             setattr(args, dest, value.value)
         elif getattr(args, other_dest) not in values:
             allowed = " or ".join(str(v) for v in values)
-            raise UsageError(f"{option} applies only to {other} {allowed}, got {other} {getattr(args, other_dest)}")
+            raise UsageError(f"{option} does not apply to {other} {getattr(args, other_dest)} (it applies to {other} {allowed})")
 
 
 @dataclass
@@ -187,15 +196,17 @@ class Commands:
         """Declare that ``option`` applies only when ``other`` takes one of ``values``.
 
         Giving ``option`` explicitly with another value of ``other`` is then
-        refused with a one-line error (``--period-s applies only to --rocking
-        sine or narrowband, got --rocking normal``) instead of being ignored.
+        refused with a one-line error (``--period does not apply to --rocking
+        normal (it applies to --rocking sine or narrowband)``) instead of being
+        ignored.  A flag (``store_true``) can be declared too.  The default of
+        ``option`` is what the command sees when the option is not given.
 
         Parameters
         ----------
         parser : argparse.ArgumentParser
             The command's parser (from :meth:`add`), on which both options are defined.
         option : str
-            The option that may not apply, e.g. ``"--period-s"``.
+            The option that may not apply, e.g. ``"--period"``.
         other : str
             The option that decides, e.g. ``"--rocking"``.
         values : iterable of str
@@ -365,15 +376,16 @@ def _option_strings(parser) -> dict:
     return out
 
 
-_UNIT_SUFFIXES = ("s", "m", "hz", "deg", "rad", "deg_per_h", "m_s", "m_s2", "mb", "per_s", "per_s2")
+_UNIT_SUFFIXES = ("s", "m", "hz", "deg", "rad", "rad_s", "deg_per_h", "deg_per_rt_h", "m_s", "m_s2", "m_s_per_rt_h", "ppm", "arcsec", "mb", "per_s", "per_s2")
 
 
 def _option_for(name: str, args) -> str | None:
     """The option a Python argument name of a library message refers to (None if unclear).
 
     By dest (``duration`` → ``--duration``), by dest with a unit suffix
-    (``averaging_time`` → ``--averaging-time-s``), then by the words of the name
-    in exactly one option's help (``earth_radius`` → ``--R``, "Earth radius R [m]").
+    (``natural_frequency`` → ``--natural-frequency-rad-s``, ``accel`` →
+    ``--accel-m-s2``), then by the words of the name in exactly one option's
+    help (``latitude`` → ``--lat-deg``, "initial latitude [deg]").
     """
     parser = getattr(args, "parser_", None)
     options = _option_strings(parser)
@@ -391,25 +403,48 @@ def _option_for(name: str, args) -> str | None:
     return None
 
 
+def _typed(flag: str, argv) -> bool:
+    """Whether ``flag`` was typed in ``argv`` (in full or as the abbreviation argparse accepts)."""
+    for token in argv or ():
+        word = token.split("=", 1)[0]
+        if word.startswith("--") and len(word) > 2 and flag.startswith(word):
+            return True
+    return False
+
+
 def _blame(message: str, args, argv=()) -> str:
     """Name the option a library message is about: ``argument --duration: ...``.
 
     The library names the Python argument (``duration``); the user typed
     ``--duration``.  The option is found from a backticked name in the message
-    (:func:`_option_for`) or from an option value (a file name) that the message
-    quotes.  A message that names no option gets the options given on the
-    command line appended, so that the user sees what was refused.
+    (:func:`_option_for`) that the user typed (a value the command derived,
+    such as a gain designed from ``--natural-frequency-rad-s``, is not blamed
+    on an option left at its default), or from an option value (a file name)
+    that the message quotes; a message about several typed options names them
+    all (``arguments --step and --duration: ...``).  A message that names no
+    option gets the options given on the command line appended, so that the
+    user sees what was refused.
     """
-    options = _option_strings(getattr(args, "parser_", None))
-    flag = None
+    parser = getattr(args, "parser_", None)
+    options = _option_strings(parser)
+    flags = []
     for name in _TICKED.findall(message):
-        flag = _option_for(name, args)
-        if flag:
-            break
+        found = _option_for(name, args)
+        if found and (not argv or _typed(found, argv)) and found not in flags:
+            flags.append(found)
+    if len(flags) > 1:  # a relation between options: name every one the user typed
+        if all(re.search(rf"(^|[\s`(]){re.escape(f)}(?![\w-])", message) for f in flags):
+            return message
+        return f"arguments {', '.join(flags[:-1])} and {flags[-1]}: {message}"
+    flag = flags[0] if flags else None
     if flag is None:
+        words = re.split(r"[\s'\"]+", message)
+        choices = {a.dest for a in getattr(parser, "_actions", ()) if a.choices is not None}
         for dest, option in options.items():
             value = getattr(args, dest, None)
-            if isinstance(value, str) and len(value) > 1 and value in message:
+            if dest in choices or not isinstance(value, str) or len(value) < 2:
+                continue
+            if any(w.strip(":,;()") == value for w in words) or f"{value!r}" in message:
                 flag = option
                 break
     if flag is not None:

@@ -116,16 +116,17 @@ def add_algorithm(parser, *, required: bool = True) -> None:
         Whether one of the two must be given.
     """
     group = parser.add_mutually_exclusive_group(required=required)
+    default = "" if required else " (default: none)"
     group.add_argument(
         "--algorithm",
         metavar="NAME",
-        help=f"registry algorithm [name], one of: {', '.join(names(library=True))} (`strapdown algorithms list` shows them)",
+        help=f"registry algorithm [name], one of: {', '.join(names(library=True))} (`strapdown algorithms list` shows them){default}",
     )
     group.add_argument(
         "--algorithm-file",
         metavar="FILE",
         help=f"TOML file with a user algorithm [path] (indices <= 0: samples of earlier steps; docs/algorithm-files.md; "
-        f"at most {TOML_LIMITS.samples} samples, {TOML_LIMITS.terms} terms)",
+        f"at most {TOML_LIMITS.samples} samples, {TOML_LIMITS.terms} terms){default}",
     )
     parser.add_argument("--allow-inconsistent", action="store_true", help="accept a TOML algorithm that misses the second-order condition")
 
@@ -167,9 +168,9 @@ def add_motion(parser) -> None:
     parser : argparse.ArgumentParser
         The command's parser.
     """
-    parser.add_argument("--eps", type=float, required=True, help="ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning)")
-    parser.add_argument("--nutation-deg", type=float, required=True, help="nutation angle ϑ [deg], in (0, 180)")
-    parser.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz], > 0; ν = 2πF")
+    parser.add_argument("--eps", type=float, required=True, help="ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning; required)")
+    parser.add_argument("--nutation-deg", type=float, required=True, help="nutation angle ϑ [deg], in (0, 180) (required)")
+    parser.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz], > 0; ν = 2πF (required)")
     add_run(parser)
 
 
@@ -181,8 +182,8 @@ def add_run(parser) -> None:
     parser : argparse.ArgumentParser
         The command's parser.
     """
-    parser.add_argument("--sample-interval", type=float, required=True, metavar="H", help="gyro sample interval h [s]")
-    parser.add_argument("--duration", type=float, required=True, help="length of the run [s], at least one step N·h")
+    parser.add_argument("--sample-interval", type=float, required=True, metavar="H", help="gyro sample interval h [s] (required)")
+    parser.add_argument("--duration", type=float, required=True, help="length of the run [s], at least one step N·h (required)")
     add_limits(parser)
 
 
@@ -453,8 +454,8 @@ def add_sculling(parser) -> None:
     g.add_argument("--accel-amplitude-m-s2", type=float, default=None, help="amplitude A of the linear vibration [m/s²] (default 1)")
     g.add_argument("--angle-phase-deg", type=float, default=None, help="phase φ_θ of the angular vibration [deg] (default 0)")
     g.add_argument("--accel-phase-deg", type=float, default=None, help="phase φ_a of the linear vibration [deg] (default 0: in phase)")
-    g.add_argument("--rotation-axis", choices=("x", "y", "z"), default=None, help="body axis of the angular vibration (default x)")
-    g.add_argument("--accel-axis", choices=("x", "y", "z"), default=None, help="body axis of the linear vibration (default y)")
+    g.add_argument("--rotation-axis", choices=("x", "y", "z"), default=None, help="body axis of the angular vibration: x, y or z (default x)")
+    g.add_argument("--accel-axis", choices=("x", "y", "z"), default=None, help="body axis of the linear vibration: x, y or z (default y)")
 
 
 SCULLING_DEFAULTS = {"angle_amplitude_deg": 0.1, "accel_amplitude_m_s2": 1.0, "angle_phase_deg": 0.0, "accel_phase_deg": 0.0, "rotation_axis": "x", "accel_axis": "y"}

@@ -8,38 +8,58 @@ deg/h, deg/√h, ppm and arc-seconds at the edge, SI inside (converted with
 
 from __future__ import annotations
 
+from ..core import budget
 from . import Result, UsageError
+from ._options import add_limits, check_work, count
 
 __all__ = ["register"]
 
-_ROCKING_OPTIONS = {"amplitude_deg": ("sine", "narrowband", "white"), "period": ("sine", "narrowband"), "damping": ("narrowband",), "bandwidth_hz": ("white",)}
+#: Options that apply only with some rocking models or methods (refused with the others, :meth:`Commands.only_with`).
+_ROCKING_OPTIONS = {"--amplitude-deg": ("sine", "narrowband", "white"), "--period": ("sine", "narrowband"), "--damping": ("narrowband",), "--bandwidth-hz": ("white",)}
 _METHOD_OPTIONS = {
-    "formula": ("analytic",),
-    "observation": ("inertial",),
-    "epoch": ("inertial", "kalman"),
-    "prior_heading_deg": ("kalman",),
-    "prior_tilt_deg": ("kalman",),
-    "velocity_noise": ("kalman",),
-    "disturbance": ("kalman",),
-    "assumed_period": ("kalman",),
-    "assumed_damping": ("kalman",),
-    "assumed_amplitude_deg": ("kalman",),
+    "--formula": ("analytic",),
+    "--observation": ("inertial",),
+    "--epoch": ("inertial", "kalman"),
+    "--prior-heading-deg": ("kalman",),
+    "--prior-tilt-deg": ("kalman",),
+    "--velocity-noise-m-s": ("kalman",),
+    "--disturbance": ("kalman",),
+    "--assumed-period": ("kalman",),
+    "--assumed-damping": ("kalman",),
+    "--assumed-amplitude-deg": ("kalman",),
+    "--lever-arm-known": ("kalman",),
 }
 
+#: Alignment Monte Carlo, per trial and sensor sample: the time of the slowest method (Kalman; the
+#: analytic method takes about a third of it) and the start-up (theory, pilot block).  Measured with
+#: ``strapdown align`` from 1e3 to 1e5 samples and 16 to 256 trials on a shared machine, rounded up.
+_ALIGNMENT_TRIAL_SAMPLE = budget.CostModel(seconds_per_unit=3e-6, bytes_per_unit=0.0, fixed_seconds=1.0, fixed_bytes=2e8)
+#: Kalman filter, per trial and epoch (time) and per epoch (memory: the gain sequence and the epoch records).
+_KALMAN_EPOCH = budget.CostModel(seconds_per_unit=8e-6, bytes_per_unit=0.0)
+_KALMAN_EPOCH_BYTES = 5e4
+#: Trials per block of the Monte Carlo (the library's defaults) and the peak memory of a block per
+#: trial and sample [bytes].
+_BLOCK = {"analytic": (32, 350.0), "inertial": (32, 350.0), "kalman": (128, 150.0)}
 
-def _flag(name: str) -> str:
-    return "--" + name.replace("_", "-")
+
+def _check_work(args, samples: int, trials: int, workers: int) -> None:
+    """Refuse a Monte Carlo whose estimate exceeds ``--time-limit`` / ``--memory-limit-mb``, before it starts."""
+    from ..core.validation import positive
+
+    per_block, bytes_per = _BLOCK[args.method]
+    block = bytes_per * min(trials, per_block) * float(samples)  # each worker holds one block
+    what = f"{trials:.3g} trials (--trials) of {float(samples):.3g} samples (--duration × --sample-rate-hz) on {workers} worker(s) (--workers)"
+    model = _ALIGNMENT_TRIAL_SAMPLE
+    estimate = model.estimate(float(trials) * float(samples), what=what, seconds_factor=1.0 / workers, extra_bytes=workers * block + (workers - 1) * model.fixed_bytes)
+    if args.method == "kalman":  # the filter runs once per epoch: short epochs cost more than the samples
+        epoch = positive(0.1 if args.epoch is None else args.epoch, "--epoch")
+        epochs = float(samples) // max(1.0, round(epoch * positive(args.sample_rate_hz, "--sample-rate-hz")))
+        filtering = _KALMAN_EPOCH.estimate(float(trials) * epochs, what=what, seconds_factor=1.0 / workers)
+        estimate = budget.Estimate(estimate.seconds + filtering.seconds, estimate.memory + _KALMAN_EPOCH_BYTES * epochs, what)
+    check_work(args, estimate)
 
 
 def _check_options(args) -> None:
-    for name, models in _ROCKING_OPTIONS.items():
-        if getattr(args, name) is not None and args.rocking not in models:
-            raise UsageError(f"{_flag(name)} does not apply to --rocking {args.rocking} (it applies to {', '.join(models)})")
-    for name, methods in _METHOD_OPTIONS.items():
-        if getattr(args, name) is not None and args.method not in methods:
-            raise UsageError(f"{_flag(name)} does not apply to --method {args.method} (it applies to {', '.join(methods)})")
-    if args.lever_arm_known and args.method != "kalman":
-        raise UsageError(f"--lever-arm-known does not apply to --method {args.method} (it applies to kalman)")
     if args.rocking != "none" and args.amplitude_deg is None:
         raise UsageError(f"--amplitude-deg is required with --rocking {args.rocking}")
 
@@ -53,6 +73,27 @@ def _triple(text, name):
     return floats(text, name, 3)
 
 
+def _amplitude(text, flag: str, rocking: str, b0: float, g0: float):
+    """A rocking amplitude typed in degrees (one value or yaw,beta,gamma), >= 0.
+
+    The peak (the amplitude of sine rocking, 4 sigma of the random models) stays
+    below 90 - |tilt0| degrees in the tilts and below 180 degrees in yaw.
+    """
+    import numpy as np
+
+    amplitude = _triple(text, flag)
+    if np.any(amplitude < 0):
+        raise ValueError(f"Expected `{flag}` >= 0, got {text}")
+    peak = amplitude * (1.0 if rocking == "sine" else 4.0 / np.sqrt(2.0))
+    kind = "the amplitude" if rocking == "sine" else "4 sigma = 2.83 x amplitude"
+    limit = 90.0 - max(abs(b0), abs(g0))
+    if np.any(peak[1:] >= limit):
+        raise UsageError(f"Expected {flag} tilts with {kind} below 90 - |tilt0| = {limit:g} deg, got {text}")
+    if not peak[0] < 180.0:
+        raise UsageError(f"Expected {flag} yaw with {kind} below 180 deg, got {text}")
+    return amplitude
+
+
 def _scenario(args):
     import numpy as np
 
@@ -61,39 +102,28 @@ def _scenario(args):
     from ..gyrocompass.base_motion import motion_model
     from ..gyrocompass.imu import Scenario
 
-    lat = rad(in_open_interval(args.lat_deg, "lat-deg", -90.0, 90.0, text="(-90, 90) deg"))
-    heading = rad(as_float(args.heading_deg, "heading-deg"))
-    b0, g0 = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
-    for name, value in (("beta0-deg", b0), ("gamma0-deg", g0)):
-        if not abs(value) < 90.0:
-            raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
-    fs = positive(args.sample_rate_hz, "sample-rate-hz")
-    T = positive(args.duration, "duration")
+    lat = rad(in_open_interval(args.lat_deg, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
+    heading = rad(as_float(args.heading_deg, "--heading-deg"))
+    b0 = in_open_interval(args.beta0_deg, "--beta0-deg", -90.0, 90.0, text="(-90, 90) degrees")
+    g0 = in_open_interval(args.gamma0_deg, "--gamma0-deg", -90.0, 90.0, text="(-90, 90) degrees")
+    fs = positive(args.sample_rate_hz, "--sample-rate-hz")
+    T = positive(args.duration, "--duration")
     if T * fs < 2:
-        raise ValueError(f"Expected `duration` >= two samples = {2 / fs:g} s, got {T:g}")
-    amplitude = np.zeros(3)
-    if args.rocking != "none":
-        amplitude = _triple(args.amplitude_deg, "amplitude-deg")
-        if np.any(amplitude < 0):
-            raise ValueError(f"Expected `amplitude-deg` >= 0, got {args.amplitude_deg}")
-        peak = amplitude * (1.0 if args.rocking == "sine" else 4.0 / np.sqrt(2.0))
-        limit = 90.0 - max(abs(b0), abs(g0))
-        if np.any(peak[1:] >= limit):
-            kind = "the amplitude" if args.rocking == "sine" else "4 sigma = 2.83 x amplitude"
-            raise UsageError(f"Expected --amplitude-deg tilts with {kind} below 90 - |tilt0| = {limit:g} deg, got {args.amplitude_deg}")
-    period = 8.0 if args.period is None else positive(args.period, "period")
-    damping = 0.1 if args.damping is None else as_float(args.damping, "damping")
+        raise ValueError(f"Expected `--duration` >= two samples = {2 / fs:g} s (--sample-rate-hz {fs:g}), got {T:g}")
+    amplitude = np.zeros(3) if args.rocking == "none" else _amplitude(args.amplitude_deg, "--amplitude-deg", args.rocking, b0, g0)
+    period = positive(args.period, "--period")
+    damping = as_float(args.damping, "--damping")
     if args.rocking == "narrowband" and not 0.0 < damping < 1.0:
-        raise ValueError(f"Expected `damping` in (0, 1), got {damping:g}")
-    bandwidth = None if args.bandwidth_hz is None else positive(args.bandwidth_hz, "bandwidth-hz")
+        raise ValueError(f"Expected `--damping` in (0, 1), got {damping:g}")
+    bandwidth = None if args.bandwidth_hz is None else positive(args.bandwidth_hz, "--bandwidth-hz")
     if bandwidth is not None and bandwidth > fs / 2:
-        raise ValueError(f"Expected `bandwidth-hz` <= sample-rate-hz/2 = {fs / 2:g} Hz, got {bandwidth:g}")
+        raise ValueError(f"Expected `--bandwidth-hz` <= --sample-rate-hz/2 = {fs / 2:g} Hz, got {bandwidth:g}")
     if args.rocking == "sine" and 1.0 / period >= fs / 2:
-        raise ValueError(f"Expected `period` > 2/sample-rate-hz = {2 / fs:g} s, got {period:g}")
+        raise ValueError(f"Expected `--period` > 2/--sample-rate-hz = {2 / fs:g} s, got {period:g}")
     if args.rocking == "narrowband" and 4.0 / period >= fs / 2:
-        raise ValueError(f"Expected `period` > 8/sample-rate-hz = {8 / fs:g} s (the narrow-band spectrum reaches 4/period), got {period:g}")
+        raise ValueError(f"Expected `--period` > 8/--sample-rate-hz = {8 / fs:g} s (the narrow-band spectrum reaches 4/period), got {period:g}")
     motion = motion_model(args.rocking, rad(amplitude), period=period, damping=damping, bandwidth=bandwidth)
-    lever = _triple(args.lever_arm, "lever-arm")
+    lever = _triple(args.lever_arm, "--lever-arm")
     return Scenario(lat, heading, rad(b0), rad(g0), motion, lever, fs, T, rocking_in_gyros=not args.tilt_channel_only)
 
 
@@ -105,16 +135,16 @@ def _errors(args):
     from ..gyrocompass.imu import SensorErrors
 
     return SensorErrors(
-        gyro_bias=units.rad_per_s(_triple(args.gyro_bias_deg_per_h, "gyro-bias-deg-per-h")),
-        accel_bias=_triple(args.accel_bias_m_s2, "accel-bias-m-s2"),
-        gyro_bias_sigma=units.rad_per_s(nonnegative(args.gyro_bias_sigma_deg_per_h, "gyro-bias-sigma-deg-per-h")),
-        accel_bias_sigma=nonnegative(args.accel_bias_sigma_m_s2, "accel-bias-sigma-m-s2"),
-        gyro_noise=nonnegative(args.arw_deg_per_rt_h, "arw-deg-per-rt-h") * units.DEG_PER_RT_H_TO_RAD_PER_RT_S,
-        accel_noise=nonnegative(args.vrw_m_s_per_rt_h, "vrw-m-s-per-rt-h") * units.M_S_PER_RT_H_TO_M_S_PER_RT_S,
-        gyro_scale=np.asarray(_triple(args.gyro_scale_ppm, "gyro-scale-ppm")) * units.PPM,
-        accel_scale=np.asarray(_triple(args.accel_scale_ppm, "accel-scale-ppm")) * units.PPM,
-        gyro_quantum=nonnegative(args.gyro_quantum_arcsec, "gyro-quantum-arcsec") * units.ARCSEC,
-        accel_quantum=nonnegative(args.accel_quantum_m_s, "accel-quantum-m-s"),
+        gyro_bias=units.rad_per_s(_triple(args.gyro_bias_deg_per_h, "--gyro-bias-deg-per-h")),
+        accel_bias=_triple(args.accel_bias_m_s2, "--accel-bias-m-s2"),
+        gyro_bias_sigma=units.rad_per_s(nonnegative(args.gyro_bias_sigma_deg_per_h, "--gyro-bias-sigma-deg-per-h")),
+        accel_bias_sigma=nonnegative(args.accel_bias_sigma_m_s2, "--accel-bias-sigma-m-s2"),
+        gyro_noise=nonnegative(args.arw_deg_per_rt_h, "--arw-deg-per-rt-h") * units.DEG_PER_RT_H_TO_RAD_PER_RT_S,
+        accel_noise=nonnegative(args.vrw_m_s_per_rt_h, "--vrw-m-s-per-rt-h") * units.M_S_PER_RT_H_TO_M_S_PER_RT_S,
+        gyro_scale=np.asarray(_triple(args.gyro_scale_ppm, "--gyro-scale-ppm")) * units.PPM,
+        accel_scale=np.asarray(_triple(args.accel_scale_ppm, "--accel-scale-ppm")) * units.PPM,
+        gyro_quantum=nonnegative(args.gyro_quantum_arcsec, "--gyro-quantum-arcsec") * units.ARCSEC,
+        accel_quantum=nonnegative(args.accel_quantum_m_s, "--accel-quantum-m-s"),
     )
 
 
@@ -122,13 +152,13 @@ def _options(args, scenario, errors):
     import numpy as np
 
     from ..core.units import rad
-    from ..core.validation import positive
+    from ..core.validation import as_float, positive
     from ..gyrocompass.alignment_monte_carlo import AlignmentOptions
     from ..gyrocompass.base_motion import motion_model
     from ..gyrocompass.fine_alignment import Disturbance, FilterTuning, assumed_disturbance
 
     if args.method != "kalman":
-        return AlignmentOptions(formula=args.formula or "levelled", observation=args.observation or "position", inertial_epoch=positive(args.epoch or 1.0, "epoch"))
+        return AlignmentOptions(formula=args.formula or "levelled", observation=args.observation or "position", inertial_epoch=positive(1.0 if args.epoch is None else args.epoch, "--epoch"))
     kind = args.disturbance or "auto"
     moving = args.rocking != "none" and np.any(scenario.lever_arm)
     if kind == "auto":
@@ -138,22 +168,27 @@ def _options(args, scenario, errors):
         if args.rocking == "none":
             raise UsageError("--assumed-period, --assumed-damping and --assumed-amplitude-deg need a rocking model (--rocking)")
         name = "narrowband" if args.rocking == "white" else args.rocking
-        amp = rad(_triple(args.assumed_amplitude_deg, "assumed-amplitude-deg")) if args.assumed_amplitude_deg is not None else scenario.motion.amplitude
-        period = positive(args.assumed_period, "assumed-period") if args.assumed_period is not None else getattr(scenario.motion, "period", 8.0)
-        damping = args.assumed_damping if args.assumed_damping is not None else getattr(scenario.motion, "damping", 0.1)
+        if args.assumed_amplitude_deg is not None:
+            amp = rad(_amplitude(args.assumed_amplitude_deg, "--assumed-amplitude-deg", name, args.beta0_deg, args.gamma0_deg))
+        else:
+            amp = scenario.motion.amplitude
+        period = positive(args.assumed_period, "--assumed-period") if args.assumed_period is not None else getattr(scenario.motion, "period", 8.0)
+        damping = as_float(args.assumed_damping, "--assumed-damping") if args.assumed_damping is not None else getattr(scenario.motion, "damping", 0.1)
+        if name == "narrowband" and not 0.0 < damping < 1.0:
+            raise ValueError(f"Expected `--assumed-damping` in (0, 1), got {damping:g}")
         assumed = motion_model(name, amp, period=period, damping=damping)
     dist = assumed_disturbance(assumed, scenario, kind=kind) if kind != "none" else Disturbance("none")
     gb = errors.gyro_bias_sigma or max(float(np.max(np.abs(errors.gyro_bias))), rad(0.01) / 3600.0)
     ab = errors.accel_bias_sigma or max(float(np.max(np.abs(errors.accel_bias))), 1e-4)
     tuning = FilterTuning(
-        epoch=positive(args.epoch or 0.1, "epoch"),
-        prior_tilt=rad(positive(args.prior_tilt_deg or 0.1, "prior-tilt-deg")),
-        prior_heading=rad(positive(args.prior_heading_deg or 1.0, "prior-heading-deg")),
+        epoch=positive(0.1 if args.epoch is None else args.epoch, "--epoch"),
+        prior_tilt=rad(positive(0.1 if args.prior_tilt_deg is None else args.prior_tilt_deg, "--prior-tilt-deg")),
+        prior_heading=rad(positive(1.0 if args.prior_heading_deg is None else args.prior_heading_deg, "--prior-heading-deg")),
         gyro_bias=gb,
         accel_bias=ab,
         gyro_noise=errors.gyro_noise,
         accel_noise=errors.accel_noise,
-        measurement_noise=positive(args.velocity_noise or 1e-3, "velocity-noise"),
+        measurement_noise=positive(1e-3 if args.velocity_noise_m_s is None else args.velocity_noise_m_s, "--velocity-noise-m-s"),
         disturbance=dist,
         lever_arm_known=bool(args.lever_arm_known),
     )
@@ -169,11 +204,12 @@ def _align(args) -> Result:
 
     _check_options(args)
     scenario = _scenario(args)
+    trials = as_int(args.trials, "--trials", minimum=2)
+    seed = as_int(args.seed, "--seed", minimum=0)
+    workers = as_int(args.workers, "--workers", minimum=1)
+    _check_work(args, scenario.n_samples, trials, workers)
     errors = _errors(args)
     options = _options(args, scenario, errors)
-    trials = as_int(args.trials, "trials", minimum=2)
-    seed = as_int(args.seed, "seed", minimum=0)
-    workers = as_int(args.workers, "workers", minimum=1)
     executor = None
     if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
@@ -251,7 +287,7 @@ def register(commands) -> None:
     commands : Commands
         The registry of :mod:`strapdown.analysis.cli`.
     """
-    p = commands.add("align", _align, "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory")
+    p = commands.add("align", _align, "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory", progress="own")
     p.add_argument(
         "--method",
         choices=["analytic", "inertial", "kalman"],
@@ -260,13 +296,18 @@ def register(commands) -> None:
     )
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="stable heading ψ0 [deg] (default 0: body x north, y east, z down)")
-    p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 about the body x axis [deg] (default 0)")
-    p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 of the body x axis [deg] (default 0)")
+    p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 about the body x axis [deg], |β0| < 90 (default 0)")
+    p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 of the body x axis [deg], |γ0| < 90 (default 0)")
     p.add_argument("--rocking", choices=["none", "sine", "narrowband", "white"], default="none", help="rocking model: none, sine, narrowband or white (default none)")
-    p.add_argument("--amplitude-deg", default=None, help="rocking amplitude [deg], one value or yaw,beta,gamma; sine amplitude, sigma·√2 for narrowband and white (required with a rocking model)")
-    p.add_argument("--period", type=float, default=None, help="rocking period [s] (sine, narrowband; default 8)")
-    p.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
-    p.add_argument("--bandwidth-hz", type=float, default=None, help="bandwidth of white rocking [Hz] (default half the sample rate)")
+    p.add_argument(
+        "--amplitude-deg",
+        default=None,
+        help="rocking amplitude [deg], one value or yaw,beta,gamma; sine amplitude, sigma·√2 for narrowband and white "
+        "(default: none; required with a rocking model)",
+    )
+    p.add_argument("--period", type=float, default=8.0, help="rocking period [s], sine and narrowband only (default 8)")
+    p.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking, in (0, 1) [dimensionless], narrowband only (default 0.1)")
+    p.add_argument("--bandwidth-hz", type=float, default=None, help="bandwidth of white rocking [Hz], white only (default: half the sample rate)")
     p.add_argument("--lever-arm", default="0,0,0", help="sensor block from the rocking centre, body axes x,y,z [m] (default 0,0,0)")
     p.add_argument("--tilt-channel-only", action="store_true", help="the gyros see the stable attitude only, the rocking reaches the accelerometers (the paper's setting; default off)")
     p.add_argument("--gyro-bias-deg-per-h", default="0,0,0", help="fixed gyro bias bx,by,bz [deg/h] (default 0,0,0)")
@@ -276,28 +317,33 @@ def register(commands) -> None:
     p.add_argument("--arw-deg-per-rt-h", type=float, default=0.0, help="gyro angle random walk [deg/√h] (default 0)")
     p.add_argument("--vrw-m-s-per-rt-h", type=float, default=0.0, help="accelerometer velocity random walk [m/s/√h] (default 0)")
     p.add_argument("--gyro-scale-ppm", default="0,0,0", help="gyro scale-factor errors sx,sy,sz [ppm] (default 0,0,0)")
-    p.add_argument("--accel-scale-ppm", default="0,0,0", help="accelerometer scale-factor errors [ppm] (default 0,0,0)")
+    p.add_argument("--accel-scale-ppm", default="0,0,0", help="accelerometer scale-factor errors sx,sy,sz [ppm] (default 0,0,0)")
     p.add_argument("--gyro-quantum-arcsec", type=float, default=0.0, help="gyro angle quantum [arcsec] (default 0: none)")
     p.add_argument("--accel-quantum-m-s", type=float, default=0.0, help="accelerometer velocity quantum [m/s] (default 0: none)")
     p.add_argument("--sample-rate-hz", type=float, default=100.0, help="sensor sample rate [Hz] (default 100)")
     p.add_argument("--duration", type=float, default=120.0, help="alignment time T [s] (default 120)")
-    p.add_argument("--trials", type=int, default=200, help="Monte Carlo trials [1] (default 200)")
-    p.add_argument("--seed", type=int, default=0, help="root seed [1] (default 0)")
-    p.add_argument("--workers", type=int, default=1, help="worker processes [1] (default 1; the result does not depend on it)")
-    p.add_argument("--formula", choices=["levelled", "paper"], default=None, help="analytic: levelled (three gyros, any heading) or paper (eq. (2) with σ, exact at heading 0) (default levelled)")
-    p.add_argument("--observation", choices=["position", "velocity"], default=None, help="inertial: integrated velocity (position) or velocity vectors (default position)")
-    p.add_argument("--epoch", type=float, default=None, help="inertial: observation spacing, kalman: measurement interval [s] (default 1 and 0.1)")
-    p.add_argument("--prior-heading-deg", type=float, default=None, help="kalman: prior azimuth standard deviation, the coarse alignment's [deg] (default 1)")
-    p.add_argument("--prior-tilt-deg", type=float, default=None, help="kalman: prior tilt standard deviation [deg] (default 0.1)")
-    p.add_argument("--velocity-noise", type=float, default=None, help="kalman: noise of the zero-velocity reference [m/s] (default 0.001)")
+    p.add_argument("--trials", type=count, default=200, help="Monte Carlo trials [count] (default 200)")
+    p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
+    p.add_argument("--workers", type=count, default=1, help="worker processes [count] (default 1; the result does not depend on it)")
+    p.add_argument("--formula", choices=["levelled", "paper"], default=None, help="analytic only: levelled (three gyros, any heading) or paper (eq. (2) with σ, exact at heading 0) (default levelled)")
+    p.add_argument("--observation", choices=["position", "velocity"], default=None, help="inertial only: integrated velocity (position) or velocity vectors (default position)")
+    p.add_argument("--epoch", type=float, default=None, help="inertial: observation spacing, kalman: measurement interval [s] (default 1 for inertial, 0.1 for kalman)")
+    p.add_argument("--prior-heading-deg", type=float, default=None, help="kalman only: prior azimuth standard deviation, the coarse alignment's [deg] (default 1)")
+    p.add_argument("--prior-tilt-deg", type=float, default=None, help="kalman only: prior tilt standard deviation [deg] (default 0.1)")
+    p.add_argument("--velocity-noise-m-s", type=float, default=None, help="kalman only: noise of the zero-velocity reference [m/s] (default 0.001)")
     p.add_argument(
         "--disturbance",
         choices=["auto", "none", "white", "shaping"],
         default=None,
-        help="kalman: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white or shaping (default auto)",
+        help="kalman only: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white or shaping (default auto)",
     )
-    p.add_argument("--assumed-period", type=float, default=None, help="kalman: rocking period the filter assumes [s] (default the true one)")
-    p.add_argument("--assumed-damping", type=float, default=None, help="kalman: rocking damping the filter assumes [1] (default the true one)")
-    p.add_argument("--assumed-amplitude-deg", default=None, help="kalman: rocking amplitude the filter assumes [deg], one value or yaw,beta,gamma (default the true one)")
-    p.add_argument("--lever-arm-known", action="store_true", help="kalman: compensate the lever-arm velocity with the known lever arm (default off)")
+    p.add_argument("--assumed-period", type=float, default=None, help="kalman only: rocking period the filter assumes [s] (default: the true one)")
+    p.add_argument("--assumed-damping", type=float, default=None, help="kalman only: rocking damping ratio the filter assumes [dimensionless] (default: the true one)")
+    p.add_argument("--assumed-amplitude-deg", default=None, help="kalman only: rocking amplitude the filter assumes [deg], one value or yaw,beta,gamma (default: the true one)")
+    p.add_argument("--lever-arm-known", action="store_true", help="kalman only: compensate the lever-arm velocity with the known lever arm (default off)")
     p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+    add_limits(p)
+    for option, models in _ROCKING_OPTIONS.items():
+        commands.only_with(p, option, "--rocking", models)
+    for option, methods in _METHOD_OPTIONS.items():
+        commands.only_with(p, option, "--method", methods)

@@ -13,35 +13,7 @@ from ..core import budget
 from . import Result, UsageError
 from ._options import add_limits, check_work, count
 
-__all__ = ["register", "check_applicable", "check_rocking_domain"]
-
-_DEFAULTS = {"period": 8.0, "damping": 0.1}
-_APPLIES = {"period": ("sine", "narrowband"), "damping": ("narrowband",)}
-
-
-def check_applicable(args, rocking: str, options=("period", "damping")) -> None:
-    """Raise :class:`UsageError` for an option given that the rocking model does not use; fill defaults.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        Parsed options (``None`` where not given).
-    rocking : str
-        The chosen rocking model.
-    options : sequence of str
-        Option names to check (``period``, ``damping``).
-
-    Raises
-    ------
-    UsageError
-        Naming the option as typed.
-    """
-    for name in options:
-        value = getattr(args, name)
-        if value is None:
-            setattr(args, name, _DEFAULTS[name])
-        elif rocking not in _APPLIES[name]:
-            raise UsageError(f"--{name} does not apply to --rocking {rocking} (it applies to {', '.join(_APPLIES[name])})")
+__all__ = ["register", "check_rocking_domain"]
 
 
 def check_rocking_domain(rocking_type, beta0_deg: float, gamma0_deg: float, sigmas_deg) -> None:
@@ -58,15 +30,15 @@ def check_rocking_domain(rocking_type, beta0_deg: float, gamma0_deg: float, sigm
 
     Raises
     ------
+    ValueError
+        A tilt outside (-90, 90) degrees.
     UsageError
-        With the limit in degrees.
+        A standard deviation beyond the limit, stated in degrees.
     """
     from ..core.units import deg, rad
     from ..gyrocompass.rocking import tilt_domain_limit
 
-    for name, value in (("beta0-deg", beta0_deg), ("gamma0-deg", gamma0_deg)):
-        if not abs(value) < 90.0:
-            raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
+    _tilts(beta0_deg, gamma0_deg)
     limit = deg(tilt_domain_limit(rocking_type, rad(beta0_deg), rad(gamma0_deg)))
     for name, value in sigmas_deg.items():
         if value > limit:
@@ -75,29 +47,36 @@ def check_rocking_domain(rocking_type, beta0_deg: float, gamma0_deg: float, sigm
             )
 
 
+def _tilts(beta0_deg, gamma0_deg) -> tuple:
+    """The stable tilts typed in degrees, each in (-90, 90) (no tilt of a level platform reaches ±90°)."""
+    from ..core.validation import in_open_interval
+
+    return tuple(in_open_interval(v, name, -90.0, 90.0, text="(-90, 90) degrees") for name, v in (("--beta0-deg", beta0_deg), ("--gamma0-deg", gamma0_deg)))
+
+
 def _latitude(value) -> float:
     from ..core.units import rad
     from ..core.validation import in_open_interval
 
-    return rad(in_open_interval(value, "lat-deg", -90.0, 90.0, text="(-90, 90) deg"))
+    return rad(in_open_interval(value, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
 
 
 def _azimuth(args) -> Result:
     from ..core.units import deg, rad
-    from ..core.validation import as_float, as_int, nonnegative
+    from ..core.validation import as_int, nonnegative, positive
     from ..gyrocompass.azimuth import azimuth_monte_carlo
     from ..gyrocompass.rocking import MODELS, rocking_model
 
     lat = _latitude(args.lat_deg)
-    check_applicable(args, args.rocking)
-    sx_deg = nonnegative(args.sigma_xi_deg, "sigma-xi-deg")
-    se_deg = nonnegative(args.sigma_eta_deg, "sigma-eta-deg")
-    b0_deg, g0_deg = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
+    sx_deg = nonnegative(args.sigma_xi_deg, "--sigma-xi-deg")
+    se_deg = nonnegative(args.sigma_eta_deg, "--sigma-eta-deg")
+    b0_deg, g0_deg = _tilts(args.beta0_deg, args.gamma0_deg)
     check_rocking_domain(MODELS[args.rocking], b0_deg, g0_deg, {"sigma-xi-deg": sx_deg, "sigma-eta-deg": se_deg})
-    n = as_int(args.samples, "samples", minimum=2)
-    seed = as_int(args.seed, "seed", minimum=0)
-    model = rocking_model(args.rocking, rad(sx_deg), rad(se_deg), period=args.period, damping=args.damping)
-    workers = as_int(args.workers, "workers", minimum=1)
+    n = as_int(args.samples, "--samples", minimum=2)
+    seed = as_int(args.seed, "--seed", minimum=0)
+    period = positive(args.period, "--period")  # the library knows it per axis (period_xi, period_eta)
+    model = rocking_model(args.rocking, rad(sx_deg), rad(se_deg), period=period, damping=args.damping)
+    workers = as_int(args.workers, "--workers", minimum=1)
     check_work(args, budget.monte_carlo(n, workers=workers, what=f"{n:.3g} rocking samples (--samples) on {workers} worker(s) (--workers)"))
     executor = None
     if workers > 1:
@@ -142,31 +121,25 @@ def _design(args) -> Result:
     import numpy as np
 
     from ..core.units import deg, rad
-    from ..core.validation import as_float, as_int, in_open_interval, positive
+    from ..core.validation import as_int, in_open_interval, positive
     from ..gyrocompass.admissible_rocking import admissible_amplitude
 
     lat = _latitude(args.lat_deg)
-    check_applicable(args, args.rocking, ("damping",))
-    if args.exact_phase and args.rocking != "sine":
-        raise UsageError(f"--exact-phase does not apply to --rocking {args.rocking} (it applies to sine)")
-    fmin, fmax = positive(args.freq_min_hz, "freq-min-hz"), positive(args.freq_max_hz, "freq-max-hz")
-    fs = positive(args.sample_rate_hz, "sample-rate-hz")
+    fmin, fmax = positive(args.freq_min_hz, "--freq-min-hz"), positive(args.freq_max_hz, "--freq-max-hz")
+    fs = positive(args.sample_rate_hz, "--sample-rate-hz")
     if fmax <= fmin:
-        raise ValueError(f"Expected `freq-max-hz` > freq-min-hz = {fmin:g} Hz, got {fmax:g}")
+        raise ValueError(f"Expected `--freq-max-hz` > --freq-min-hz = {fmin:g} Hz, got {fmax:g}")
     if fmax >= fs / 2:
-        raise ValueError(f"Expected `freq-max-hz` < sample-rate-hz/2 = {fs / 2:g} Hz, got {fmax:g}")
-    T = positive(args.averaging_time, "averaging-time")
+        raise ValueError(f"Expected `--freq-max-hz` < --sample-rate-hz/2 = {fs / 2:g} Hz, got {fmax:g}")
+    T = positive(args.averaging_time, "--averaging-time")
     if T * fs < 1:
-        raise ValueError(f"Expected `averaging-time` >= 1/sample-rate-hz = {1 / fs:g} s, got {T:g}")
-    points = as_int(args.points, "points", minimum=2)
+        raise ValueError(f"Expected `--averaging-time` >= 1/--sample-rate-hz = {1 / fs:g} s, got {T:g}")
+    points = as_int(args.points, "--points", minimum=2)
     lags = T * fs
     check_work(args, budget.autocorrelation_sums(points, lags, what=f"{points} frequencies (--points) × {lags:.3g} samples (--averaging-time × --sample-rate-hz)"))
-    allowed = rad(positive(args.budget_deg, "budget-deg"))
-    level = in_open_interval(args.level, "level", 0.0, 1.0)
-    b0_deg, g0_deg = as_float(args.beta0_deg, "beta0-deg"), as_float(args.gamma0_deg, "gamma0-deg")
-    for name, value in (("beta0-deg", b0_deg), ("gamma0-deg", g0_deg)):
-        if not abs(value) < 90.0:
-            raise UsageError(f"Expected --{name} in (-90, 90) deg, got {value:g}")
+    allowed = rad(positive(args.budget_deg, "--budget-deg"))
+    level = in_open_interval(args.level, "--level", 0.0, 1.0)
+    b0_deg, g0_deg = _tilts(args.beta0_deg, args.gamma0_deg)
     d = admissible_amplitude(
         allowed,
         lat,
@@ -177,7 +150,7 @@ def _design(args) -> Result:
         sample_rate=fs,
         beta0=rad(b0_deg),
         gamma0=rad(g0_deg),
-        max_amplitude=rad(positive(args.max_amplitude_deg, "max-amplitude-deg")),
+        max_amplitude=rad(positive(args.max_amplitude_deg, "--max-amplitude-deg")),
         level=level,
         envelope=not args.exact_phase,
     )
@@ -210,33 +183,36 @@ def register(commands) -> None:
     """
     p = commands.add("azimuth", _azimuth, "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)", progress="own")
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
-    p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
-    p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
+    p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg], |β0| < 90 (default 0)")
+    p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg], |γ0| < 90 (default 0)")
     p.add_argument("--sigma-xi-deg", type=float, required=True, help="standard deviation of ξ [deg] (required; sine amplitude = SX·√2)")
     p.add_argument("--sigma-eta-deg", type=float, required=True, help="standard deviation of η [deg] (required)")
     p.add_argument("--rocking", choices=["normal", "sine", "narrowband"], default="normal", help="rocking model: normal, sine or narrowband (default normal)")
-    p.add_argument("--period", type=float, default=None, help="rocking period [s] (sine, narrowband; default 8)")
-    p.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
+    p.add_argument("--period", type=float, default=8.0, help="rocking period [s], sine and narrowband only (default 8)")
+    p.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking, in (0, 1) [dimensionless], narrowband only (default 0.1)")
     p.add_argument("--samples", type=count, default=1_000_000, help="rocking samples N [count] (default 1e6)")
     p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
     p.add_argument("--workers", type=count, default=1, help="worker processes [count] (default 1; the result does not depend on it)")
     p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
-
     add_limits(p)
+    commands.only_with(p, "--period", "--rocking", ("sine", "narrowband"))
+    commands.only_with(p, "--damping", "--rocking", ("narrowband",))
 
     d = commands.add("azimuth-design", _design, "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)")
     d.add_argument("--budget-deg", type=float, required=True, help="azimuth error budget [deg] (required; on the rms and on the percentile)")
     d.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
     d.add_argument("--averaging-time", type=float, default=60.0, help="averaging time of the tilt estimates (16) [s] (default 60)")
     d.add_argument("--rocking", choices=["sine", "narrowband"], default="narrowband", help="rocking model: sine or narrowband (default narrowband)")
-    d.add_argument("--damping", type=float, default=None, help="damping ratio of narrow-band rocking, in (0, 1) [1] (default 0.1)")
+    d.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking, in (0, 1) [dimensionless], narrowband only (default 0.1)")
     d.add_argument("--sample-rate-hz", type=float, default=10.0, help="accelerometer sample rate [Hz] (default 10)")
     d.add_argument("--freq-min-hz", type=float, default=0.02, help="lowest rocking frequency [Hz] (default 0.02)")
-    d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz] (default 1), below half the sample rate")
+    d.add_argument("--freq-max-hz", type=float, default=1.0, help="highest rocking frequency [Hz], below half the sample rate (default 1)")
     d.add_argument("--points", type=count, default=12, help="frequencies, log-spaced [count] (default 12)")
-    d.add_argument("--level", type=float, default=0.95, help="percentile level of the percentile criterion, in (0, 1) [1] (default 0.95)")
-    d.add_argument("--exact-phase", action="store_true", help="sine: the exact Dirichlet factor instead of its envelope over phase (default off)")
-    d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg] (default 0)")
-    d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg] (default 0)")
+    d.add_argument("--level", type=float, default=0.95, help="level of the percentile criterion, in (0, 1) [dimensionless] (default 0.95)")
+    d.add_argument("--exact-phase", action="store_true", help="sine only: the exact Dirichlet factor instead of its envelope over phase (default off)")
+    d.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 [deg], |β0| < 90 (default 0)")
+    d.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 [deg], |γ0| < 90 (default 0)")
     d.add_argument("--max-amplitude-deg", type=float, default=20.0, help="cap of the reported amplitude [deg] (default 20)")
     add_limits(d)
+    commands.only_with(d, "--damping", "--rocking", ("narrowband",))
+    commands.only_with(d, "--exact-phase", "--rocking", ("sine",))

@@ -12,7 +12,7 @@ with the cone axis oriented along the mean inertial angular velocity of the
 body (so u > 0: the computed attitude lags the coning rotation; u < 0: it
 leads).  The error does not grow across the axis.  The exact α²-coefficient as
 a function of ωh, ``D(x)`` with ``u = α² ω D(ωh) + O(α⁴)``, is printed too, and
-evaluated at the ``--omega-h`` values asked for
+evaluated at the ``--omega-h-rad`` values asked for
 (:func:`strapdown.derivations.coning.drift.coning_drift`,
 :func:`strapdown.analysis.coning.drift_theory.coning_drift_function`).
 """
@@ -45,9 +45,9 @@ def _omega_h(text: str) -> list:
         try:
             v = float(part)
         except ValueError:
-            raise UsageError(f"Expected --omega-h as comma-separated numbers of radians, got {text!r}") from None
+            raise UsageError(f"Expected --omega-h-rad as comma-separated numbers of radians, got {text!r}") from None
         if not math.isfinite(v) or v <= 0:
-            raise UsageError(f"Expected --omega-h values > 0 (radians), got {part.strip()!r}")
+            raise UsageError(f"Expected --omega-h-rad values > 0 (radians), got {part.strip()!r}")
         values.append(v)
     return values
 
@@ -58,7 +58,7 @@ def coning_drift_command(args) -> Result:
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed options: ``algorithm`` or ``algorithm_file``, ``allow_inconsistent``, ``omega_h``.
+        Parsed options: ``algorithm`` or ``algorithm_file``, ``allow_inconsistent``, ``omega_h_rad``.
 
     Returns
     -------
@@ -68,11 +68,11 @@ def coning_drift_command(args) -> Result:
     Raises
     ------
     UsageError
-        For bad ``--omega-h`` values.
+        For bad ``--omega-h-rad`` values.
     ValueError
         For an unknown algorithm or a malformed algorithm file.
     """
-    xs = _omega_h(args.omega_h) if args.omega_h else []
+    xs = _omega_h(args.omega_h_rad) if args.omega_h_rad is not None else []
     alg = algorithm_from(args)
     d = coning_drift(alg)
     N = alg.samples
@@ -96,7 +96,7 @@ def coning_drift_command(args) -> Result:
     if xs:
         f = coning_drift_function(alg)
         values = np.asarray(f(np.asarray(xs)), dtype=float)
-        data["values"] = [{"omega_h": x, "D": float(v), "leading": float(c) * x**d.order} for x, v in zip(xs, values)]
+        data["values"] = [{"omega_h_rad": x, "D": float(v), "leading": float(c) * x**d.order} for x, v in zip(xs, values)]
     sign = "lags" if c > 0 else "leads"
     lines = [
         f"{alg.name}: coning drift u = {c} · α² ω (ωh)^{d.order}  (= {cH} · α² ω (ωH)^{d.order}, H = {N}h)",
@@ -104,7 +104,7 @@ def coning_drift_command(args) -> Result:
         f"exact in ωh at order α²: u = α² ω D(ωh), D(x) = {d.function}",
     ]
     for row in data.get("values", []):
-        lines.append(f"  ωh = {row['omega_h']:g}: D = {row['D']:.6g} (leading term {row['leading']:.6g})")
+        lines.append(f"  ωh = {row['omega_h_rad']:g} rad: D = {row['D']:.6g} (leading term {row['leading']:.6g})")
     return Result(data, "\n".join(lines))
 
 
@@ -125,8 +125,8 @@ def register(commands) -> None:
     )
     add_algorithm(p)
     p.add_argument(
-        "--omega-h",
+        "--omega-h-rad",
         metavar="X[,X...]",
         default=None,
-        help="also evaluate the exact D(ωh) at these ωh values [rad], comma-separated (default: none)",
+        help="also evaluate the exact D(ωh) at these values of ωh, the angle the coning rate turns through in one sample interval [rad], comma-separated (default: none)",
     )

@@ -16,7 +16,7 @@ from __future__ import annotations
 from ...derivations.coning.drift import coning_drift_series
 from ...derivations.coning.series import DEFAULT_MAX_WEIGHT, WEIGHT_LIMIT, error_coefficients, local_error
 from . import Result, UsageError
-from ._options import add_algorithm, algorithm_from
+from ._options import add_algorithm, algorithm_from, count
 
 __all__ = ["local_error_command", "register"]
 
@@ -98,9 +98,9 @@ def register(commands) -> None:
     add_algorithm(p)
     p.add_argument(
         "--max-order",
-        type=int,
+        type=count,
         default=DEFAULT_MAX_WEIGHT,
         metavar="K",
-        help=f"keep the series through h^K (K in {MIN_ORDER}..{WEIGHT_LIMIT}; default {DEFAULT_MAX_WEIGHT}); "
+        help=f"keep the series through h^K, K in {MIN_ORDER}..{WEIGHT_LIMIT} [count] (default {DEFAULT_MAX_WEIGHT}); "
         "6-sample algorithms need K = 13 to reach their coning term",
     )

@@ -71,14 +71,14 @@ def register(commands) -> None:
         The command registry.
     """
     p = commands.add("design", design_command, "largest step and computational load of each algorithm for a drift budget")
-    p.add_argument("--required-drift-deg-per-h", type=float, required=True, metavar="U", help="required drift [u] [deg/h], > 0")
-    p.add_argument("--eps", type=float, required=True, metavar="E", help="ε = μ/ν [-] (−1: coning)")
-    p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg], in (0, 180)")
-    p.add_argument("--freq-hz", type=float, required=True, metavar="F", help="frequency f [Hz], ν = 2πf")
-    p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions [-] (default 5)")
+    p.add_argument("--required-drift-deg-per-h", type=float, required=True, metavar="U", help="required drift u [deg/h], > 0 (required)")
+    p.add_argument("--eps", type=float, required=True, metavar="E", help="ε = μ/ν, precession to spin rate [dimensionless] (−1: coning; required)")
+    p.add_argument("--nutation-deg", type=float, required=True, metavar="D", help="nutation angle ϑ [deg], in (0, 180) (required)")
+    p.add_argument("--freq-hz", type=float, required=True, metavar="F", help="spin frequency f [Hz], ν = 2πf (required)")
+    p.add_argument("--m", type=float, default=5.0, help="cost of a multiplication in additions [dimensionless] (default 5)")
     p.add_argument("--time-base", choices=TIME_BASES, default="sample",
-                   help="load = cost of a step per sample interval h ('sample', the peak load) or per step H ('step'); default sample")  # fmt: skip
+                   help="load = cost of a step per sample interval h ('sample', the peak load) or per step H ('step') (default sample)")  # fmt: skip
     p.add_argument("--truncation-fraction", type=float, default=0.1, metavar="F",
-                   help="series rule: the truncation error of the quaternion update may add this fraction of [u] [-] (default 0.1)")  # fmt: skip
+                   help="series rule: the truncation error of the quaternion update may add this fraction of u [dimensionless] (default 0.1)")  # fmt: skip
     p.add_argument("--quaternion-cost", type=float, default=None,
-                   help="fixed cost of the quaternion update per step [addition-equivalents] (default: counted with the series rule)")  # fmt: skip
+                   help="fixed cost of the quaternion update per step, in additions [dimensionless] (default: counted with the series rule)")  # fmt: skip

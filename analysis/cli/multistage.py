@@ -16,24 +16,19 @@ from ._options import add_limits, check_work, count
 
 def _scenario(args):
     from ..core import units
-    from ..core.validation import as_float, as_int, in_open_interval, nonnegative, positive
+    from ..core.validation import as_float, as_int, in_open_interval, positive
     from ..multistage.trajectory import Scenario
 
+    # degrees, and t_d (the library's `rocking_decay_origin`), are checked here; the rest by Scenario
     lat = units.rad(in_open_interval(args.lat_deg, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
-    kw = dict(
-        duration=positive(args.duration, "--duration"),
-        accel=as_float(args.accel_m_s2, "--accel-m-s2"),
-        accel_duration=nonnegative(args.accel_duration, "--accel-duration"),
-        latitude=lat,
-        truth=args.truth,
-        rocking_decay=nonnegative(args.rocking_decay_per_s, "--rocking-decay-per-s"),
-    )
+    kw = dict(duration=args.duration, accel=args.accel_m_s2, accel_duration=args.accel_duration, latitude=lat, truth=args.truth, rocking_decay=args.rocking_decay_per_s)
     if args.rocking_origin is not None:
         kw["rocking_decay_origin"] = as_float(args.rocking_origin, "--rocking-origin")
+    scenario = Scenario(**kw)
     as_int(args.seed, "--seed", minimum=0)
-    steps = kw["duration"] / positive(args.step, "--step")
+    steps = scenario.duration / positive(args.step, "--step")
     check_work(args, budget.multistage(steps, what=f"{steps:.3g} integration steps (--duration / --step)"))
-    return Scenario(**kw)
+    return scenario
 
 
 def _run(args) -> Result:
@@ -103,7 +98,7 @@ def register(commands) -> None:
     p.add_argument("--rocking-decay-per-s", type=float, default=S5.envelope_decay, help=f"decay rate d of the rocking envelope exp(-d(t - t_d)) [1/s] (default {S5.envelope_decay:g}, as printed)")
     p.add_argument("--rocking-origin", type=float, default=None, help=f"t_d of the envelope [s] (default: the start of rocking, {S5.rest_end:g}; printed: {S5.envelope_origin:g})")
     p.add_argument("--stage1-reference", choices=("tilt", "pure"), default="tilt", help="accelerometer quaternion of stage 1: (1.10) 'tilt' or (1.4) 'pure' (default: tilt)")
-    p.add_argument("--stage1-c", type=float, default=None, help="factor c of stage 1 [-] (default: 1 for tilt, 2 for pure; printed: 2)")
+    p.add_argument("--stage1-c", type=float, default=None, help="factor c of stage 1 [dimensionless] (default: 1 for tilt, 2 for pure; printed: 2)")
     p.add_argument("--stage1-components", choices=("horizontal", "all"), default="horizontal", help="components of ν corrected by stage 1: 1 and 3, or all four (default: horizontal)")
     p.add_argument(
         "--switch",

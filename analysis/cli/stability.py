@@ -16,11 +16,10 @@ _G, _R = 9.81, 6.371e6
 
 
 def _loop(args):
-    from ..core.validation import as_float, nonnegative, positive
     from ..multistage.tilt_loop import StageLoop
 
-    g = positive(args.gravity_m_s2, "--gravity-m-s2")
-    r = positive(args.earth_radius, "--earth-radius")
+    # the values are checked by the library (its names become the options at the edge); here, which options go together
+    g, r = args.gravity_m_s2, args.earth_radius
     manual = args.k is not None or args.l is not None
     design = args.natural_frequency_rad_s is not None or args.damping is not None
     if sum((bool(args.schuler), manual, design)) > 1:
@@ -32,26 +31,23 @@ def _loop(args):
 
         if args.natural_frequency_rad_s is None or args.damping is None:
             raise ValueError("Expected both `--natural-frequency-rad-s` and `--damping`, got only one")
-        gains = design_gains(positive(args.natural_frequency_rad_s, "--natural-frequency-rad-s"), nonnegative(args.damping, "--damping"), reference=args.reference)
+        gains = design_gains(args.natural_frequency_rad_s, args.damping, reference=args.reference)
         return gains.loop(g, r), gains
     if args.k is None or args.l is None:
         raise ValueError("Expected `--k` and `--l` (or `--schuler`, or `--natural-frequency-rad-s` and `--damping`), got " + ("neither" if not manual else "only one"))
-    loop = StageLoop(as_float(args.k, "--k"), as_float(args.l, "--l"), g, r)
+    loop = StageLoop(args.k, args.l, g, r)
     if loop.stability == "unstable":
         poles = ", ".join(f"{z.real:+.3g}{z.imag:+.3g}j" for z in loop.poles())
-        raise ValueError(f"Expected `--k` and `--l` giving a stable loop (both >= 0, not both 0), got k = {loop.k:g} 1/s, l = {loop.l:g} 1/s²: poles {poles}, the tilt error grows without bound")
+        raise ValueError(
+            f"Expected `--k` and `--l` giving a stable loop (both >= 0, not both 0), got an unstable one, k = {loop.k:g} 1/s, l = {loop.l:g} 1/s²: "
+            f"poles {poles}, the tilt error grows without bound"
+        )
     return loop, None
 
 
 def _run(args) -> Result:
-    from ..core.validation import positive
-
     loop, gains = _loop(args)
-    accel_duration = positive(args.accel_duration, "--accel-duration")
-    horizon = None if args.horizon is None else positive(args.horizon, "--horizon")
-    if horizon is not None and horizon < accel_duration:
-        raise ValueError(f"Expected `--horizon` >= `--accel-duration` ({accel_duration:g} s), got {horizon:g} s")
-    s = loop.summary(args.accel_m_s2, accel_duration, horizon=horizon)
+    s = loop.summary(args.accel_m_s2, args.accel_duration, horizon=args.horizon)
     data = {
         "k_per_s": s.k,
         "l_per_s2": s.l,
@@ -93,14 +89,14 @@ def register(commands) -> None:
         The command registry.
     """
     p = commands.add("stability", _run, "poles, damping, stability and peak tilt error of a corrected attitude stage (Plotnikov 1999)")
-    p.add_argument("--k", type=float, help="loop position gain k [1/s] (no default; with --l)")
-    p.add_argument("--l", type=float, help="loop integral gain l [1/s²] (no default; with --k)")
+    p.add_argument("--k", type=float, help="loop position gain k [1/s] (default: none; with --l)")
+    p.add_argument("--l", type=float, help="loop integral gain l [1/s²] (default: none; with --k)")
     p.add_argument("--schuler", action="store_true", help="Schuler tuning: k = 0, l = g/R (default: off)")
-    p.add_argument("--natural-frequency-rad-s", type=float, help="design: natural frequency ω_n of the tilt loop [rad/s] (no default; with --damping)")
-    p.add_argument("--damping", type=float, help="design: damping ratio ζ [-] (no default; with --natural-frequency-rad-s)")
+    p.add_argument("--natural-frequency-rad-s", type=float, help="design: natural frequency ω_n of the tilt loop [rad/s] (default: none; with --damping)")
+    p.add_argument("--damping", type=float, help="design: damping ratio ζ [dimensionless] (default: none; with --natural-frequency-rad-s)")
     p.add_argument("--reference", choices=("pure", "tilt"), default="pure", help="design: accelerometer quaternion of the stage, (1.4) 'pure' (c = 2) or (1.10) 'tilt' (c = 1) (default: pure)")
     p.add_argument("--accel-m-s2", type=float, default=20.0, help="horizontal acceleration A [m/s²] (default 20)")
     p.add_argument("--accel-duration", type=float, default=20.0, help="duration T of the acceleration [s] (default 20)")
-    p.add_argument("--horizon", type=float, default=None, help="end of the response [s] (default T + 2 Schuler periods)")
+    p.add_argument("--horizon", type=float, default=None, help="end of the response [s] (default: T + 2 Schuler periods)")
     p.add_argument("--gravity-m-s2", type=float, default=_G, help=f"gravity g [m/s²] (default {_G:g})")
     p.add_argument("--earth-radius", type=float, default=_R, help=f"Earth radius R [m] (default {_R:g})")

@@ -24,33 +24,25 @@ from ..core.validation import as_float, in_open_interval, positive
 from . import Result, UsageError
 from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, run_summary, sculling_parameters, unit_quaternion
 
-_PRECESSION_ONLY = {"eps": "--eps", "nutation_deg": "--nutation-deg", "nu_dual": "--nu-dual", "nutation_dual": "--nutation-dual"}
-
-
-def _given(args, keys) -> list:
-    return [flag for key, flag in keys.items() if getattr(args, key) is not None]
+#: Options of one motion only (refused with the other, :meth:`Commands.only_with`).
+_PRECESSION_ONLY = ("--eps", "--nutation-deg", "--nu-dual-m-s2", "--nutation-dual-m-s")
+_SCULLING_ONLY = tuple("--" + key.replace("_", "-") for key in SCULLING_DEFAULTS)
 
 
 def _precession(args):
     missing = [flag for key, flag in (("eps", "--eps"), ("nutation_deg", "--nutation-deg")) if getattr(args, key) is None]
     if missing:
         raise UsageError(f"Expected {' and '.join(missing)} with --motion precession, got none")
-    stray = _given(args, {k: "--" + k.replace("_", "-") for k in SCULLING_DEFAULTS})
-    if stray:
-        raise UsageError(f"Expected no sculling option with --motion precession, got {stray[0]}")
     eps = as_float(args.eps, "--eps")
     nutation = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees") * RAD_PER_DEG
     nu = 2.0 * math.pi * positive(args.freq_hz, "--freq-hz")
-    nu_dual = as_float(args.nu_dual if args.nu_dual is not None else 0.0, "--nu-dual")
-    nutation_dual = as_float(args.nutation_dual if args.nutation_dual is not None else 0.0, "--nutation-dual")
+    nu_dual = as_float(args.nu_dual_m_s2 if args.nu_dual_m_s2 is not None else 0.0, "--nu-dual-m-s2")
+    nutation_dual = as_float(args.nutation_dual_m_s if args.nutation_dual_m_s is not None else 0.0, "--nutation-dual-m-s")
     motion = RegularPrecession(eps, nu, nutation, nu_dual, nutation_dual)
     return motion, {"motion": "precession", "eps": eps, "nutation_deg": args.nutation_deg, "freq_hz": args.freq_hz, "nu_dual": nu_dual, "nutation_dual": nutation_dual}
 
 
 def _sculling(args):
-    stray = _given(args, _PRECESSION_ONLY)
-    if stray:
-        raise UsageError(f"Expected no precession option with --motion sculling, got {stray[0]}")
     params = sculling_parameters(args)
     if params["rotation_axis"] == params["accel_axis"]:
         raise UsageError(f"Expected --accel-axis different from --rotation-axis, got both {'xyz'[params['accel_axis']]}")
@@ -64,7 +56,7 @@ def _run(args) -> Result:
     positive(args.freq_hz, "--freq-hz")
     check_run_work(args, alg, velocity=True)
     motion, shown = _sculling(args) if args.motion == "sculling" else _precession(args)
-    w0 = floats(args.w0, "--w0", 3)
+    w0 = floats(args.w0_m_s, "--w0-m-s", 3)
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
     r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
     params = {"eps": motion.eps, "nu": motion.nu} if args.motion == "precession" else None
@@ -107,12 +99,16 @@ def register(commands) -> None:
     )
     add_algorithm(p)
     p.add_argument("--motion", choices=("precession", "sculling"), default="precession", help="test motion: dual regular precession (4.2) or classical sculling (default precession)")
-    p.add_argument("--eps", type=float, default=None, help="precession: ε = μ/ν, precession to spin rate (−1 is coning); required with --motion precession")
-    p.add_argument("--nutation-deg", type=float, default=None, help="precession: nutation angle ϑ [deg], in (0, 180); required with --motion precession")
-    p.add_argument("--freq-hz", type=float, required=True, help="precession: spin frequency F [Hz], ν = 2πF; sculling: vibration frequency F [Hz]")
+    p.add_argument("--eps", type=float, default=None, help="precession: ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning) (default: none; required with --motion precession)")
+    p.add_argument("--nutation-deg", type=float, default=None, help="precession: nutation angle ϑ [deg], in (0, 180) (default: none; required with --motion precession)")
+    p.add_argument("--freq-hz", type=float, required=True, help="precession: spin frequency F [Hz], ν = 2πF; sculling: vibration frequency F [Hz] (required)")
     add_run(p)
-    p.add_argument("--nu-dual", type=float, default=None, help="precession: dual part ν° of the spin rate [m/s²] (default 0)")
-    p.add_argument("--nutation-dual", type=float, default=None, help="precession: dual part ϑ° of the nutation [m/s] (default 0)")
+    p.add_argument("--nu-dual-m-s2", type=float, default=None, help="precession: dual part ν° of the spin rate [m/s²] (default 0)")
+    p.add_argument("--nutation-dual-m-s", type=float, default=None, help="precession: dual part ϑ° of the nutation [m/s] (default 0)")
     add_sculling(p)
-    p.add_argument("--w0", default="0,0,0", metavar="X,Y,Z", help="initial apparent velocity W_I(0) [m/s] (default 0,0,0)")
-    p.add_argument("--attitude0", default="1,0,0,0", metavar="Q0,Q1,Q2,Q3", help="initial attitude Λ(0), normalised (default 1,0,0,0)")
+    p.add_argument("--w0-m-s", default="0,0,0", metavar="X,Y,Z", help="initial apparent velocity W_I(0) [m/s] (default 0,0,0)")
+    p.add_argument("--attitude0", default="1,0,0,0", metavar="Q0,Q1,Q2,Q3", help="initial attitude Λ(0), a quaternion, normalised [dimensionless] (default 1,0,0,0)")
+    for flag in _PRECESSION_ONLY:
+        commands.only_with(p, flag, "--motion", ("precession",))
+    for flag in _SCULLING_ONLY:
+        commands.only_with(p, flag, "--motion", ("sculling",))

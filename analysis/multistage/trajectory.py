@@ -486,7 +486,7 @@ def grid(scenario: Scenario, step) -> np.ndarray:
     h = positive(step, "step")
     n = int(round(scenario.duration / h))
     if n < 1 or abs(n * h - scenario.duration) > 1e-9 * scenario.duration:
-        raise ValueError(f"Expected `step` to divide the duration {scenario.duration:g} s, got {h:g} s")
+        raise ValueError(f"Expected `step` to divide the `duration` of the scenario, {scenario.duration:g} s, got {h:g} s")
     for e in scenario.events:
         if abs(e / h - round(e / h)) > 1e-6:
             raise ValueError(f"Expected `step` to put the event at t = {e:g} s on the grid, got {h:g} s")
