@@ -226,7 +226,7 @@ def test_drift_and_velocity_error_run_cross_step_registry_algorithms(name, capsy
     assert main(["drift", "--algorithm", name] + base) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["history"] == get(name).history and d["simulated_drift_deg_per_h"] > 0
-    assert (d["asymptotic_drift_deg_per_h"] is None) == (get(name).history > 0)
+    assert d["asymptotic_drift_deg_per_h"] > 0  # the drift theory covers cross-step algorithms too
     assert main(["velocity-error", "--algorithm", name, "--nu-dual-m-s2", "1"] + base) == 0
     v = json.loads(capsys.readouterr().out)
     assert v["dW_I"] > 0 and v["motion"] == "precession"

@@ -102,7 +102,7 @@ def _step_counts(samples: int, h, duration, steps, shape):
     n = np.floor(d / (samples * h) * (1.0 + 1e-12)).astype(np.int64)
     if np.any(n < 1):
         i = int(np.argmin(n))
-        raise ValueError(f"Expected `duration` >= one step H = {samples} × {h[i]:g} s = {samples * h[i]:g} s, got {d[i]:g}")
+        raise ValueError(f"Expected `duration` >= one step H = {samples} × `sample_interval` = {samples} × {h[i]:g} s = {samples * h[i]:g} s, got {d[i]:g}")
     return n
 
 

@@ -108,6 +108,19 @@ class SimulationResult:
         return np.linalg.norm(self.drift, axis=-1)
 
     @property
+    def periodic_error(self) -> np.ndarray:
+        """Peak of the attitude error about its least-squares line, ``max_k |δφ_I(t_k) − a − drift t_k|`` [rad], shape ``(...)``.
+
+        The periodic part of the error that the slope has to average out: when
+        it is large against ``drift × duration`` a short run biases the slope
+        (the bias falls as 1/duration² for a periodic error).
+        """
+        t = self.time
+        tc = t - t.mean()
+        line = self.attitude_error.mean(axis=-2)[..., None, :] + tc[:, None] * self.drift[..., None, :]
+        return np.linalg.norm(self.attitude_error - line, axis=-1).max(axis=-1)
+
+    @property
     def velocity_error_rate(self) -> np.ndarray:
         """Least-squares slope of ``dw_inertial`` against time, frame I [m/s²], shape ``(..., 3)``.
 
@@ -165,7 +178,7 @@ def step_count(sample_interval, duration, samples: int) -> int:
     # A relative tolerance lets 100 s / 0.04 s count 2500 steps despite round-off.
     n = math.floor(duration / step * (1.0 + 1e-12))
     if n < 1:
-        raise ValueError(f"Expected `duration` >= one step H = {samples} × {h:g} s = {step:g} s, got {duration:g}")
+        raise ValueError(f"Expected `duration` >= one step H = {samples} × `sample_interval` = {samples} × {h:g} s = {step:g} s, got {duration:g}")
     return n
 
 
