@@ -18,6 +18,7 @@ import numpy as np
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import deg_per_h, rad
 from . import Erratum, Section
+from .rendering import at_round_off
 
 __all__ = ["SECTION", "build", "errata", "alignment_lines", "alignment_errata", "TITLE"]
 
@@ -501,8 +502,8 @@ def alignment_errata(ctx) -> list:
             "α = −arctg(f2/f1) + σ, σ = arctg(B/A) with A, B independent of α",
             "(2) with this σ is the analytic gyrocompass for a near-north orientation of the two gyros (the paper takes it from "
             "its reference [5]); the tilt correction σ is the one at zero azimuth",
-            f"Ideal sensors, φ = 60°, β0 = 1°, γ0 = −0.5°: error of (2) with σ {err[0.0][0] * D:.2g}° at ψ = 0, {err[45.0][0] * D:.3g}° at 45°, "
-            f"{err[90.0][0] * D:.3g}° at 90°; the mean rate levelled by the same tilt estimates: below {max(abs(v[1]) for v in err.values()) * D:.1g}° at all three.",
+            f"Ideal sensors, φ = 60°, β0 = 1°, γ0 = −0.5°: error of (2) with σ {at_round_off(err[0.0][0] * D)}° at ψ = 0, {err[45.0][0] * D:.3g}° at 45°, "
+            f"{err[90.0][0] * D:.3g}° at 90°; the mean rate levelled by the same tilt estimates: error {at_round_off(max(abs(v[1]) for v in err.values()) * D)}° at all three.",
             "azimuth",
             kind="ambiguous",
             alternatives="Read as a formula for any azimuth, (2) with σ is off by degrees at 45° and 90° for tilts of a degree (the evidence); the exact correction "

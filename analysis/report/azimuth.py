@@ -14,6 +14,7 @@ import numpy as np
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import rad
 from . import Erratum, Section
+from .rendering import at_round_off
 
 SECTION = Section(
     "azimuth",
@@ -77,7 +78,7 @@ def _derivation_lines(checks) -> list:
     ]
     for c in checks:
         diff = "0" if c.agrees else f"${_latex(c.difference)}$"
-        lines.append(f"| {c.label} | {diff} | {c.residual:.2e} |")
+        lines.append(f"| {c.label} | {diff} | {at_round_off(c.residual)} |")
     lines += [
         "",
         "(5), (7), (8), (10) are compared with the first-order Taylor part (their O(ξ², η²) remainders dropped); the rows",
@@ -470,7 +471,7 @@ def errata(ctx) -> list:
             "A = cos φ sin γ + sin φ cos β sin γ",
             "A = cos φ cos γ + sin φ cos β sin γ",
             f"The printed A differs from the paper's own expansion (5)–(6) by up to {rows['A (after (2))'].residual:.2f} on random points "
-            f"(printed (5), (6) agree with the cos γ form to {max(rows['(5)'].residual, rows['(6)'].residual):.1e}); with sin γ, A = 0 at zero tilt and σ would be undefined.",
+            f"(printed (5), (6) agree with the cos γ form, residual {at_round_off(max(rows['(5)'].residual, rows['(6)'].residual))}); with sin γ, A = 0 at zero tilt and σ would be undefined.",
             "azimuth",
             kind="misprint",
         ),
@@ -479,7 +480,7 @@ def errata(ctx) -> list:
             "− ξ sin φ cos β0 sin γ0",
             "− ξ sin φ sin β0 sin γ0 (as in (5): ∂A/∂β = −sin φ sin β sin γ)",
             f"SymPy: printed (7) − derived = ${_latex(rows['(7)'].difference)}$, max residual {rows['(7)'].residual:.2f} on random points; "
-            f"the derived ζ1 = ${_latex(p.zeta1)}$ also equals the first-order part of the printed (5) (residual {rows['(5)'].residual:.1e}).",
+            f"the derived ζ1 = ${_latex(p.zeta1)}$ also equals the first-order part of the printed (5) (residual {at_round_off(rows['(5)'].residual)}).",
             "azimuth",
             kind="misprint",
         ),

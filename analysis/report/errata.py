@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from ..coning.biquaternion_checks import printed_formula_checks
 from . import Erratum, Section
+from .rendering import at_round_off
 
 SECTION = Section("errata", "Errata in the source papers", order=90, summary="Misprints found by independent checks, with evidence.", gathers=True)
 
@@ -37,7 +38,7 @@ def errata(ctx) -> list:
             "λ0μ0 − λ1μ1 − λ2μ2 − λ3μ3 = 0",
             "λ0μ0 + λ1μ1 + λ2μ2 + λ3μ3 = 0 (the dual part of |Λ|² = 1)",
             f"On {c.points} random dual vectors the biquaternion obtained as the dual extension of the rotation-vector map gives "
-            f"max |λ·μ| = {c.unit_condition_plus:.1e}, while the printed combination reaches {c.unit_condition_printed:.2f}.",
+            f"max |λ·μ| {at_round_off(c.unit_condition_plus)}, while the printed combination reaches {c.unit_condition_printed:.2f}.",
             "errata",
             kind="misprint",
         ),
@@ -46,8 +47,8 @@ def errata(ctx) -> list:
             "μ_i = φ⁻¹ sin(φ/2) φ°_i − φ⁻²(½ cos(φ/2) − φ⁻¹ sin(φ/2)) (φ·φ°) φ_i",
             "μ_i = φ⁻¹ sin(φ/2) φ°_i + φ⁻²(½ cos(φ/2) − φ⁻¹ sin(φ/2)) (φ·φ°) φ_i",
             f"Against the dual extension of the real map (forward-mode derivative), the printed μ_i is off by up to "
-            f"{c.mu_vec_error_printed:.2f}; with the sign of its second term flipped the difference is {c.mu_vec_error_fixed:.1e} "
-            f"(μ0 as printed agrees to {c.mu0_error:.1e}).",
+            f"{c.mu_vec_error_printed:.2f}; with the sign of its second term flipped the difference is {at_round_off(c.mu_vec_error_fixed)} "
+            f"(μ0 as printed: difference {at_round_off(c.mu0_error)}).",
             "errata",
             kind="misprint",
         ),

@@ -76,14 +76,14 @@ def at_round_off(value: float, floor: float = 1e-13) -> str:
     Returns
     -------
     str
-        ``"below 1e-13"`` or, above the floor, the value to two digits.
+        ``"< 1e-13"`` or, above the floor, the value to two digits.
 
     Examples
     --------
     >>> at_round_off(7.2e-16), at_round_off(3.1e-9)
-    ('below 1e-13', '3.1e-09')
+    ('< 1e-13', '3.1e-09')
     """
-    return f"below {floor:.0e}" if abs(value) < floor else f"{value:.1e}"
+    return f"< {floor:.0e}" if abs(value) < floor else f"{value:.1e}"
 
 
 def _numeric(values) -> bool:

@@ -232,7 +232,7 @@ def _loops_section(ctx, g, r, schuler_frequency) -> list:
         "",
         "The Bode plots show the complementary filter: the gyro-integrated attitude passes through the high-pass",
         "$H_g = s^2/(s^2+ks+l)$, the accelerometer tilt through the low-pass $H_a = (ks+l)/(s^2+ks+l)$,",
-        f"$H_g + H_a = 1$ (checked on the frequency grid to {filt.max_sum_error:.1e}).",
+        f"$H_g + H_a = 1$ (checked on the frequency grid: difference {at_round_off(filt.max_sum_error)}).",
         "",
     ]
     _root_locus_figure(ctx, loops, g, r)
@@ -447,7 +447,7 @@ def _truth_model(run) -> list:
         "",
         "**Residual check.** The inertial velocity of the body, from the geometry alone, must change by the integral of the",
         "specific force (rotated with the true attitude) plus the gravitation $G = -g\\,u + \\Omega\\times(\\Omega\\times r)$. Over",
-        f"100 s intervals of the whole run (16-point Gauss–Legendre) the largest residual is {good.max_residual:.1e} m/s on velocity",
+        f"100 s intervals of the whole run (16-point Gauss–Legendre) the largest residual is {at_round_off(good.max_residual, 1e-11)} m/s on velocity",
         f"changes up to {good.scale:.0f} m/s. The truth model of earlier versions of this report (accelerometers without the",
         "Coriolis term and V²/R, body turning with η at rest) fails the same check by "
         f"{bad.max_residual:.2f} m/s: its gyros and accelerometers described different motions.",
@@ -926,7 +926,7 @@ def errata(ctx) -> list:
             "cos γ = −n_x2/h",
             "cos γ = n_x2/h (from W_x2 = g cos θ cos γ in (1.8))",
             f"Decided by (1.8) (derivations/multistage/tilt_quaternion.py: matches print = {tilt.cos_gamma_matches_printed}); on {c.samples} random "
-            f"attitudes the printed form misses cos γ by up to {c.printed_cos_gamma:.2f}, the derived one by {c.derived_cos_gamma:.1e}.",
+            f"attitudes the printed form misses cos γ by up to {c.printed_cos_gamma:.2f}, the derived one by {at_round_off(c.derived_cos_gamma)}.",
             "stability",
             kind="misprint",
         ),
@@ -936,7 +936,8 @@ def errata(ctx) -> list:
             "μ0 = ½(h/n + n_x2/n + n_x2/h + 1)^½,  μ3 = n_x1(n_x2 + h)/(4μ0 n h)",
             "Decided by substituting (1.9) into (1.7) with ψ = 0 (derivations/multistage/tilt_quaternion.py; components that match the print: "
             f"{', '.join(f'μ{i}' for i, m in enumerate(tilt.matches_printed) if m)}). On {c.samples} random attitudes (ψ = 0, |θ|, |γ| ≤ 0.6 rad) the printed "
-            f"(1.10) differs from the true quaternion by up to {c.printed_1_10:.2f}, the derived one by {c.derived_1_10:.1e} (the package's tilt quaternion: {c.package_tilt:.1e}).",
+            f"(1.10) differs from the true quaternion by up to {c.printed_1_10:.2f}, the derived one by {at_round_off(c.derived_1_10)} "
+            f"(the package's tilt quaternion: {at_round_off(c.package_tilt)}).",
             "stability",
             kind="misprint",
         ),
