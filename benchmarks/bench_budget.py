@@ -89,7 +89,7 @@ def floor_rows():
                 r = simulate(alg, motion, h, 10.0)
                 u_a = float(asymptotic_drift(alg, eps=eps, nu=2 * np.pi * freq, nutation=np.radians(nutation), step=r.step)) * RAD_PER_S_TO_DEG_PER_H
                 floor = drift_floor(2 * np.pi * freq, eps * 2 * np.pi * freq) * RAD_PER_S_TO_DEG_PER_H
-                rows.append((name, eps, freq, nutation, h, float(r.drift_deg_per_h), u_a, floor))
+                rows.append((name, eps, freq, nutation, h, float(r.drift_rate) * RAD_PER_S_TO_DEG_PER_H, u_a, floor))
     return rows
 
 
