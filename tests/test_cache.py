@@ -80,3 +80,38 @@ def test_bad_arguments(fresh):
         cache.compiled("", lambda: None)
     with pytest.raises(TypeError, match="`build`"):
         cache.compiled("k", 3)
+
+
+def test_derived_result_built_once_then_served_from_disk(fresh, monkeypatch):
+    x, y = sp.symbols("x y", positive=True)
+    calls = []
+
+    def build():
+        calls.append(1)
+        return {"expr": sp.Rational(1, 60) * x**4 * sp.exp(-y), "order": 4}
+
+    first = cache.derived("test:derived", build)
+    monkeypatch.setattr(cache, "_memory", {})  # as in another process
+    second = cache.derived("test:derived", build)
+    assert calls == [1] and second == first and second["expr"].free_symbols == {x, y}
+    assert sp.latex(second["expr"]) == sp.latex(first["expr"])  # what a report prints is unchanged
+
+
+def test_derived_rebuilds_a_damaged_or_foreign_entry(fresh, monkeypatch):
+    cache.derived("test:damaged", lambda: 1)
+    (path,) = list(cache.cache_directory().glob("*.pickle"))
+    path.write_bytes(path.read_bytes()[:-3])  # truncated
+    monkeypatch.setattr(cache, "_memory", {})
+    assert cache.derived("test:damaged", lambda: 2) == 2
+    path.write_bytes(b"# key: another\n" + path.read_bytes().split(b"\n", 1)[1])
+    monkeypatch.setattr(cache, "_memory", {})
+    assert cache.derived("test:damaged", lambda: 3) == 3
+
+
+def test_derived_unpicklable_result_is_returned_uncached(fresh):
+    value = cache.derived("test:lambda", lambda: (lambda t: t + 1))
+    assert value(1) == 2 and not list(cache.cache_directory().glob("*.pickle"))
+    with pytest.raises(TypeError, match="key"):
+        cache.derived("", lambda: 1)
+    with pytest.raises(TypeError, match="build"):
+        cache.derived("test:x", 1)

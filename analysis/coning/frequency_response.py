@@ -32,8 +32,9 @@ import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.drift import coning_drift, coning_drift_series
+from ..core.cache import derived
 from ..core.validation import as_array, in_open_interval, positive
-from .drift_theory import coning_drift_function, coning_drift_rate, drift_terms
+from .drift_theory import algorithm_key, coning_drift_function, coning_drift_rate, drift_terms
 from .precession import RegularPrecession
 from .simulator import simulate
 
@@ -309,13 +310,19 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
     x = as_array(omega_h, "omega_h")
     if np.any(x <= 0):
         raise ValueError(f"Expected `omega_h` > 0, got {x[x <= 0].ravel()[0]:g}")
-    d = coning_drift(algorithm)
+    order, coefficient, q_order, q_coeff = derived(f"coning:leading-coning-terms:v1:{algorithm_key(algorithm)}", lambda: _leading_terms(algorithm))
     values = np.asarray(coning_drift_function(algorithm)(x), dtype=float)
     checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods) for c in check_omega_h)
+    return ConingResponse(algorithm, order, coefficient, x, values, checks, q_order, q_coeff)
+
+
+def _leading_terms(algorithm: Algorithm) -> tuple:
+    """(order, coefficient) of the α² coning drift and (order, coefficient) of its α⁴ term, per (ωh)^order."""
+    d = coning_drift(algorithm)
     N = algorithm.samples
     quartic = [(w - 1, c * Fraction(N) ** (w - 1)) for w, c in enumerate(coning_drift_series(algorithm, QUARTIC_WEIGHT, alpha_power=4)) if c]
     q_order, q_coeff = quartic[0] if quartic else (None, None)
-    return ConingResponse(algorithm, d.order, d.coefficient, x, values, checks, q_order, q_coeff)
+    return d.order, d.coefficient, q_order, q_coeff
 
 
 def coning_frequency_response(

@@ -31,7 +31,9 @@ from ...derivations.coning.algorithms import Algorithm, second_order_defect
 from ...derivations.coning.polynomial_fit import polynomial_fit_coefficients
 from ...derivations.coning.published import PSINS_TABLE_10_1_N6, PUBLISHED_ALGORITHM_COEFFICIENTS, PUBLISHED_ALGORITHM_ERRORS
 from ...derivations.coning.registry import get
+from ..core.cache import derived
 from ..core.validation import positive
+from .drift_theory import algorithm_key
 from .precession import RegularPrecession
 from .sculling_motion import ScullingMotion, rectification_error
 from .simulator import simulate
@@ -121,6 +123,10 @@ def coning_coefficient(algorithm: Algorithm) -> tuple:
     """
     if algorithm.history or any(t.dots or not all(isinstance(x, int) for x in t.cross) for t in algorithm.terms):
         raise ValueError(f"Expected a within-step pairwise algorithm, got {algorithm.name!r}")
+    return derived(f"coning:coning-coefficient:v1:{algorithm_key(algorithm)}", lambda: _coning_coefficient(algorithm))
+
+
+def _coning_coefficient(algorithm: Algorithm) -> tuple:
     n = algorithm.samples
     d = D.coning_drift_closed_form(D.lag_sums(algorithm) if n > 1 else (), n)
     big_x = sp.Symbol("X", positive=True)

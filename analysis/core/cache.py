@@ -13,6 +13,11 @@ Its location is ``$STRAPDOWN_CACHE_DIR`` if set, else
 ``$XDG_CACHE_HOME/strapdown-analysis``, else ``~/.cache/strapdown-analysis``.
 Where it cannot be written, the generated code is kept in memory only.
 
+:func:`derived` does the same for a derivation's result itself (SymPy
+expressions, exact fractions, the dataclasses that hold them), pickled, for
+the reports that print the derived formulas: a cached result is the object the
+derivation returns, so the printed formulas are the same either way.
+
 Examples
 --------
 >>> import sympy as sp
@@ -33,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["compiled", "cache_directory", "source_fingerprint", "generate_source"]
+__all__ = ["compiled", "derived", "cache_directory", "source_fingerprint", "generate_source"]
 
 _FUNCTION = "generated"
 _memory: dict = {}
@@ -155,13 +160,13 @@ def _read(path: Path, key: str) -> str | None:
     return text if header == f"# key: {key}" else None
 
 
-def _write(path: Path, text: str) -> None:
+def _write(path: Path, text: str | bytes) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".py")
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=path.suffix)
         try:
-            with os.fdopen(fd, "w", encoding="utf-8") as handle:
-                handle.write(text)
+            with os.fdopen(fd, "wb") as handle:
+                handle.write(text.encode("utf-8") if isinstance(text, str) else text)
             os.replace(tmp, path)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
@@ -209,3 +214,64 @@ def compiled(key: str, build: Callable[[], tuple]) -> Callable:
         function = _load(source, str(path))
         _memory[key] = function
         return function
+
+
+def derived(key: str, build: Callable[[], object]):
+    """The result of a derivation, computed once and cached (pickled) next to the generated code.
+
+    Parameters
+    ----------
+    key : str
+        Names the result uniquely, including every parameter it depends on
+        (for example ``"multistage:composition:v1"`` or an algorithm's
+        fingerprint); the cache directory already changes with the source.
+    build : callable
+        ``build() -> result``, run only when no cached result exists; the
+        result must be picklable (SymPy expressions, fractions, dataclasses of
+        them).  One that is not is returned uncached.
+
+    Returns
+    -------
+    object
+        What ``build()`` returns (a fresh copy when loaded from disk).
+
+    Raises
+    ------
+    TypeError
+        If ``key`` is not a string or ``build`` is not callable.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> derived("doc-example:third", lambda: Fraction(1, 3))
+    Fraction(1, 3)
+    """
+    import pickle
+
+    if not isinstance(key, str) or not key:
+        raise TypeError(f"Expected `key` as a non-empty string, got {key!r}")
+    if not callable(build):
+        raise TypeError(f"Expected `build` to be callable, got {type(build).__name__}")
+    memory_key = ("derived", key)
+    with _lock:
+        if memory_key in _memory:
+            return _memory[memory_key]
+        path = cache_directory() / f"{hashlib.sha256(key.encode()).hexdigest()[:32]}.pickle"
+        header = f"# key: {key}\n".encode()
+        result, found = None, False
+        try:
+            data = path.read_bytes()
+            if data.startswith(header):
+                result, found = pickle.loads(data[len(header) :]), True  # noqa: S301 - our own cache
+        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError, TypeError, ValueError):
+            found = False
+        if not found:
+            result = build()
+            try:
+                payload = pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)
+            except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+                payload = None
+            if payload is not None:
+                _write(path, header + payload)
+        _memory[memory_key] = result
+        return result

@@ -48,8 +48,10 @@ def _ci(r, digits=5) -> str:
 # ---------------------------------------------------------------- 1. derivation
 def _derivation_lines(checks) -> list:
     from ...derivations.gyrocompass import azimuth_error as g
+    from ..core.cache import derived
 
     p = g.linear_parts()
+    mse = derived("gyrocompass:mse-at-zero-tilt:v1", g.mse_at_zero_tilt)
     reduces = "reduces symbolically to (15)" if g.bound14_reduces_to_15() else "does NOT reduce to (15)"
     lines = [
         "## 1. Derivation (SymPy, `derivations/gyrocompass/azimuth_error.py`)",
@@ -65,7 +67,7 @@ def _derivation_lines(checks) -> list:
         "  $E(\\sigma-\\sigma^*)$ and the mean square to fourth order, with $E\\xi^4 = \\kappa D\\xi^2$ (κ = 3 Gaussian, 3/2 sinusoid).",
         "  At zero stable tilt the bias vanishes and",
         "",
-        f"  $$E(\\sigma-\\sigma^*)^2 = {_latex(g.mse_at_zero_tilt())} + O(D^3)$$",
+        f"  $$E(\\sigma-\\sigma^*)^2 = {_latex(mse)} + O(D^3)$$",
         "",
         "  i.e. $\\tan^2\\varphi\\,D\\xi\\,[1 + D\\eta(1 + 3\\tan^2\\varphi) - \\kappa_\\xi D\\xi(1 + 2\\tan^2\\varphi)/3]$: the rocking η *does* enter at second",
         "  order (against conclusion 2 of the paper read literally), and whenever the bracket exceeds 1 — for equal Gaussian or",

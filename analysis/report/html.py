@@ -102,7 +102,13 @@ class MathRenderer:
         tex = " ".join(tex.split())
         key = tex
         if key not in self._cache:
-            self._cache[key] = self._svg(tex)
+            import matplotlib
+
+            from ..core.cache import derived
+
+            # the SVG depends on the expression and on matplotlib (fonts, mathtext): cached per version
+            entry = derived(f"html:math-svg:v1:{matplotlib.__version__}:{_MATH_SIZE}:{tex}", lambda: self._svg(tex))
+            self._cache[key] = entry if entry is not None else self._svg(tex)  # a failure renders again, to log its warning
         entry = self._cache[key]
         kind = "display" if display else "inline"
         if entry is None:

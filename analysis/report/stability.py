@@ -151,9 +151,10 @@ def _lyapunov(ctx) -> list:
 # ---------------------------------------------------------------------------
 def _linearisation(g, r) -> list:
     from ...derivations.multistage.schuler import derive
+    from ..core.cache import derived
     from ..multistage.readings import schuler_detuning
 
-    sch = derive()
+    sch = derived("multistage:schuler:v1", derive)
     lines = [
         "## 2. Linearisation and Schuler tuning",
         "",
@@ -647,10 +648,11 @@ def _readings_discussion(results) -> list:
 
 def _yaw(ctx, run) -> list:
     from ...derivations.multistage.composition import derive
+    from ..core.cache import derived
     from ..multistage.composition import yaw_study
     from ..multistage.trajectory import Scenario
 
-    d = derive()
+    d = derived("multistage:composition:v1", derive)
     study = yaw_study(Scenario(duration=2000.0) if ctx.quick else run.scenario, step=0.2, rng=run.seeds[2])
     horizontal, all_four = study.readings
     rows = []
