@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_drift, asymptotic_order, drift_series, drift_terms
+from strapdown.analysis.coning.drift_theory import RAD_PER_S_TO_DEG_PER_H, asymptotic_attitude_error, asymptotic_drift, asymptotic_order, drift_series, drift_series_terms, drift_terms
 from strapdown.analysis.coning.evaluation import increment
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.coning.simulator import prefix_product
@@ -234,3 +234,20 @@ def test_cross_step_accumulated_error_matches_a_parallel_computation():
     scale = np.linalg.norm(err_I, axis=-1).max()
     assert scale > 1e-9
     np.testing.assert_allclose(theory_I, err_I, atol=2e-3 * scale)
+
+
+@pytest.mark.parametrize("name", ["panov-4s-3", "ignagni-1996-2", "savage-1+1", "lebedev-panov-6"])
+def test_drift_series_terms_sum_to_the_series_and_lead_with_u_a(name):
+    kw = {"eps": -1.0, "nu": 2 * np.pi * 10, "nutation": np.radians(1.0), "step": 0.01, "max_weight": 9}
+    s = drift_series_terms(get(name), **kw)
+    assert s.total == pytest.approx(float(drift_series(get(name), **kw)), rel=1e-12)
+    assert s.asymptotic == pytest.approx(float(asymptotic_drift(get(name), **kw)), rel=1e-12)
+    assert s.max_weight == 9 and np.all(s.terms[: s.leading_weight] == 0.0)
+    assert abs(s.terms[s.largest_weight]) == np.abs(s.terms).max()
+
+
+def test_drift_series_terms_refuses_arrays_and_vanishing_series_has_no_verdict():
+    with pytest.raises(ValueError, match="`nutation` as one number"):
+        drift_series_terms(get("two-sample"), eps=-1.0, nu=1.0, nutation=np.radians([1.0, 2.0]), step=0.01)
+    s = drift_series_terms(get("lebedev-panov-6"), eps=-1.0, nu=1.0, nutation=np.radians(1.0), step=0.01, max_weight=6)
+    assert s.leading_weight == -1 and s.largest_weight == -1 and np.isnan(s.asymptotic) and s.leading_term_dominates() is None

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...derivations.coning.series import WEIGHT_LIMIT
-from ..coning.drift_theory import asymptotic_drift, asymptotic_drift_vector, asymptotic_order, drift_series, drift_terms
+from ..coning.drift_theory import asymptotic_drift_vector, drift_series_terms
 from ..coning.precession import RegularPrecession
 from ..coning.simulator import simulate
 from ..core.units import deg_per_h
@@ -60,15 +60,12 @@ def _run(args) -> Result:
     r = simulate(alg, motion, args.sample_interval, args.duration)
     data, header = run_summary(alg, r, params)
     theory = {"eps": params["eps"], "nu": params["nu"], "nutation": params["nutation"], "step": r.step, "max_weight": K}
-    asymptotic = _finite_or_none(deg_per_h(asymptotic_drift(alg, **theory)))  # None: no drift through weight K
+    terms = drift_series_terms(alg, **theory)
+    asymptotic = _finite_or_none(deg_per_h(terms.asymptotic))  # None: no drift through weight K
     vector = deg_per_h(asymptotic_drift_vector(alg, **theory))
-    series = float(deg_per_h(drift_series(alg, **theory)))
-    dominates = None
-    leading = int(asymptotic_order(alg, params["eps"], params["nutation"], max_weight=K)) + 1
-    terms = drift_terms(alg, params["eps"], params["nutation"], max_weight=K)[0] * params["nu"] ** np.arange(K + 1) * r.step ** np.arange(-1, K)
-    largest = int(np.argmax(np.abs(terms)))
-    if asymptotic is not None and series > 0.0:
-        dominates = bool(abs(asymptotic - series) <= DOMINANCE_TOLERANCE * series)
+    series = float(deg_per_h(terms.total))
+    dominates = terms.leading_term_dominates(DOMINANCE_TOLERANCE)
+    leading, largest = terms.leading_weight, terms.largest_weight
     simulated = float(deg_per_h(r.drift_rate))
     agrees = None  # below the round-off floor the run shows round-off, not the drift (run_summary says so)
     if not data["drift_below_roundoff_floor"] and series > 0.0:
@@ -84,8 +81,8 @@ def _run(args) -> Result:
         "asymptotic_drift_vector_deg_per_h": vector.tolist() if np.all(np.isfinite(vector)) else None,
         "series_drift_deg_per_h": series,
         "leading_term_dominates": dominates,
-        "leading_weight": leading if asymptotic is not None else None,
-        "largest_term_weight": largest if series > 0.0 else None,
+        "leading_weight": leading if leading >= 0 else None,
+        "largest_term_weight": largest if largest >= 0 else None,
         "simulation_matches_series": agrees,
         "periodic_error_rad": float(r.periodic_error),
         "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),

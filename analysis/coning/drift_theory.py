@@ -68,6 +68,8 @@ __all__ = [
     "asymptotic_drift_vector",
     "asymptotic_order",
     "drift_series",
+    "DriftSeries",
+    "drift_series_terms",
     "coning_drift_function",
     "coning_drift_rate",
     "AccumulatedError",
@@ -360,6 +362,111 @@ def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: i
     w = np.arange(vals.shape[-1])
     total = np.sum(vals * nu[..., None] ** w * step[..., None] ** np.maximum(w - 1, 0), axis=-1)
     return np.abs(total)
+
+
+@dataclass(frozen=True)
+class DriftSeries:
+    """The terms of the drift series at one motion and step (:func:`drift_series_terms`).
+
+    Attributes
+    ----------
+    terms : ndarray, shape (max_weight + 1,)
+        Signed terms ``d_w(ε, ϑ) ν^w H^(w−1)``, w = 0 … max_weight [rad/s]
+        (exact minus algorithm, along the precession axis).
+    leading_weight : int
+        Weight of the first nonvanishing term, ρ + 1 (−1 if every term vanishes).
+    """
+
+    terms: np.ndarray
+    leading_weight: int
+
+    @property
+    def max_weight(self) -> int:
+        """Highest weight kept."""
+        return self.terms.shape[-1] - 1
+
+    @property
+    def total(self) -> float:
+        """Drift rate through ``max_weight``, ``|Σ_w terms|`` [rad/s] (:func:`drift_series`)."""
+        return float(abs(self.terms.sum()))
+
+    @property
+    def asymptotic(self) -> float:
+        """The leading term alone, ``|d_{ρ+1}| ν^{ρ+1} H^ρ`` [rad/s] (:func:`asymptotic_drift`); NaN if none."""
+        return float(abs(self.terms[self.leading_weight])) if self.leading_weight >= 0 else math.nan
+
+    @property
+    def largest_weight(self) -> int:
+        """Weight of the largest term in magnitude (−1 if every term vanishes)."""
+        return int(np.argmax(np.abs(self.terms))) if self.leading_weight >= 0 else -1
+
+    def leading_term_dominates(self, rtol: float = 0.1) -> bool | None:
+        """Whether the leading term is the drift to ``rtol``: ``|asymptotic − total| ≤ rtol · total``.
+
+        Parameters
+        ----------
+        rtol : float
+            Relative tolerance [-], > 0.
+
+        Returns
+        -------
+        bool or None
+            None when the series vanishes through ``max_weight``.
+        """
+        rtol = positive(rtol, "rtol")
+        if self.leading_weight < 0 or self.total == 0.0:
+            return None
+        return bool(abs(self.asymptotic - self.total) <= rtol * self.total)
+
+
+def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation: float, step: float, max_weight: int = DEFAULT_MAX_WEIGHT) -> DriftSeries:
+    """The drift series term by term at one motion and step: which term leads and which is largest.
+
+    The asymptotic drift u_a of the papers is the leading term; where a later
+    term is larger (a large νH, or a leading term of higher order in the
+    nutation angle than the next one) the series, not u_a, is the drift.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
+    eps : float
+        ε = μ/ν [-].
+    nu : float
+        Spin rate ν [rad/s], > 0.
+    nutation : float
+        Nutation angle ϑ [rad], in (0, π).
+    step : float
+        Algorithm step H = N h [s], > 0.
+    max_weight : int, keyword-only
+        Highest weight kept (default 7).
+
+    Returns
+    -------
+    DriftSeries
+
+    Raises
+    ------
+    ValueError
+        As :func:`asymptotic_drift`, and for array arguments (one point only).
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> s = drift_series_terms(get("ignagni-1996-2"), eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0), step=0.005, max_weight=9)
+    >>> s.leading_weight, s.largest_weight, s.leading_term_dominates()
+    (5, 7, False)
+    """
+    nu = _check_positive(nu, "nu")
+    step = _check_positive(step, "step")
+    for name, value in (("eps", eps), ("nu", nu), ("nutation", nutation), ("step", step)):
+        if np.ndim(value) != 0:
+            raise ValueError(f"Expected `{name}` as one number, got an array of shape {np.shape(value)}")
+    vals, _ = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
+    w = np.arange(vals.shape[-1])
+    terms = vals * float(nu) ** w * float(step) ** np.maximum(w - 1, 0)
+    rho = int(asymptotic_order(algorithm, eps, nutation, max_weight=max_weight))
+    return DriftSeries(terms, rho + 1 if rho >= 0 else -1)
 
 
 # ---------------------------------------------------------------------------
