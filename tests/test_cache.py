@@ -115,3 +115,9 @@ def test_derived_unpicklable_result_is_returned_uncached(fresh):
         cache.derived("", lambda: 1)
     with pytest.raises(TypeError, match="build"):
         cache.derived("test:x", 1)
+
+
+def test_a_build_may_use_the_cache_itself(fresh):
+    x = sp.Symbol("x")
+    inner = lambda: cache.compiled("test:inner", lambda: ((x,), 2 * x))(3.0)  # noqa: E731
+    assert cache.derived("test:outer", lambda: float(inner()) + 1.0) == 7.0

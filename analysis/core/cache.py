@@ -42,7 +42,7 @@ __all__ = ["compiled", "derived", "cache_directory", "source_fingerprint", "gene
 
 _FUNCTION = "generated"
 _memory: dict = {}
-_lock = threading.Lock()
+_lock = threading.RLock()  # re-entrant: a build may itself use the cache
 _fingerprint: str | None = None
 
 
