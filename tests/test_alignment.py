@@ -93,6 +93,47 @@ def test_rocking_statistics():
 
 
 # ---------------------------------------------------------------- sensor record
+@pytest.mark.parametrize("motion", [SineMotion(R(np.array([0.5, 2.0, 3.0])), 6.0), NarrowbandMotion(R(np.array([0.0, 2.0, 1.0])), 8.0, 0.1)], ids=["sine", "narrowband"])
+@pytest.mark.parametrize("lever_arm", [[0.5, -0.3, 1.0], [0.0, 0.0, 0.0]], ids=["lever-arm", "at-the-centre"])
+@pytest.mark.parametrize("in_gyros", [True, False], ids=["gyros-see-it", "tilt-channel"])
+def test_compiled_sensor_loops_equal_the_numpy_reference(motion, lever_arm, in_gyros):
+    """The fused increments and the compiled preintegration against their numpy forms, to round-off."""
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass.imu import ideal_increments
+
+    sc = Scenario(R(60.0), heading=0.5, beta0=0.02, gamma0=-0.01, motion=motion, lever_arm=lever_arm, sample_rate=10.0, duration=20.0, rocking_in_gyros=in_gyros)
+    m = sc.motion.draw(np.random.default_rng(7), 3, sc.n_samples + 1, sc.dt)
+    fast, ref = ideal_increments(sc, m), ideal_increments(sc, m, compiled=False)
+    for a, b in zip(fast, ref):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-15 * np.max(np.abs(b)))
+    for M in (1, 7, 10):  # 7: a partial last epoch is dropped
+        e1, e2 = preintegrate(*ref, sc.dt, M), preintegrate(*ref, sc.dt, M, compiled=False)
+        assert e1.n_epochs == e2.n_epochs == sc.n_samples // M
+        for name in ("rotation", "velocity", "moment"):
+            np.testing.assert_allclose(getattr(e1, name), getattr(e2, name), rtol=0, atol=1e-14 * max(np.max(np.abs(getattr(e2, name))), 1e-300))
+    assert replace(sc, motion=motion).n_samples == fast[0].shape[1]
+
+
+@pytest.mark.parametrize("model", [NarrowbandMotion(R(np.array([0.0, 1.0, 2.0])), 10.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0])))], ids=["narrowband", "white"])
+def test_scaled_draws_reuse_the_fft_and_equal_the_direct_evaluation(model):
+    """The same draw at another amplitude (common random numbers) shares the unit FFTs; the values are the direct FFT's and the sum's."""
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+
+    r1 = model.draw(np.random.default_rng(3), 4, 301, 0.1)
+    r2 = replace(model, amplitude=3.0 * model.amplitude).draw(np.random.default_rng(3), 4, 301, 0.1)
+    assert r1.unit[0] == r2.unit[0]  # one key: the same normals and the same unit model
+    t = 0.03 + 0.1 * np.arange(300)
+    direct = np.real(np.einsum("nam,km->nka", r2.coefficients, np.exp(1j * np.outer(t, r2.spectrum.omega))))
+    for r, scale in ((r1, 1.0), (r2, 3.0)):
+        plain = MotionRealisation(r.spectrum, r.coefficients, r.dt)  # no unit: a fresh FFT
+        for a, b in zip(r.evaluate(300, 0.03), plain.evaluate(300, 0.03)):
+            np.testing.assert_allclose(a, b, rtol=0, atol=1e-15 * np.max(np.abs(b)))
+        np.testing.assert_allclose(r.evaluate(300, 0.03, derivatives=0)[0] * (3.0 / scale), direct, rtol=0, atol=1e-13 * np.max(np.abs(direct)))
+
+
 def test_increments_reproduce_the_true_attitude_and_velocity():
     """An independent navigator (scipy rotations) integrates the record back to the truth."""
     lat = R(50.0)

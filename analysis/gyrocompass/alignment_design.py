@@ -23,8 +23,11 @@ sensor errors, ``e(a) = e_0 + a u``:
     degrees), so the amplitude is found by a root search on the Monte Carlo
     itself: the rms (and the percentile) of the azimuth error of the same
     trials — common random numbers: the same rocking phases or amplitudes,
-    biases, noise and initial errors at every amplitude — bracketed by steps
-    of ×4 from ``reference_amplitude`` and bisected in log a to ``rtol``.  The
+    biases, noise and initial errors at every amplitude — started at
+    ``reference_amplitude`` and narrowed by a secant search in log a (the
+    model ``rms² = floor² + (u a)²`` until the root is bracketed) to a bracket
+    of relative width ``rtol``; the percentile search starts from every
+    amplitude the rms search simulated.  The
     filter knows the rocking (its model is rebuilt at each amplitude).  The
     interval of the amplitude maps the 95 % interval of the rms at the root
     through the local slope of log rms against log a, and
@@ -261,44 +264,98 @@ def admissible_rocking(
         e0 = errors_at(0.0)
         floors.append(float(np.mean(e0 * e0)))
         amp[i], (lo, hi) = _search(rms, budget, a_ref, cap, rtol)
-        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol)
+        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, budget, cap)
     floor = math.sqrt(float(np.mean(floors)))
     return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, False, n_trials, cap)
 
 
-def _search(fn, budget, start, cap, rtol):
-    """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: bracket by ×4, bisect in log a.
+def _search(fn, budget, start, cap, rtol, known=()):
+    """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: interpolation in log–log with a bracket.
 
-    Returns the root and its bracket (0, 0) or (cap, cap) at the ends."""
-    if fn(0.0) > budget:
+    ``known`` lists amplitudes whose ``fn`` is cheap (already simulated: the
+    percentile search starts from every point of the rms search).  The next
+    amplitude is the root of the curve through the (up to) three points
+    nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line,
+    ``fn² = fn(0)² + (u a)^p``, through two, a parabola through three — moved
+    half the final width past the root (toward the nearer end of a bracket), so
+    that two evaluations close a bracket around a good estimate.  Until the
+    root is bracketed a step is at most ×16 (×4 where the curve gives no
+    root); inside a bracket ``[lo, hi]`` a step shrinks it to at most
+    ``(hi/lo)^0.9``, and to ``√(hi/lo)`` once ``hi/lo ≤ (1 + rtol)²``.  The
+    search ends when ``hi/lo ≤ 1 + rtol``.
+
+    Returns the root ``lo`` and its bracket ``(lo, hi)``; (0, 0) or (cap, cap) at the ends.
+    """
+    values = {}
+
+    def f(a):
+        if a not in values:
+            values[a] = fn(a)
+        return values[a]
+
+    for a in known:
+        if 0.0 < a <= cap:
+            f(a)
+    f0 = f(0.0)
+    if f0 > budget:
         return 0.0, (0.0, 0.0)
-    a = min(start, cap)
-    if fn(a) <= budget:
-        lo = a
-        while fn(a) <= budget:
-            lo, a = a, 4.0 * a
-            if a >= cap:
-                if fn(cap) <= budget:
-                    return cap, (cap, cap)
-                a = cap
-                break
-        hi = a
-    else:
-        hi = a
-        while fn(a) > budget:
-            hi, a = a, a / 4.0
-            if a < cap * 1e-9:
-                return 0.0, (0.0, 0.0)
-        lo = a
-    while hi / lo > 1.0 + rtol:
-        mid = math.sqrt(lo * hi)
-        if fn(mid) <= budget:
-            lo = mid
+    half = 0.5 * math.log(1.0 + rtol)
+    if not any(a > 0.0 for a in values):
+        f(min(start, cap))
+    while True:
+        above = [a for a, v in values.items() if v > budget]
+        hi = min(above) if above else None
+        lo = max(a for a, v in values.items() if v <= budget and (hi is None or a < hi))  # 0.0 at least
+        if hi is not None and (hi <= lo * (1.0 + rtol) or (lo == 0.0 and hi <= cap * 1e-9)):
+            return (lo, (lo, hi)) if lo > 0.0 else (0.0, (0.0, 0.0))
+        if hi is None and lo >= cap:
+            return cap, (cap, cap)
+        c = _log_root(values, f0, budget)
+        if hi is None:
+            nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(half))))
+        elif lo == 0.0:
+            nxt = hi / 4.0 if c is None else max(hi / 16.0, min(math.exp(c - half), hi * math.exp(-half)))
+        elif hi <= lo * math.exp(4.0 * half):
+            nxt = math.sqrt(lo * hi)
         else:
-            hi = mid
-    return lo, (lo, hi)
+            x0, x1 = math.log(lo), math.log(hi)
+            c = 0.5 * (x0 + x1) if c is None else c + (-half if c - x0 > x1 - c else half)
+            margin = 0.1 * (x1 - x0)
+            nxt = math.exp(min(max(c, x0 + margin), x1 - margin))
+        f(nxt)
+
+
+def _log_root(values, floor, budget):
+    """Root in log a of the curve through the points nearest the budget in (log a, log(fn² − floor²)); None if there is none."""
+    target = budget * budget - floor * floor
+    pts = sorted((abs(math.log(v * v - floor * floor) - math.log(target)), math.log(a), math.log(v * v - floor * floor)) for a, v in values.items() if a > 0.0 and v * v > floor * floor)
+    pts = sorted((x, y) for _, x, y in pts[:3])
+    y_t = math.log(target) if target > 0.0 else None
+    if y_t is None or len(pts) < 1:
+        return None
+    if len(pts) == 1:  # the linear model through the floor: fn² − floor² ∝ a²
+        return pts[0][0] + 0.5 * (y_t - pts[0][1])
+    if len(pts) == 3:
+        (xa, ya), (xb, yb), (xc, yc) = pts
+        # the parabola y(x) through the three points, solved for y = y_t on the branch where it rises
+        d1, d2 = (yb - ya) / (xb - xa), (yc - yb) / (xc - xb)
+        k = (d2 - d1) / (xc - xa)
+        bq = d1 - k * (xa + xb)
+        aq, cq = k, ya - d1 * xa + k * xa * xb - y_t
+        if abs(aq) > 1e-12:
+            disc = bq * bq - 4.0 * aq * cq
+            if disc >= 0.0:
+                roots = [(-bq + sgn * math.sqrt(disc)) / (2.0 * aq) for sgn in (1.0, -1.0)]
+                rising = [x for x in roots if 2.0 * aq * x + bq > 0.0]
+                if rising:
+                    return min(rising, key=lambda x: abs(x - xb))
+        pts = pts[1:] if abs(yc - y_t) < abs(ya - y_t) else pts[:2]
+    (xa, ya), (xb, yb) = pts[0], pts[-1]
+    if yb <= ya:
+        return None
+    return xa + (y_t - ya) * (xb - xa) / (yb - ya)
 
 
 def _amplitude_interval(errors_at, a, lo, hi, budget, cap):

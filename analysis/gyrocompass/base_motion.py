@@ -43,8 +43,11 @@ Amplitudes: ``amplitude`` is the sine amplitude; for the Gaussian models it is
 
 from __future__ import annotations
 
+import hashlib
 import math
-from dataclasses import dataclass
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -117,11 +120,20 @@ class MotionRealisation:
         ``(n_trials, 3, M)`` complex coefficients [rad].
     dt : float
         Sample interval of the FFT grid [s].
+    unit : tuple or None
+        ``(key, coefficients, scale)`` of a Gaussian model whose axes are one
+        shape scaled by their amplitudes: ``coefficients = unit · scale`` per
+        axis, with ``key`` a digest of the random draw and of the unit model.
+        The FFTs of the unit coefficients are kept (a few, least recently
+        used first out), so that the same draw at another amplitude — the
+        common random numbers of a root search over the amplitude — costs a
+        product, not an FFT (the result equals the direct FFT to round-off).
     """
 
     spectrum: Spectrum
     coefficients: np.ndarray
     dt: float
+    unit: tuple | None = field(default=None, repr=False, compare=False)
 
     @property
     def n_trials(self) -> int:
@@ -154,16 +166,22 @@ class MotionRealisation:
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros(shape) for _ in range(k + 1))
         w = self.spectrum.omega
-        c = self.coefficients * np.exp(1j * w * offset)
         if self.spectrum.n_fft is not None:
+            if self.unit is not None:
+                key, unit, scale = self.unit
+                c = unit * np.exp(1j * w * offset)
+                return tuple(scale * _SERIES.get((key, n, float(offset), d), lambda d=d: self._fft(c * (1j * w) ** d, n)) for d in range(k + 1))
+            c = self.coefficients * np.exp(1j * w * offset)
             return tuple(self._fft(c * (1j * w) ** d, n) for d in range(k + 1))
+        c = self.coefficients * np.exp(1j * w * offset)
         t = np.arange(n) * self.dt
-        out = [np.zeros((self.n_trials, 3, n)) for _ in range(k + 1)]
-        for m in range(w.size):  # a few sinusoids
-            e = np.exp(1j * w[m] * t)
+        out = [np.zeros((self.n_trials, n, 3)) for _ in range(k + 1)]
+        for m in range(w.size):  # a few sinusoids: Re[c e^{iωt}] = Re c cos ωt − Im c sin ωt
+            cos, sin = np.cos(w[m] * t)[:, None], np.sin(w[m] * t)[:, None]
             for d in range(k + 1):
-                out[d] += np.real(((1j * w[m]) ** d * c[:, :, m])[:, :, None] * e)
-        return tuple(np.ascontiguousarray(np.swapaxes(x, 1, 2)) for x in out)
+                cd = (1j * w[m]) ** d * c[:, :, m]
+                out[d] += cd.real[:, None, :] * cos - cd.imag[:, None, :] * sin
+        return tuple(out)
 
     def _fft(self, c, n):
         nfft = self.spectrum.n_fft
@@ -171,6 +189,36 @@ class MotionRealisation:
         X[..., 1 : 1 + c.shape[-1]] = c * (nfft / 2.0)
         x = np.fft.irfft(X, n=nfft, axis=-1)[..., :n]
         return np.ascontiguousarray(np.swapaxes(x, 1, 2))
+
+
+class _SeriesMemo:
+    """The last FFT evaluations of unit coefficients (least recently used out past ``max_bytes``); thread-safe."""
+
+    def __init__(self, max_bytes: int):
+        self.max_bytes = max_bytes
+        self._items: OrderedDict = OrderedDict()
+        self._bytes = 0
+        self._lock = threading.Lock()
+
+    def get(self, key, build):
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+                return self._items[key]
+        value = build()
+        value.setflags(write=False)
+        with self._lock:
+            if key not in self._items:
+                self._items[key] = value
+                self._bytes += value.nbytes
+                while self._bytes > self.max_bytes and len(self._items) > 1:
+                    _, old = self._items.popitem(last=False)
+                    self._bytes -= old.nbytes
+        return value
+
+
+#: FFT evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
+_SERIES = _SeriesMemo(128 * 2**20)
 
 
 def _amplitude3(value, name) -> np.ndarray:
@@ -215,6 +263,12 @@ class _Model:
         m = s.omega.size
         if s.gaussian:
             z = g.standard_normal((n_trials, 3, m, 2))
+            if s.n_fft is not None and "amplitude" in getattr(self, "__dataclass_fields__", {}):
+                amplitude = self.amplitude
+                unit_model = replace(self, amplitude=np.ones(3))  # power = amplitude² · (the unit model's power)
+                u = (z[..., 0] + 1j * z[..., 1]) * np.sqrt(unit_model.spectrum(n_samples, dt).power)
+                key = hashlib.blake2b(z.tobytes() + repr((unit_model, n_samples, dt)).encode(), digest_size=16).digest()
+                return MotionRealisation(s, u * amplitude[:, None], dt, (key, u, amplitude.copy()))
             c = (z[..., 0] + 1j * z[..., 1]) * np.sqrt(s.power)
         else:
             phase = g.random((n_trials, 3, m)) * (2.0 * math.pi)

@@ -39,7 +39,7 @@ from .earth import earth_rate_ned, gravity_ned
 from .rocking import as_generator
 from .tilt_attitude import attitude_matrix, body_acceleration, body_rate
 
-__all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu"]
+__all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu", "ideal_increments"]
 
 _GAUSS = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))
 
@@ -231,6 +231,47 @@ def _ideal_rates(scenario: Scenario, angles_r, rates_r, accels_r=None):
     return gyro, f
 
 
+def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
+    """Ideal angle and velocity increments of a drawn rocking: two-point Gauss quadrature of the exact rates.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Place, stable attitude, lever arm and sampling.
+    motion : MotionRealisation
+        The rocking of n trials (:meth:`strapdown.analysis.gyrocompass.base_motion.SineMotion.draw` and kin).
+    compiled : bool, keyword-only
+        Fused compiled loop (:mod:`.sensor_kernels`, default) or the numpy form,
+        kept as the reference (equal to round-off).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``dtheta, dv``, each ``(n, N, 3)`` [rad, m/s], ``N = scenario.n_samples``.
+    """
+    N, dt = scenario.n_samples, scenario.dt
+    n = motion.n_trials
+    dtheta = np.zeros((n, N, 3))
+    dv = np.zeros((n, N, 3))
+    order = 2 if np.any(scenario.lever_arm) else 1
+    if compiled:
+        from .sensor_kernels import accumulate_ideal_increments
+
+        lat = scenario.latitude
+        W, g = earth_rate_ned(lat), gravity_ned(lat)
+        fixed = attitude_matrix(scenario.stable_angles).T @ W
+        for node in _GAUSS:
+            parts = motion.evaluate(N, node * dt, derivatives=order)
+            acc = parts[2] if order == 2 else None
+            accumulate_ideal_increments(parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv)
+        return dtheta, dv
+    for node in _GAUSS:
+        gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
+        dtheta += (0.5 * dt) * gyro
+        dv += (0.5 * dt) * f
+    return dtheta, dv
+
+
 def _quantise(x, q, g):
     """Differences of the quantised running sum of ``x`` (along axis 1), random initial residue."""
     if q <= 0:
@@ -286,13 +327,7 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     stride = N if truth_stride is None else as_int(truth_stride, "truth_stride", minimum=1)
     g = as_generator(rng)
     motion = scenario.motion.draw(g, n, N + 1, dt)
-    dtheta = np.zeros((n, N, 3))
-    dv = np.zeros((n, N, 3))
-    order = 2 if np.any(scenario.lever_arm) else 1
-    for node in _GAUSS:
-        gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
-        dtheta += (0.5 * dt) * gyro
-        dv += (0.5 * dt) * f
+    dtheta, dv = ideal_increments(scenario, motion)
     # truth at the sample instants k·stride
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:

@@ -67,7 +67,7 @@ class EpochIncrements:
         return self.rotation.shape[1]
 
 
-def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int) -> EpochIncrements:
+def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: bool = True) -> EpochIncrements:
     """Condense sample increments into epoch increments (trailing samples of a partial epoch are dropped).
 
     Parameters
@@ -80,6 +80,10 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int) -> EpochIncremen
         Sample interval h [s].
     samples_per_epoch : int
         M, at least 1.
+    compiled : bool, keyword-only
+        One compiled loop over trials and samples (:mod:`.sensor_kernels`,
+        default) or the numpy form vectorised over trials and epochs, kept as
+        the reference (equal to round-off).
 
     Returns
     -------
@@ -96,6 +100,10 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int) -> EpochIncremen
     E = N // M
     if E < 1:
         raise ValueError(f"Expected at least one epoch of {M} samples, got {N} samples")
+    if compiled:
+        from .sensor_kernels import preintegrate_loop
+
+        return EpochIncrements(*preintegrate_loop(dtheta, dv, dt, M, E), M * dt, M)
     prev_th = np.concatenate([np.zeros((n, 1, 3)), dtheta[:, : E * M - 1]], axis=1).reshape(n, E, M, 3)
     prev_v = np.concatenate([np.zeros((n, 1, 3)), dv[:, : E * M - 1]], axis=1).reshape(n, E, M, 3)
     th = dtheta[:, : E * M].reshape(n, E, M, 3)
