@@ -54,7 +54,7 @@ from ...derivations.coning import drift as sym
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.series import DEFAULT_MAX_WEIGHT, check_max_weight
 from ..core import quaternion as quat
-from ..core.cache import compiled
+from ..core.cache import compiled, derived
 from ..core.dual import Dual
 from ..core.units import RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import as_array, as_float, as_quaternion, in_open_interval, positive
@@ -70,6 +70,7 @@ __all__ = [
     "drift_series",
     "DriftSeries",
     "drift_series_terms",
+    "coning_drift",
     "coning_drift_function",
     "coning_drift_rate",
     "AccumulatedError",
@@ -472,6 +473,26 @@ def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation:
 # ---------------------------------------------------------------------------
 # Classical coning in closed form
 # ---------------------------------------------------------------------------
+def coning_drift(algorithm: Algorithm) -> sym.ConingDrift:
+    """The closed-form coning drift of :func:`strapdown.derivations.coning.drift.coning_drift`, derived once.
+
+    The derivation's result (exact fractions and SymPy expressions) is kept in
+    the cache of derived results (:func:`strapdown.analysis.core.cache.derived`),
+    per algorithm content (:func:`algorithm_key`) and source version.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
+
+    Returns
+    -------
+    ConingDrift
+        The derivation's object itself.
+    """
+    return derived(f"coning:coning-drift:v1:{algorithm_key(algorithm)}", lambda: sym.coning_drift(algorithm))
+
+
 def coning_drift_function(algorithm: Algorithm):
     """``D(x)``, x = ωh, of the coning drift ``u = α² ω D(ωh)`` as a compiled numpy function.
 

@@ -485,7 +485,7 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
     return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
 
 
-def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None) -> FineAlignmentResult:
+def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, compiled: bool = True) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
     Parameters
@@ -503,6 +503,11 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
         Gains and covariances computed before for the same model (saves the filterpy run).
+    compiled : bool, keyword-only
+        Run the epochs of all trials in one compiled loop
+        (:func:`.alignment_kernels.fine_alignment_loop`, default) or in the
+        numpy loop over epochs vectorised over trials, kept as the reference
+        (equal to round-off).
 
     Returns
     -------
@@ -547,34 +552,48 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     v = tuning.prior_velocity * g.standard_normal((n, 3))  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
-    eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
-    shaping = model.has_rocking_states
     ax = list(model.rocking_axes)
-    xd = np.zeros((n, 2 * len(ax)))
     rock_true = np.empty((n, E + 1, 2 * len(ax)))
     rock_true[:, :, 0::2] = (record.truth_angles - sc.stable_angles)[:, :, ax]
     rock_true[:, :, 1::2] = record.truth_rates[:, :, ax]
-    FddT = model.F[12:, 12:].T if shaping else None
-    nees = np.empty((n, E))
-    nis = np.empty((n, E))
-    heading_error = np.empty((n, E))
     Sinv = np.linalg.inv(seq.innovation)
     Pinv = np.linalg.inv(seq.posterior)
-    KT = np.swapaxes(seq.gains, 1, 2)
-    HT = model.H.T
-    err = np.empty((n, model.dim))
+    Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
+    loop = _epoch_loop
+    if compiled:
+        from .alignment_kernels import fine_alignment_loop as loop
+    C, nees, nis, heading_error = loop(
+        C, v, dR, ep.velocity, ep.moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r,
+        tuning.lever_arm_known, Fdd, model.H, seq.gains, Pinv, Sinv,
+    )  # fmt: skip
+    a = angles_from_matrix(C)
+    t = record.truth_angles[:, E]
+    est = AlignmentEstimate("kalman", a.heading, a.beta, a.gamma, t[:, 0], t[:, 1], t[:, 2], "end")
+    return FineAlignmentResult(est, D * np.arange(1, E + 1), nees, nis, heading_error, np.sqrt(seq.posterior[:, 2, 2]), model.dim, 3)
+
+
+def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever_arm_known, Fdd, H, gains, Pinv, Sinv):
+    """The numpy reference of :func:`.alignment_kernels.fine_alignment_loop` (same arguments): one step per epoch, vectorised over trials."""
+    n, E = dR.shape[0], dR.shape[1]
+    dim, shaping = H.shape[1], Fdd.shape[0] > 0
+    eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
+    xd = np.zeros((n, Fdd.shape[0]))
+    nees, nis, heading_error = np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    KT = np.swapaxes(gains, 1, 2)
+    HT = H.T
+    err = np.empty((n, dim))
     for j in range(E):  # one step per epoch, vectorised over trials
         eb = np.einsum("nji,nj->ni", C, eps)  # C̃ᵀ ε̂^n
         ab = np.einsum("nji,nj->ni", C, acc)
-        dV = np.einsum("nij,nj->ni", C, ep.velocity[:, j] - ab * D) - np.einsum("nij,nj->ni", C, ep.moment[:, j]) @ Wx.T
+        dV = np.einsum("nij,nj->ni", C, velocity[:, j] - ab * D) - np.einsum("nij,nj->ni", C, moment[:, j]) @ Wx.T
         v = v + dV + gn * D - 2.0 * D * (v @ Wx.T)
         C = E_earth @ C @ dR[:, j] @ _rodrigues(-eb * D)
         z = v + meas_noise[:, j]
-        if tuning.lever_arm_known:
+        if lever_arm_known:
             z = z - np.einsum("nij,nj->ni", C, _cross(w_end[:, j] - eb, r))
-        pred = np.zeros((n, model.dim))
+        pred = np.zeros((n, dim))
         if shaping:
-            xd = xd @ FddT
+            xd = xd @ Fdd.T
             pred[:, 12:] = xd
         y = z - pred @ HT
         x = pred + y @ KT[j]
@@ -593,10 +612,7 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         nees[:, j] = np.sum((err @ Pinv[j]) * err, axis=1)
         nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
         heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
-    a = angles_from_matrix(C)
-    t = record.truth_angles[:, E]
-    est = AlignmentEstimate("kalman", a.heading, a.beta, a.gamma, t[:, 0], t[:, 1], t[:, 2], "end")
-    return FineAlignmentResult(est, D * np.arange(1, E + 1), nees, nis, heading_error, np.sqrt(seq.posterior[:, 2, 2]), model.dim, 3)
+    return C, nees, nis, heading_error
 
 
 def _cross(a, b):

@@ -241,7 +241,7 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
     motion : MotionRealisation
         The rocking of n trials (:meth:`strapdown.analysis.gyrocompass.base_motion.SineMotion.draw` and kin).
     compiled : bool, keyword-only
-        Fused compiled loop (:mod:`.sensor_kernels`, default) or the numpy form,
+        Fused compiled loop (:mod:`.alignment_kernels`, default) or the numpy form,
         kept as the reference (equal to round-off).
 
     Returns
@@ -255,7 +255,7 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
     if compiled:
-        from .sensor_kernels import accumulate_ideal_increments
+        from .alignment_kernels import accumulate_ideal_increments
 
         lat = scenario.latitude
         W, g = earth_rate_ned(lat), gravity_ned(lat)

@@ -135,7 +135,7 @@ def wahba_rotation(reference, body, weights=None) -> np.ndarray:
     """
     r, b = np.asarray(reference, dtype=float), np.asarray(body, dtype=float)
     w = np.ones(r.shape[1]) if weights is None else np.asarray(weights, dtype=float)
-    B = np.einsum("k,nki,nkj->nij", w, r, b)
+    B = np.swapaxes(r * w[:, None], 1, 2) @ b  # Σ_k w_k r_k b_kᵀ
     U, _, Vt = np.linalg.svd(B)
     d = np.sign(np.linalg.det(U) * np.linalg.det(Vt))
     U[:, :, 2] *= d[:, None]
@@ -185,7 +185,7 @@ def inertial_alignment(record: ImuRecord, *, epoch: float = 1.0, observation: st
         step = v_start * ep.epoch + dV * ep.epoch - quat.rotate(Q[:, :-1], ep.moment)
         body, ref, basis = np.cumsum(step, axis=1), reference_position(sc.latitude, times), [np.ones(E), times / times[-1]]
     P = _residual_projector(np.stack(basis, axis=-1))
-    C_ib0_in0 = wahba_rotation(np.broadcast_to(P @ ref, body.shape), np.einsum("jk,nkc->njc", P, body))
+    C_ib0_in0 = wahba_rotation(np.broadcast_to(P @ ref, body.shape), P @ body)
     T = sc.n_samples * sc.dt
     W = earth_rate_ned(sc.latitude)
     Om = float(np.linalg.norm(W))

@@ -81,7 +81,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     samples_per_epoch : int
         M, at least 1.
     compiled : bool, keyword-only
-        One compiled loop over trials and samples (:mod:`.sensor_kernels`,
+        One compiled loop over trials and samples (:mod:`.alignment_kernels`,
         default) or the numpy form vectorised over trials and epochs, kept as
         the reference (equal to round-off).
 
@@ -101,7 +101,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     if E < 1:
         raise ValueError(f"Expected at least one epoch of {M} samples, got {N} samples")
     if compiled:
-        from .sensor_kernels import preintegrate_loop
+        from .alignment_kernels import preintegrate_loop
 
         return EpochIncrements(*preintegrate_loop(dtheta, dv, dt, M, E), M * dt, M)
     prev_th = np.concatenate([np.zeros((n, 1, 3)), dtheta[:, : E * M - 1]], axis=1).reshape(n, E, M, 3)
@@ -122,7 +122,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     return EpochIncrements(R, V, S, M * dt, M)
 
 
-def chain_rotations(start, rotations) -> np.ndarray:
+def chain_rotations(start, rotations, *, compiled: bool = True) -> np.ndarray:
     """Attitudes at the epoch boundaries: ``Q_0 = start``, ``Q_{j+1} = Q_j ∘ ΔR_j``.
 
     Parameters
@@ -131,12 +131,19 @@ def chain_rotations(start, rotations) -> np.ndarray:
         ``(n, 4)`` initial quaternions.
     rotations : ndarray
         ``(n, E, 4)`` epoch rotations.
+    compiled : bool, keyword-only
+        One compiled loop (:mod:`.alignment_kernels`, default) or the numpy loop
+        over epochs, kept as the reference (equal to round-off).
 
     Returns
     -------
     ndarray
         ``(n, E + 1, 4)``.
     """
+    if compiled:
+        from .alignment_kernels import chain_loop
+
+        return chain_loop(np.asarray(start, dtype=float), rotations)
     rotations = np.asarray(rotations, dtype=float)
     n, E, _ = rotations.shape
     out = np.empty((n, E + 1, 4))

@@ -1,0 +1,487 @@
+"""Compiled loops of the self-alignment Monte Carlo: sensor increments, preintegration, the filter's epochs.
+
+The hot paths of the self-alignment Monte Carlo are a few dozen flops per
+sample or epoch, which numpy spreads over dozens of small array operations:
+
+* :func:`accumulate_ideal_increments` adds one Gauss node's share of the ideal
+  gyro and accelerometer increments (the rates of :mod:`.imu`: attitude,
+  body rate, Earth rate in body axes, gravity, lever-arm terms), fused in one
+  loop over trials and samples;
+* :func:`preintegrate_loop` condenses sample increments into epoch increments
+  (the coning- and sculling-compensated sums of :mod:`.preintegration`), and
+  :func:`chain_loop` chains the epoch rotations into attitudes;
+* :func:`fine_alignment_loop` runs the closed-loop error-state filter of
+  :mod:`.fine_alignment` over the epochs of every trial, with gains computed
+  before (by filterpy), and scores it against the truth (NEES, NIS).
+
+They are compiled with numba on first use (the machine code is cached on disk,
+so the compile cost is paid once per installation).  The vectorised numpy
+forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine_alignment` as
+the references the tests compare these loops against (equal to round-off).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
+
+_compiled: dict = {}
+
+
+#: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
+_HELPERS = ("_rodrigues3",)
+
+
+def _jit(fn):
+    """``fn`` compiled with numba (imported on first use; cached on disk)."""
+    name = fn.__name__
+    if name not in _compiled:
+        import numba
+
+        g = globals()
+        for helper in _HELPERS:
+            if not isinstance(g[helper], numba.core.registry.CPUDispatcher):
+                g[helper] = numba.njit(cache=True, nogil=True)(g[helper])
+        _compiled[name] = numba.njit(cache=True, nogil=True)(fn)
+    return _compiled[name]
+
+
+def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
+    n, N = angles.shape[0], angles.shape[1]
+    for i in range(n):
+        for k in range(N):
+            psi = angles[i, k, 0] + stable[0]
+            beta = angles[i, k, 1] + stable[1]
+            gam = angles[i, k, 2] + stable[2]
+            cp, sp = math.cos(psi), math.sin(psi)
+            cb, sb = math.cos(beta), math.sin(beta)
+            cg, sg = math.cos(gam), math.sin(gam)
+            # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
+            r1x, r1y, r1z = cg, 0.0, sg
+            r2x, r2y, r2z = -sb * sg, cb, sb * cg
+            c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
+            c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
+            c20, c21, c22 = -cb * sg, -sb, cb * cg
+            # C_n^b W and −C_n^b g
+            ex = c00 * W[0] + c10 * W[1] + c20 * W[2]
+            ey = c01 * W[0] + c11 * W[1] + c21 * W[2]
+            ez = c02 * W[0] + c12 * W[1] + c22 * W[2]
+            fx = -(c00 * g[0] + c10 * g[1] + c20 * g[2])
+            fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
+            fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
+            # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
+            dp, db, dg = rates[i, k, 0], rates[i, k, 1], rates[i, k, 2]
+            wx = -cg * db - sg * cb * dp
+            wy = dg - sb * dp
+            wz = -sg * db + cg * cb * dp
+            if lever:
+                ddp, ddb, ddg = accels[i, k, 0], accels[i, k, 1], accels[i, k, 2]
+                ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
+                ay = ddg - cb * db * dp - sb * ddp
+                az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
+                # ω × r, then ω̇ × r + ω × (ω × r) + 2 ω_e × (ω × r)
+                qx = wy * r[2] - wz * r[1]
+                qy = wz * r[0] - wx * r[2]
+                qz = wx * r[1] - wy * r[0]
+                fx += (ay * r[2] - az * r[1]) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy)
+                fy += (az * r[0] - ax * r[2]) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz)
+                fz += (ax * r[1] - ay * r[0]) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx)
+            if in_gyros:
+                dtheta[i, k, 0] += weight * (wx + ex)
+                dtheta[i, k, 1] += weight * (wy + ey)
+                dtheta[i, k, 2] += weight * (wz + ez)
+            else:
+                dtheta[i, k, 0] += weight * fixed_gyro[0]
+                dtheta[i, k, 1] += weight * fixed_gyro[1]
+                dtheta[i, k, 2] += weight * fixed_gyro[2]
+            dv[i, k, 0] += weight * fx
+            dv[i, k, 1] += weight * fy
+            dv[i, k, 2] += weight * fz
+
+
+def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, dtheta, dv) -> None:
+    """Add ``weight`` times the ideal gyro rate and specific force at one quadrature node, in place.
+
+    Parameters
+    ----------
+    angles, rates : ndarray
+        ``(n, N, 3)`` rocking angles (ψ, β, γ) [rad] and their rates [rad/s] at the node.
+    accels : ndarray or None
+        ``(n, N, 3)`` angular accelerations [rad/s²] (needed only with a lever arm).
+    stable : ndarray
+        ``(3,)`` stable attitude (ψ0, β0, γ0) added to ``angles`` [rad].
+    earth_rate, gravity : ndarray
+        ``(3,)`` ω_ie^n [rad/s] and g^n [m/s²] in NED.
+    lever_arm : ndarray
+        ``(3,)`` r in body axes [m].
+    fixed_gyro : ndarray
+        ``(3,)`` gyro rate when the gyros do not see the rocking [rad/s].
+    in_gyros : bool
+        The gyros see the rocking (``Scenario.rocking_in_gyros``).
+    weight : float
+        Quadrature weight [s].
+    dtheta, dv : ndarray
+        ``(n, N, 3)`` C-contiguous float arrays, incremented in place [rad, m/s].
+
+    Notes
+    -----
+    The rates are those of :func:`strapdown.analysis.gyrocompass.imu._ideal_rates`
+    (its numpy form is the reference of the tests).
+    """
+    lever = bool(np.any(lever_arm))
+    angles, rates = np.ascontiguousarray(angles, dtype=float), np.ascontiguousarray(rates, dtype=float)
+    accels = np.ascontiguousarray(accels, dtype=float) if lever else np.zeros((1, 1, 3))
+    vec = lambda x: np.ascontiguousarray(x, dtype=float).reshape(3)  # noqa: E731
+    _jit(_ideal_loop)(
+        angles, rates, accels, vec(stable), vec(earth_rate), vec(gravity), vec(lever_arm), vec(fixed_gyro), bool(in_gyros), lever, float(weight), dtheta, dv
+    )
+
+
+def _preintegrate_loop(th, v, dt, M, E, R, V, S):
+    n = th.shape[0]
+    for i in range(n):
+        pa0 = pa1 = pa2 = 0.0  # the previous sample (the last of the previous epoch at an epoch start)
+        pb0 = pb1 = pb2 = 0.0
+        for j in range(E):
+            q0, q1, q2, q3 = 1.0, 0.0, 0.0, 0.0
+            V0 = V1 = V2 = 0.0
+            S0 = S1 = S2 = 0.0
+            for k in range(M):
+                s = j * M + k
+                a0, a1, a2 = th[i, s, 0], th[i, s, 1], th[i, s, 2]
+                b0, b1, b2 = v[i, s, 0], v[i, s, 1], v[i, s, 2]
+                # sculling: b + ½ a×b + a×(a×b)/6 + (pa×b + pb×a)/12
+                c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                d0, d1, d2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
+                e0 = (pa1 * b2 - pa2 * b1) + (pb1 * a2 - pb2 * a1)
+                e1 = (pa2 * b0 - pa0 * b2) + (pb2 * a0 - pb0 * a2)
+                e2 = (pa0 * b1 - pa1 * b0) + (pb0 * a1 - pb1 * a0)
+                u0 = b0 + 0.5 * c0 + d0 / 6.0 + e0 / 12.0
+                u1 = b1 + 0.5 * c1 + d1 / 6.0 + e1 / 12.0
+                u2 = b2 + 0.5 * c2 + d2 / 6.0 + e2 / 12.0
+                # rotate by the epoch's running attitude: vect(q ∘ {0, u} ∘ q̄)
+                t0 = -q1 * u0 - q2 * u1 - q3 * u2
+                t1 = q0 * u0 + q2 * u2 - q3 * u1
+                t2 = q0 * u1 - q1 * u2 + q3 * u0
+                t3 = q0 * u2 + q1 * u1 - q2 * u0
+                x0 = -t0 * q1 + t1 * q0 - t2 * q3 + t3 * q2
+                x1 = -t0 * q2 + t1 * q3 + t2 * q0 - t3 * q1
+                x2 = -t0 * q3 - t1 * q2 + t2 * q1 + t3 * q0
+                V0 += x0
+                V1 += x1
+                V2 += x2
+                tk = (k + 0.5) * dt
+                S0 += tk * x0
+                S1 += tk * x1
+                S2 += tk * x2
+                # coning: the rotation vector a + pa×a/12, then q ← q ∘ Δq
+                p0 = a0 + (pa1 * a2 - pa2 * a1) / 12.0
+                p1 = a1 + (pa2 * a0 - pa0 * a2) / 12.0
+                p2 = a2 + (pa0 * a1 - pa1 * a0) / 12.0
+                th2 = p0 * p0 + p1 * p1 + p2 * p2
+                if th2 < 1e-4:  # the series branch of quaternion.rotvec_to_quat
+                    x = th2 * 0.25
+                    cw = 1.0 - x / 2.0 + x * x / 24.0 - x * x * x / 720.0
+                    sw = 0.5 * (1.0 - x / 6.0 + x * x / 120.0 - x * x * x / 5040.0)
+                else:
+                    tt = math.sqrt(th2)
+                    cw = math.cos(0.5 * tt)
+                    sw = math.sin(0.5 * tt) / tt
+                w0, w1, w2, w3 = cw, sw * p0, sw * p1, sw * p2
+                q0, q1, q2, q3 = (
+                    q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3,
+                    q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2,
+                    q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1,
+                    q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0,
+                )
+                pa0, pa1, pa2 = a0, a1, a2
+                pb0, pb1, pb2 = b0, b1, b2
+            R[i, j, 0], R[i, j, 1], R[i, j, 2], R[i, j, 3] = q0, q1, q2, q3
+            V[i, j, 0], V[i, j, 1], V[i, j, 2] = V0, V1, V2
+            S[i, j, 0], S[i, j, 1], S[i, j, 2] = S0, S1, S2
+
+
+def preintegrate_loop(dtheta, dv, dt: float, samples_per_epoch: int, n_epochs: int):
+    """Epoch rotations, velocity increments and their first moments, in one compiled loop.
+
+    Parameters
+    ----------
+    dtheta, dv : ndarray
+        ``(n, N, 3)`` sample increments [rad, m/s], ``N ≥ samples_per_epoch · n_epochs``.
+    dt : float
+        Sample interval [s].
+    samples_per_epoch : int
+        M.
+    n_epochs : int
+        E.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(n, E, 4)`` rotations, ``(n, E, 3)`` velocity increments [m/s] and
+        moments [m] (the fields of
+        :class:`strapdown.analysis.gyrocompass.preintegration.EpochIncrements`).
+    """
+    th, v = np.ascontiguousarray(dtheta, dtype=float), np.ascontiguousarray(dv, dtype=float)
+    n = th.shape[0]
+    R, V, S = np.empty((n, n_epochs, 4)), np.empty((n, n_epochs, 3)), np.empty((n, n_epochs, 3))
+    _jit(_preintegrate_loop)(th, v, float(dt), int(samples_per_epoch), int(n_epochs), R, V, S)
+    return R, V, S
+
+
+def _chain_loop(start, rot, out):
+    n, E = rot.shape[0], rot.shape[1]
+    for i in range(n):
+        q0, q1, q2, q3 = start[i, 0], start[i, 1], start[i, 2], start[i, 3]
+        out[i, 0, 0], out[i, 0, 1], out[i, 0, 2], out[i, 0, 3] = q0, q1, q2, q3
+        for j in range(E):
+            w0, w1, w2, w3 = rot[i, j, 0], rot[i, j, 1], rot[i, j, 2], rot[i, j, 3]
+            q0, q1, q2, q3 = (
+                q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3,
+                q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2,
+                q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1,
+                q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0,
+            )
+            out[i, j + 1, 0], out[i, j + 1, 1], out[i, j + 1, 2], out[i, j + 1, 3] = q0, q1, q2, q3
+
+
+def chain_loop(start, rotations):
+    """Attitudes at the epoch boundaries, ``Q_0 = start``, ``Q_{j+1} = Q_j ∘ ΔR_j``, in one compiled loop.
+
+    Parameters
+    ----------
+    start : ndarray
+        ``(n, 4)`` initial quaternions.
+    rotations : ndarray
+        ``(n, E, 4)`` epoch rotations.
+
+    Returns
+    -------
+    ndarray
+        ``(n, E + 1, 4)``.
+    """
+    rot = np.ascontiguousarray(rotations, dtype=float)
+    n, E = rot.shape[0], rot.shape[1]
+    out = np.empty((n, E + 1, 4))
+    _jit(_chain_loop)(np.ascontiguousarray(np.broadcast_to(start, (n, 4)), dtype=float), rot, out)
+    return out
+
+
+def _rodrigues3(p0, p1, p2, out):
+    """``exp([φ×])`` into ``out`` (3, 3); the series below 1e-6 rad as in ``fine_alignment._rodrigues``."""
+    th2 = p0 * p0 + p1 * p1 + p2 * p2
+    if th2 < 1e-12:
+        a = 1.0 - th2 / 6.0
+        b = 0.5 - th2 / 24.0
+    else:
+        th = math.sqrt(th2)
+        a = math.sin(th) / th
+        b = (1.0 - math.cos(th)) / th2
+    # I + a K + b K², K = [φ×]
+    out[0, 0] = 1.0 - b * (p1 * p1 + p2 * p2)
+    out[1, 1] = 1.0 - b * (p0 * p0 + p2 * p2)
+    out[2, 2] = 1.0 - b * (p0 * p0 + p1 * p1)
+    out[0, 1] = -a * p2 + b * p0 * p1
+    out[1, 0] = a * p2 + b * p0 * p1
+    out[0, 2] = a * p1 + b * p0 * p2
+    out[2, 0] = -a * p1 + b * p0 * p2
+    out[1, 2] = -a * p0 + b * p1 * p2
+    out[2, 1] = a * p0 + b * p1 * p2
+
+
+def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever, shaping, Fdd, H, K, Pinv, Sinv, C_out, nees, nis, heading):
+    n, E = dR.shape[0], dR.shape[1]
+    dim = H.shape[1]
+    nd = Fdd.shape[0]
+    C = np.empty((3, 3))
+    T = np.empty((3, 3))
+    U = np.empty((3, 3))
+    Rr = np.empty((3, 3))
+    eps = np.empty(3)
+    acc = np.empty(3)
+    v = np.empty(3)
+    xd = np.zeros(nd)
+    xn = np.empty(nd)
+    pred = np.empty(dim)
+    x = np.empty(dim)
+    y = np.empty(3)
+    err = np.empty(dim)
+    u = np.empty(3)
+    w = np.empty(3)
+    dv = np.empty(3)
+    for i in range(n):
+        for a in range(3):
+            v[a] = v0[i, a]
+            eps[a] = 0.0
+            acc[a] = 0.0
+            for b in range(3):
+                C[a, b] = C0[i, a, b]
+        for m in range(nd):
+            xd[m] = 0.0
+        for j in range(E):
+            # ε̂ and the accelerometer bias in body axes, C̃ᵀ ε̂
+            eb0 = C[0, 0] * eps[0] + C[1, 0] * eps[1] + C[2, 0] * eps[2]
+            eb1 = C[0, 1] * eps[0] + C[1, 1] * eps[1] + C[2, 1] * eps[2]
+            eb2 = C[0, 2] * eps[0] + C[1, 2] * eps[1] + C[2, 2] * eps[2]
+            ab0 = C[0, 0] * acc[0] + C[1, 0] * acc[1] + C[2, 0] * acc[2]
+            ab1 = C[0, 1] * acc[0] + C[1, 1] * acc[1] + C[2, 1] * acc[2]
+            ab2 = C[0, 2] * acc[0] + C[1, 2] * acc[1] + C[2, 2] * acc[2]
+            # dV = C (ΔV − b_a D) − [ω_ie×] C S, then v ← v + dV + g D − 2 D [ω_ie×] v
+            u[0], u[1], u[2] = vel[i, j, 0] - ab0 * D, vel[i, j, 1] - ab1 * D, vel[i, j, 2] - ab2 * D
+            for a in range(3):
+                w[a] = C[a, 0] * moment[i, j, 0] + C[a, 1] * moment[i, j, 1] + C[a, 2] * moment[i, j, 2]
+            for a in range(3):
+                dv[a] = C[a, 0] * u[0] + C[a, 1] * u[1] + C[a, 2] * u[2] - (Wx[a, 0] * w[0] + Wx[a, 1] * w[1] + Wx[a, 2] * w[2])
+            for a in range(3):
+                y[a] = Wx[a, 0] * v[0] + Wx[a, 1] * v[1] + Wx[a, 2] * v[2]
+            for a in range(3):
+                v[a] = v[a] + dv[a] + gn[a] * D - 2.0 * D * y[a]
+            # C ← E_earth C ΔR exp(−[ε_b D ×])
+            for a in range(3):
+                for b in range(3):
+                    T[a, b] = C[a, 0] * dR[i, j, 0, b] + C[a, 1] * dR[i, j, 1, b] + C[a, 2] * dR[i, j, 2, b]
+            _rodrigues3(-eb0 * D, -eb1 * D, -eb2 * D, Rr)
+            for a in range(3):
+                for b in range(3):
+                    U[a, b] = T[a, 0] * Rr[0, b] + T[a, 1] * Rr[1, b] + T[a, 2] * Rr[2, b]
+            for a in range(3):
+                for b in range(3):
+                    C[a, b] = E_earth[a, 0] * U[0, b] + E_earth[a, 1] * U[1, b] + E_earth[a, 2] * U[2, b]
+            # measurement: zero velocity (less the known lever-arm velocity)
+            z0, z1, z2 = v[0] + noise[i, j, 0], v[1] + noise[i, j, 1], v[2] + noise[i, j, 2]
+            if lever:
+                q0, q1, q2 = w_end[i, j, 0] - eb0, w_end[i, j, 1] - eb1, w_end[i, j, 2] - eb2
+                c0, c1, c2 = q1 * r[2] - q2 * r[1], q2 * r[0] - q0 * r[2], q0 * r[1] - q1 * r[0]
+                z0 -= C[0, 0] * c0 + C[0, 1] * c1 + C[0, 2] * c2
+                z1 -= C[1, 0] * c0 + C[1, 1] * c1 + C[1, 2] * c2
+                z2 -= C[2, 0] * c0 + C[2, 1] * c1 + C[2, 2] * c2
+            for m in range(dim):
+                pred[m] = 0.0
+            if shaping:
+                for m in range(nd):
+                    acc_m = 0.0
+                    for l in range(nd):
+                        acc_m += Fdd[m, l] * xd[l]
+                    xn[m] = acc_m
+                for m in range(nd):
+                    xd[m] = xn[m]
+                    pred[12 + m] = xn[m]
+            y[0], y[1], y[2] = z0, z1, z2
+            for a in range(3):
+                hp = 0.0
+                for m in range(dim):
+                    hp += H[a, m] * pred[m]
+                y[a] -= hp
+            for m in range(dim):
+                x[m] = pred[m] + K[j, m, 0] * y[0] + K[j, m, 1] * y[1] + K[j, m, 2] * y[2]
+            # closed-loop correction
+            _rodrigues3(x[0], x[1], x[2], Rr)
+            for a in range(3):
+                for b in range(3):
+                    T[a, b] = Rr[a, 0] * C[0, b] + Rr[a, 1] * C[1, b] + Rr[a, 2] * C[2, b]
+            for a in range(3):
+                for b in range(3):
+                    C[a, b] = T[a, b]
+            for a in range(3):
+                v[a] -= x[3 + a]
+                eps[a] += x[6 + a]
+                acc[a] += x[9 + a]
+            if shaping:
+                for m in range(nd):
+                    xd[m] = x[12 + m]
+            # consistency against the truth: Er = C̃ Cᵀ = exp(−[φ×])
+            for a in range(3):
+                for b in range(3):
+                    U[a, b] = C[a, 0] * C_true[i, j + 1, b, 0] + C[a, 1] * C_true[i, j + 1, b, 1] + C[a, 2] * C_true[i, j + 1, b, 2]
+            s0, s1, s2 = 0.5 * (U[2, 1] - U[1, 2]), 0.5 * (U[0, 2] - U[2, 0]), 0.5 * (U[1, 0] - U[0, 1])
+            sn = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
+            sc = math.asin(min(sn, 1.0)) / sn if sn > 1e-15 else 1.0
+            err[0], err[1], err[2] = -s0 * sc, -s1 * sc, -s2 * sc
+            for a in range(3):
+                err[3 + a] = v[a] - v_true[i, j + 1, a]
+                err[6 + a] = eps_true[i, j + 1, a] - eps[a]
+                err[9 + a] = acc_true[i, j + 1, a] - acc[a]
+            if shaping:
+                for m in range(nd):
+                    err[12 + m] = rock_true[i, j + 1, m] - xd[m]
+            total = 0.0
+            for a in range(dim):
+                row = 0.0
+                for b in range(dim):
+                    row += err[b] * Pinv[j, b, a]
+                total += row * err[a]
+            nees[i, j] = total
+            total = 0.0
+            for a in range(3):
+                total += (y[0] * Sinv[j, 0, a] + y[1] * Sinv[j, 1, a] + y[2] * Sinv[j, 2, a]) * y[a]
+            nis[i, j] = total
+            heading[i, j] = -err[2]
+        for a in range(3):
+            for b in range(3):
+                C_out[i, a, b] = C[a, b]
+
+
+def fine_alignment_loop(
+    C0, v0, dR, velocity, moment, noise, end_rate, C_true, v_true, eps_true, acc_true, rock_true,
+    earth_turn, earth_rate_skew, gravity, epoch, lever_arm, lever_arm_known, F_rocking, H, gains, posterior_inv, innovation_inv,
+):  # fmt: skip
+    """The epoch loop of the fine-alignment filter for every trial (the loop of :func:`.fine_alignment.fine_alignment`).
+
+    Parameters
+    ----------
+    C0 : ndarray
+        ``(n, 3, 3)`` initial attitude estimates C̃_b^n.
+    v0 : ndarray
+        ``(n, 3)`` initial velocity estimates [m/s].
+    dR : ndarray
+        ``(n, E, 3, 3)`` epoch rotations of the body.
+    velocity, moment : ndarray
+        ``(n, E, 3)`` epoch velocity increments [m/s] and their moments [m].
+    noise : ndarray
+        ``(n, E, 3)`` noise of the zero-velocity reference [m/s].
+    end_rate : ndarray
+        ``(n, E, 3)`` gyro rate at each epoch end [rad/s].
+    C_true : ndarray
+        ``(n, E + 1, 3, 3)`` true attitudes at the epoch boundaries.
+    v_true, eps_true, acc_true : ndarray
+        ``(n, E + 1, 3)`` true velocity [m/s] and biases in NED [rad/s, m/s²].
+    rock_true : ndarray
+        ``(n, E + 1, d)`` true rocking states (``d`` = 0 without shaping states).
+    earth_turn, earth_rate_skew : ndarray
+        ``(3, 3)`` ``exp(−[ω_ie D×])`` and ``[ω_ie×]``.
+    gravity : ndarray
+        ``(3,)`` g^n [m/s²].
+    epoch : float
+        Epoch D [s].
+    lever_arm : ndarray
+        ``(3,)`` r [m].
+    lever_arm_known : bool
+        The measurement removes the lever-arm velocity.
+    F_rocking : ndarray
+        ``(d, d)`` transition of the rocking states (``(0, 0)`` without them).
+    H : ndarray
+        ``(3, dim)`` measurement matrix.
+    gains : ndarray
+        ``(E, dim, 3)`` Kalman gains.
+    posterior_inv, innovation_inv : ndarray
+        ``(E, dim, dim)`` and ``(E, 3, 3)`` inverse posterior and innovation covariances.
+
+    Returns
+    -------
+    tuple of ndarray
+        The attitude estimates at the end ``(n, 3, 3)``; NEES, NIS and the
+        heading error [rad] at each epoch, ``(n, E)`` each.
+    """
+    f = lambda a: np.ascontiguousarray(a, dtype=float)  # noqa: E731
+    n, E = dR.shape[0], dR.shape[1]
+    C_out, nees, nis, heading = np.empty((n, 3, 3)), np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    F_rocking = f(F_rocking)
+    _jit(_fine_loop)(
+        f(C0), f(v0), f(dR), f(velocity), f(moment), f(noise), f(end_rate), f(C_true), f(v_true), f(eps_true), f(acc_true), f(rock_true),
+        f(earth_turn), f(earth_rate_skew), f(gravity), float(epoch), f(lever_arm), bool(lever_arm_known), F_rocking.shape[0] > 0, F_rocking,
+        f(H), f(gains), f(posterior_inv), f(innovation_inv), C_out, nees, nis, heading,
+    )  # fmt: skip
+    return C_out, nees, nis, heading
