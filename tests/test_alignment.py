@@ -117,9 +117,11 @@ def test_compiled_sensor_loops_equal_the_numpy_reference(motion, lever_arm, in_g
     assert replace(sc, motion=motion).n_samples == fast[0].shape[1]
 
 
-@pytest.mark.parametrize("model", [NarrowbandMotion(R(np.array([0.0, 1.0, 2.0])), 10.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0])))], ids=["narrowband", "white"])
-def test_scaled_draws_reuse_the_fft_and_equal_the_direct_evaluation(model):
-    """The same draw at another amplitude (common random numbers) shares the unit FFTs; the values are the direct FFT's and the sum's."""
+@pytest.mark.parametrize(
+    "model", [NarrowbandMotion(R(np.array([0.0, 1.0, 2.0])), 10.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.0, 1.0, 2.0])), 7.0)], ids=["narrowband", "white", "sine"]
+)
+def test_scaled_draws_share_their_evaluations_and_equal_the_direct_sum(model):
+    """The same draw at another amplitude (common random numbers) shares the unit evaluations; the values are a fresh evaluation's and the direct sum's."""
     from dataclasses import replace
 
     from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
@@ -130,7 +132,7 @@ def test_scaled_draws_reuse_the_fft_and_equal_the_direct_evaluation(model):
     t = 0.03 + 0.1 * np.arange(300)
     direct = np.real(np.einsum("nam,km->nka", r2.coefficients, np.exp(1j * np.outer(t, r2.spectrum.omega))))
     for r, scale in ((r1, 1.0), (r2, 3.0)):
-        plain = MotionRealisation(r.spectrum, r.coefficients, r.dt)  # no unit: a fresh FFT
+        plain = MotionRealisation(r.spectrum, r.coefficients, r.dt)  # no unit: a fresh FFT or sum
         for a, b in zip(r.evaluate(300, 0.03), plain.evaluate(300, 0.03)):
             np.testing.assert_allclose(a, b, rtol=0, atol=1e-15 * np.max(np.abs(b)))
         np.testing.assert_allclose(r.evaluate(300, 0.03, derivatives=0)[0] * (3.0 / scale), direct, rtol=0, atol=1e-13 * np.max(np.abs(direct)))

@@ -121,13 +121,13 @@ class MotionRealisation:
     dt : float
         Sample interval of the FFT grid [s].
     unit : tuple or None
-        ``(key, coefficients, scale)`` of a Gaussian model whose axes are one
-        shape scaled by their amplitudes: ``coefficients = unit · scale`` per
+        ``(key, coefficients, scale)`` of a model whose axes are one shape
+        scaled by their amplitudes (sine, narrow-band, white): ``coefficients = unit · scale`` per
         axis, with ``key`` a digest of the random draw and of the unit model.
-        The FFTs of the unit coefficients are kept (a few, least recently
-        used first out), so that the same draw at another amplitude — the
-        common random numbers of a root search over the amplitude — costs a
-        product, not an FFT (the result equals the direct FFT to round-off).
+        The evaluations of the unit coefficients are kept (a few, least
+        recently used first out), so that the same draw at another amplitude —
+        the common random numbers of a root search over the amplitude — costs
+        a product, not an FFT or a sum of sinusoids (equal to round-off).
     """
 
     spectrum: Spectrum
@@ -165,23 +165,23 @@ class MotionRealisation:
         shape = (self.n_trials, n, 3)
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros(shape) for _ in range(k + 1))
+        if self.unit is not None:
+            key, unit, scale = self.unit
+            return tuple(scale * _SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1))
+        return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1))
+
+    def _series(self, c, n, offset, d):
+        """The d-th derivative of ``Re Σ_m c_m e^{iω_m t}`` at ``t_k = offset + k dt``, ``(n_trials, n, 3)``."""
         w = self.spectrum.omega
+        c = c * ((1j * w) ** d * np.exp(1j * w * offset))
         if self.spectrum.n_fft is not None:
-            if self.unit is not None:
-                key, unit, scale = self.unit
-                c = unit * np.exp(1j * w * offset)
-                return tuple(scale * _SERIES.get((key, n, float(offset), d), lambda d=d: self._fft(c * (1j * w) ** d, n)) for d in range(k + 1))
-            c = self.coefficients * np.exp(1j * w * offset)
-            return tuple(self._fft(c * (1j * w) ** d, n) for d in range(k + 1))
-        c = self.coefficients * np.exp(1j * w * offset)
+            return self._fft(c, n)
         t = np.arange(n) * self.dt
-        out = [np.zeros((self.n_trials, n, 3)) for _ in range(k + 1)]
+        out = np.zeros((self.n_trials, n, 3))
         for m in range(w.size):  # a few sinusoids: Re[c e^{iωt}] = Re c cos ωt − Im c sin ωt
             cos, sin = np.cos(w[m] * t)[:, None], np.sin(w[m] * t)[:, None]
-            for d in range(k + 1):
-                cd = (1j * w[m]) ** d * c[:, :, m]
-                out[d] += cd.real[:, None, :] * cos - cd.imag[:, None, :] * sin
-        return tuple(out)
+            out += c[:, :, m].real[:, None, :] * cos - c[:, :, m].imag[:, None, :] * sin
+        return out
 
     def _fft(self, c, n):
         nfft = self.spectrum.n_fft
@@ -192,7 +192,7 @@ class MotionRealisation:
 
 
 class _SeriesMemo:
-    """The last FFT evaluations of unit coefficients (least recently used out past ``max_bytes``); thread-safe."""
+    """The last evaluations of unit coefficients (least recently used out past ``max_bytes``); thread-safe."""
 
     def __init__(self, max_bytes: int):
         self.max_bytes = max_bytes
@@ -217,7 +217,7 @@ class _SeriesMemo:
         return value
 
 
-#: FFT evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
+#: Evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
 _SERIES = _SeriesMemo(128 * 2**20)
 
 
@@ -263,17 +263,18 @@ class _Model:
         m = s.omega.size
         if s.gaussian:
             z = g.standard_normal((n_trials, 3, m, 2))
-            if s.n_fft is not None and "amplitude" in getattr(self, "__dataclass_fields__", {}):
-                amplitude = self.amplitude
-                unit_model = replace(self, amplitude=np.ones(3))  # power = amplitude² · (the unit model's power)
-                u = (z[..., 0] + 1j * z[..., 1]) * np.sqrt(unit_model.spectrum(n_samples, dt).power)
-                key = hashlib.blake2b(z.tobytes() + repr((unit_model, n_samples, dt)).encode(), digest_size=16).digest()
-                return MotionRealisation(s, u * amplitude[:, None], dt, (key, u, amplitude.copy()))
-            c = (z[..., 0] + 1j * z[..., 1]) * np.sqrt(s.power)
+            draw = z[..., 0] + 1j * z[..., 1]
+            factor = np.sqrt  # E|c|² = 2P
         else:
-            phase = g.random((n_trials, 3, m)) * (2.0 * math.pi)
-            c = np.sqrt(2.0 * s.power) * np.exp(1j * phase)
-        return MotionRealisation(s, c, dt)
+            z = g.random((n_trials, 3, m))
+            draw = np.exp(1j * (z * (2.0 * math.pi)))
+            factor = lambda p: np.sqrt(2.0 * p)  # noqa: E731  (|c| = a)
+        if "amplitude" in getattr(self, "__dataclass_fields__", {}):  # power = amplitude² · (the unit model's power)
+            unit_model = replace(self, amplitude=np.ones(3))
+            u = draw * factor(unit_model.spectrum(n_samples, dt).power)
+            key = hashlib.blake2b(z.tobytes() + repr((unit_model, n_samples, dt)).encode(), digest_size=16).digest()
+            return MotionRealisation(s, u * self.amplitude[:, None], dt, (key, u, self.amplitude.copy()))
+        return MotionRealisation(s, draw * factor(s.power), dt)
 
     @property
     def sigma(self) -> np.ndarray:
