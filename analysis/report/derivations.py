@@ -20,6 +20,7 @@ import sympy as sp
 from ...derivations.coning import drift as D
 from ...derivations.coning import published as P
 from ...derivations.coning import series as S
+from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.leading_drift import optimal_coning, same_transport, small_cone_limit
 from ...derivations.coning.printed_checks import eq_2_4_check, structure_function_checks, table2_checks
 from ...derivations.coning.registry import get, names
@@ -28,8 +29,10 @@ from ..coning import budennyi_loads as L45
 from ..coning.budennyi_table3 import drift_estimates, leading_estimates, table3_agreement
 from ..coning.computational_load import quaternion_update, quaternion_update_count
 from ..coning.drift_crosscheck import drift_ratios
+from ..coning.drift_theory import algorithm_key
 from ..coning.formula_one import column_2_estimates
 from ..coning.precession import RegularPrecession
+from ..core.cache import derived
 from ..core.units import deg_per_h, rad
 from . import Erratum, Section
 
@@ -44,6 +47,17 @@ SIM_DURATION = 8.0  # [s] cross-check runs: 80 precession periods at ε = 0.5
 #: The u*/u_a cross-check runs at f = 10 Hz, ϑ = 10°.
 CROSSCHECK_MOTIONS = tuple(RegularPrecession(eps, 2 * math.pi * 10.0, rad(10.0)) for eps in (-1.0, 0.5))
 EXTENSION_ALGORITHMS = tuple(f"panov-4s-{k}" for k in range(1, 6)) + ("optimal-3", "lebedev-panov-6")
+
+
+def _derived(fn, *args):
+    """``fn(*args)`` of a SymPy derivation, from the cache of derived results (per source version; an algorithm by its content).
+
+    Only for results whose printed form survives pickling: SymPy rebuilds an
+    unpickled product by evaluating it, so ``-(32ε² + 31ε cos ϑ − 28)/4``
+    comes back distributed (the structure summaries are not cached for that).
+    """
+    key = ":".join([fn.__module__, fn.__qualname__, "v1", *(algorithm_key(a) if isinstance(a, Algorithm) else repr(a) for a in args)])
+    return derived(key, lambda: fn(*args))
 
 
 def _tex(expr) -> str:
@@ -289,7 +303,7 @@ def _drift_section() -> list:
         "|---|---|---|",
     ]
     for name in names():
-        d = drift_coefficients(get(name))
+        d = _derived(drift_coefficients, get(name))
         lines.append(f"| {d.name} | ${_tex(d.d5)}$ | ${_tex(d.d7)}$ |")
     lines += _table3_table()
     return lines
@@ -429,10 +443,10 @@ def _coning_section() -> list:
         "|---|---|---|---|",
     ]
     for N in (2, 3, 4):
-        o = optimal_coning(N)
+        o = _derived(optimal_coning, N)
         lines.append(f"| {o.samples} | {', '.join(str(k) for k in o.lag_sums)} | {o.exponent} | {o.constant} |")
-    l2 = small_cone_limit(get("two-sample"), 5)
-    l3 = small_cone_limit(get("optimal-3"), 7)
+    l2 = _derived(small_cone_limit, get("two-sample"), 5)
+    l3 = _derived(small_cone_limit, get("optimal-3"), 7)
     lines += [
         "",
         "The same constants fall out of the general series of section 6 as a special case: at ε = −1 and ϑ = α → 0,",
