@@ -1,4 +1,4 @@
-"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, Kalman adapter.
+"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, repeated draws, Kalman adapter.
 
 Modules
 -------
@@ -12,6 +12,8 @@ units
     Every unit factor (degrees, deg/h, ...) used at the edges of the package.
 montecarlo
     Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
+repeated_draws
+    Normal draws repeated from the same generator state (common random numbers), served from memory.
 kalman
     Thin adapter over filterpy, the only module that imports it.
 budget

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core import repeated_draws
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
 from .azimuth import check_latitude
 from .base_motion import StillBase
@@ -347,10 +348,10 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
         dv *= 1.0 + e.accel_scale
     dtheta += gb[:, None, :] * dt
     dv += ab[:, None, :] * dt
-    if e.gyro_noise:
-        dtheta += (e.gyro_noise * math.sqrt(dt)) * g.standard_normal(dtheta.shape)
+    if e.gyro_noise:  # the same trials again (common random numbers): the draw from memory, bit for bit
+        dtheta += (e.gyro_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dtheta.shape)
     if e.accel_noise:
-        dv += (e.accel_noise * math.sqrt(dt)) * g.standard_normal(dv.shape)
+        dv += (e.accel_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dv.shape)
     dtheta = _quantise(dtheta, e.gyro_quantum, g)
     dv = _quantise(dv, e.accel_quantum, g)
     return ImuRecord(scenario, errors, dtheta, dv, idx * dt, angles, velocity, rate, np.ascontiguousarray(gb), np.ascontiguousarray(ab))
