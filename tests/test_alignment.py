@@ -345,6 +345,37 @@ def test_alignment_statistics_do_not_depend_on_chunking():
 
 
 # ---------------------------------------------------------------- the designer's answer
+@pytest.mark.parametrize("power", [1.0, 2.0, 3.5, 6.0])
+@pytest.mark.parametrize("root", [R(0.02), R(3.0), R(15.0)])
+def test_amplitude_search_brackets_the_root_in_few_evaluations(power, root):
+    """The search of the admissible amplitude on fn² = floor² + (u a)^p: the root inside a bracket of 1 + rtol, in few runs."""
+    from strapdown.analysis.gyrocompass.alignment_design import _search
+
+    budget, floor, rtol, cap = 1.0, 0.45, 0.1, R(20.0)
+    u = math.sqrt(budget**2 - floor**2) ** (2.0 / power) / root
+    calls = []
+
+    def fn(a):
+        calls.append(a)
+        return math.sqrt(floor**2 + (u * a) ** power)
+
+    a, (lo, hi) = _search(fn, budget, R(1.0), cap, rtol)
+    assert a == lo <= root * (1.0 + 1e-12) and root <= hi * (1.0 + 1e-12) and hi <= lo * (1.0 + rtol)
+    assert fn(lo) <= budget < fn(hi)
+    assert len(set(calls)) <= 9, calls  # bisection from ×4 brackets took about 7 after the bracket
+    again = []
+    b, _ = _search(lambda x: again.append(x) or fn(x), budget, R(1.0), cap, rtol, known=tuple(calls))
+    assert b == a and not set(again) - set(calls)  # the known points suffice: nothing new to simulate
+
+
+def test_amplitude_search_ends():
+    from strapdown.analysis.gyrocompass.alignment_design import _search
+
+    assert _search(lambda a: 2.0, 1.0, 0.1, 1.0, 0.1) == (0.0, (0.0, 0.0))  # the sensors alone exceed the budget
+    assert _search(lambda a: 0.5 + 0.1 * a, 1.0, 0.1, 1.0, 0.1) == (1.0, (1.0, 1.0))  # the cap is admissible
+    assert _search(lambda a: 0.5 + 1e15 * a, 1.0, 0.1, 1.0, 0.1)[0] < 1e-9  # below any resolution: 0
+
+
 def test_admissible_rocking_meets_the_budget():
     """Analytic: the first-order rms at the admissible amplitude is the budget; inertial: the root search's own
     Monte Carlo at its root is within the budget and one bracket step above it is not."""
