@@ -466,7 +466,8 @@ def _drain(fd) -> bytes:
 
 
 def test_ctrl_c_is_one_line_and_exit_130():
-    proc, fd = _spawn_on_terminal(AZIMUTH + ["--samples", "2e8", "--time-limit", "600"])
+    # 2e9 samples: minutes of work, so the run cannot end before the interrupt even on a loaded machine
+    proc, fd = _spawn_on_terminal(AZIMUTH + ["--samples", "2e9", "--time-limit", "600"])
     try:
         seen = _read_until(fd, re.compile(rb"\| [1-9][0-9]*/[0-9]+ "))  # under way: its progress bar has moved
         assert b"Monte Carlo" in seen and proc.poll() is None, seen
