@@ -438,7 +438,11 @@ def _spawn_on_terminal(argv):
     """Start ``strapdown argv`` with stderr on a pseudo-terminal; returns (process, terminal fd)."""
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # a terminal of 100 columns
-    proc = subprocess.Popen([sys.executable, "-m", "strapdown.analysis", *argv], stdout=subprocess.PIPE, stderr=slave, stdin=subprocess.DEVNULL, env=_env(COLUMNS="100"), cwd=ROOT)
+    # SIGINT back to its default in the child: a shell's background job ignores it, and Python keeps an ignored SIGINT ignored
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "strapdown.analysis", *argv], stdout=subprocess.PIPE, stderr=slave, stdin=subprocess.DEVNULL, env=_env(COLUMNS="100"), cwd=ROOT,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )  # fmt: skip
     os.close(slave)
     return proc, master
 

@@ -21,7 +21,7 @@ import numpy as np
 __all__ = ["standard_normal", "MAX_BYTES"]
 
 #: Memory bound of the kept draws [bytes].
-MAX_BYTES = 128 * 2**20
+MAX_BYTES = 32 * 2**20
 
 _draws: OrderedDict = OrderedDict()
 _held = [0]

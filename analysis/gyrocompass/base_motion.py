@@ -218,7 +218,7 @@ class _SeriesMemo:
 
 
 #: Evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
-_SERIES = _SeriesMemo(128 * 2**20)
+_SERIES = _SeriesMemo(64 * 2**20)
 
 
 def _amplitude3(value, name) -> np.ndarray:
