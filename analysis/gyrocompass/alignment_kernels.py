@@ -15,7 +15,11 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   before (by filterpy), and scores it against the truth (NEES, NIS).
 
 They are compiled with numba on first use (the machine code is cached on disk,
-so the compile cost is paid once per installation).  The vectorised numpy
+so the compile cost is paid once per installation).  Loading numba and the
+cached code still costs about half a second per process, more than a small
+run takes in numpy, so by default (:func:`worthwhile`) the callers use the
+numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
+through them.  The vectorised numpy
 forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine_alignment` as
 the references the tests compare these loops against (equal to round-off).
 """
@@ -23,12 +27,40 @@ the references the tests compare these loops against (equal to round-off).
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
-__all__ = ["accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
+__all__ = ["START_UP_WORK", "worthwhile", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
+
+#: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
+START_UP_WORK = 1_000_000
+
+_numpy_work = [0]
 
 _compiled: dict = {}
+
+
+def worthwhile(work: int) -> bool:
+    """Whether the compiled loops pay off for ``work`` more samples in this process.
+
+    Yes once numba is loaded (by these loops or any other part of the
+    package), or once the numpy forms have taken :data:`START_UP_WORK`
+    samples; until then no.  Both forms agree to round-off.
+
+    Parameters
+    ----------
+    work : int
+        Samples of the call (trials × samples, or the equivalent).
+
+    Returns
+    -------
+    bool
+    """
+    if "numba" in sys.modules:
+        return True
+    _numpy_work[0] += int(work)
+    return _numpy_work[0] > START_UP_WORK
 
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.

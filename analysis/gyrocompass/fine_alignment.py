@@ -485,7 +485,7 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
     return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
 
 
-def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, compiled: bool = True) -> FineAlignmentResult:
+def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, compiled: bool | None = None) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
     Parameters
@@ -503,11 +503,13 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
         Gains and covariances computed before for the same model (saves the filterpy run).
-    compiled : bool, keyword-only
+    compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
-        (:func:`.alignment_kernels.fine_alignment_loop`, default) or in the
-        numpy loop over epochs vectorised over trials, kept as the reference
-        (equal to round-off).
+        (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
+        over epochs vectorised over trials, kept as the reference (equal to
+        round-off); None (default): the loop when it pays off
+        (:func:`.alignment_kernels.worthwhile`; an epoch of the filter counts
+        as 30 samples).
 
     Returns
     -------
@@ -560,6 +562,10 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     Pinv = np.linalg.inv(seq.posterior)
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
     loop = _epoch_loop
+    if compiled is None:
+        from .alignment_kernels import worthwhile
+
+        compiled = worthwhile(30 * n * E)
     if compiled:
         from .alignment_kernels import fine_alignment_loop as loop
     C, nees, nis, heading_error = loop(

@@ -232,7 +232,7 @@ def _ideal_rates(scenario: Scenario, angles_r, rates_r, accels_r=None):
     return gyro, f
 
 
-def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
+def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None):
     """Ideal angle and velocity increments of a drawn rocking: two-point Gauss quadrature of the exact rates.
 
     Parameters
@@ -241,9 +241,10 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
         Place, stable attitude, lever arm and sampling.
     motion : MotionRealisation
         The rocking of n trials (:meth:`strapdown.analysis.gyrocompass.base_motion.SineMotion.draw` and kin).
-    compiled : bool, keyword-only
-        Fused compiled loop (:mod:`.alignment_kernels`, default) or the numpy form,
-        kept as the reference (equal to round-off).
+    compiled : bool or None, keyword-only
+        Fused compiled loop (:mod:`.alignment_kernels`) or the numpy form,
+        kept as the reference (equal to round-off); None (default): the loop
+        when it pays off (:func:`.alignment_kernels.worthwhile`).
 
     Returns
     -------
@@ -255,6 +256,10 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool = True):
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
+    if compiled is None:
+        from .alignment_kernels import worthwhile
+
+        compiled = worthwhile(n * N)
     if compiled:
         from .alignment_kernels import accumulate_ideal_increments
 

@@ -67,7 +67,7 @@ class EpochIncrements:
         return self.rotation.shape[1]
 
 
-def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: bool = True) -> EpochIncrements:
+def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: bool | None = None) -> EpochIncrements:
     """Condense sample increments into epoch increments (trailing samples of a partial epoch are dropped).
 
     Parameters
@@ -80,10 +80,11 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
         Sample interval h [s].
     samples_per_epoch : int
         M, at least 1.
-    compiled : bool, keyword-only
-        One compiled loop over trials and samples (:mod:`.alignment_kernels`,
-        default) or the numpy form vectorised over trials and epochs, kept as
-        the reference (equal to round-off).
+    compiled : bool or None, keyword-only
+        One compiled loop over trials and samples (:mod:`.alignment_kernels`)
+        or the numpy form vectorised over trials and epochs, kept as the
+        reference (equal to round-off); None (default): the loop when it pays
+        off (:func:`.alignment_kernels.worthwhile`).
 
     Returns
     -------
@@ -100,6 +101,10 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     E = N // M
     if E < 1:
         raise ValueError(f"Expected at least one epoch of {M} samples, got {N} samples")
+    if compiled is None:
+        from .alignment_kernels import worthwhile
+
+        compiled = worthwhile(n * E * M)
     if compiled:
         from .alignment_kernels import preintegrate_loop
 
@@ -122,7 +127,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     return EpochIncrements(R, V, S, M * dt, M)
 
 
-def chain_rotations(start, rotations, *, compiled: bool = True) -> np.ndarray:
+def chain_rotations(start, rotations, *, compiled: bool | None = None) -> np.ndarray:
     """Attitudes at the epoch boundaries: ``Q_0 = start``, ``Q_{j+1} = Q_j ∘ ΔR_j``.
 
     Parameters
@@ -131,15 +136,20 @@ def chain_rotations(start, rotations, *, compiled: bool = True) -> np.ndarray:
         ``(n, 4)`` initial quaternions.
     rotations : ndarray
         ``(n, E, 4)`` epoch rotations.
-    compiled : bool, keyword-only
-        One compiled loop (:mod:`.alignment_kernels`, default) or the numpy loop
-        over epochs, kept as the reference (equal to round-off).
+    compiled : bool or None, keyword-only
+        One compiled loop (:mod:`.alignment_kernels`) or the numpy loop over
+        epochs, kept as the reference (equal to round-off); None (default):
+        the loop when it pays off (:func:`.alignment_kernels.worthwhile`).
 
     Returns
     -------
     ndarray
         ``(n, E + 1, 4)``.
     """
+    if compiled is None:
+        from .alignment_kernels import worthwhile
+
+        compiled = worthwhile(np.size(rotations) // 4)  # one per epoch and trial
     if compiled:
         from .alignment_kernels import chain_loop
 
