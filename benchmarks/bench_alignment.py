@@ -71,9 +71,21 @@ def cli_timings() -> None:
     print(f"warm, one process: importing every command module and building the parser {out[0]} s; the azimuth command itself {out[1]} s; SymPy imported: {out[2]}")
 
 
+def _warm_up(lat, motion) -> None:
+    """Steady-state rates: numba and every compiled loop loaded first (a process's first small runs take the numpy
+    forms, ``alignment_kernels.worthwhile``; the start-up is in the command-line timings below)."""
+    import numba  # noqa: F401
+
+    sc = Scenario(lat, heading=0.5, motion=motion, lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
+    for method in ("analytic", "inertial", "kalman"):
+        opts = kalman_options(sc, NAVIGATION_GRADE) if method == "kalman" else None
+        alignment_monte_carlo(sc, NAVIGATION_GRADE, method=method, n_trials=8, rng=0, options=opts)
+
+
 def main() -> None:
     lat = math.radians(60.0)
     motion = NarrowbandMotion(np.radians([0.5, 1.0, 1.0]), 8.0, 0.1)
+    _warm_up(lat, motion)
     sc = Scenario(lat, heading=0.5, motion=motion, lever_arm=[0.5, 0.3, 1.0], sample_rate=100.0, duration=120.0)
     t = time.perf_counter()
     rec = simulate_imu(sc, NAVIGATION_GRADE, n_trials=32, rng=1)
