@@ -33,6 +33,8 @@ imu
     Kinematically consistent gyro and accelerometer increments with lever arm and sensor errors.
 preintegration
     Epoch increments (coning and sculling compensated).
+alignment_kernels
+    Compiled loops of the self-alignment Monte Carlo (sensor increments, preintegration, the filter's epochs).
 alignment_estimate
     What an alignment method returns.
 analytic_alignment
