@@ -88,9 +88,10 @@ class _Run:
 # ---------------------------------------------------------------------------
 def _lyapunov(ctx) -> list:
     from ...derivations.multistage.lyapunov_function import derive
+    from ..core.cache import derived
     from ..multistage.decay_rates import rate_checks
 
-    ly = derive()
+    ly = derived("multistage:lyapunov:v1", derive)
     lines = [
         "## 1. Lyapunov analysis of the first variant (c = 1, exact reference)",
         "",
