@@ -73,7 +73,7 @@ def cli_timings() -> None:
 
 def _warm_up(lat, motion) -> None:
     """Steady-state rates: numba and every compiled loop loaded first (a process's first small runs take the numpy
-    forms, ``alignment_kernels.worthwhile``; the start-up is in the command-line timings below)."""
+    forms, ``alignment_kernels.use_compiled``; the start-up is in the command-line timings below)."""
     import numba  # noqa: F401
 
     sc = Scenario(lat, heading=0.5, motion=motion, lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)

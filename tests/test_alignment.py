@@ -396,3 +396,42 @@ def test_admissible_rocking_meets_the_budget():
     mc = admissible_rocking("inertial", budget, sc, [0.1], e, rocking="sine", n_trials=16, rtol=0.2, rng=5)
     assert 0.0 < mc.amplitude[0] < mc.max_amplitude
     assert mc.amplitude_ci[0, 0] <= mc.amplitude[0] <= mc.amplitude_ci[0, 1]
+
+
+def test_compiled_loops_refuse_wrong_shapes_and_outputs():
+    """The loops index without bounds checks: every shape is checked first, with the argument named."""
+    from strapdown.analysis.gyrocompass import alignment_kernels as k
+    from strapdown.analysis.gyrocompass.imu import ideal_increments
+
+    a, out = np.zeros((2, 5, 3)), np.zeros((2, 5, 3))
+    v = np.zeros(3)
+    with pytest.raises(ValueError, match=r"`rates` with shape \(2, 5, 3\)"):
+        k.accumulate_ideal_increments(a, np.zeros((2, 4, 3)), None, v, v, v, v, v, True, 0.1, out, out.copy())
+    with pytest.raises(TypeError, match="`dv` to be a writable C-contiguous float64"):
+        k.accumulate_ideal_increments(a, a, None, v, v, v, v, v, True, 0.1, out, np.zeros((2, 5, 3), dtype=np.float32))
+    with pytest.raises(ValueError, match="`gravity`"):
+        k.accumulate_ideal_increments(a, a, None, v, v, [0.0, math.nan, 0.0], v, v, True, 0.1, out, out.copy())
+    with pytest.raises(ValueError, match="at least samples_per_epoch × n_epochs = 6"):
+        k.preintegrate_loop(a, a, 0.1, 3, 2)
+    with pytest.raises(ValueError, match="`start` with shape"):
+        k.chain_loop(np.ones((3, 4)), np.zeros((2, 4, 4)))
+    with pytest.raises(ValueError, match=r"`gains` with shape \(4, 12, 3\)"):
+        z = np.zeros
+        k.fine_alignment_loop(
+            z((2, 3, 3)), z((2, 3)), z((2, 4, 3, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 5, 3, 3)), z((2, 5, 3)), z((2, 5, 3)),
+            z((2, 5, 3)), z((2, 5, 0)), np.eye(3), z((3, 3)), z(3), 0.5, z(3), False, z((0, 0)), z((3, 12)), z((4, 12, 2)), z((4, 12, 12)), z((4, 3, 3)),
+        )  # fmt: skip
+    with pytest.raises(TypeError, match="`motion` to be a MotionRealisation"):
+        ideal_increments(Scenario(R(45.0), duration=1.0), np.zeros((1, 10, 3)))
+
+
+def test_repeated_draws_and_memo_refuse_bad_input():
+    from strapdown.analysis.core import repeated_draws
+    from strapdown.analysis.core.memo import BoundedMemo
+
+    with pytest.raises(TypeError, match="`rng` to be a numpy.random.Generator"):
+        repeated_draws.standard_normal(np.random.RandomState(1), (3,))
+    with pytest.raises(ValueError, match="`shape` >= 0"):
+        repeated_draws.standard_normal(np.random.default_rng(1), (3, -1))
+    with pytest.raises(ValueError, match="`max_bytes` >= 0"):
+        BoundedMemo(-1)

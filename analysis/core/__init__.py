@@ -12,6 +12,8 @@ units
     Every unit factor (degrees, deg/h, ...) used at the edges of the package.
 montecarlo
     Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
+memo
+    A bounded memo of arrays (least recently used out past a memory bound).
 repeated_draws
     Normal draws repeated from the same generator state (common random numbers), served from memory.
 kalman

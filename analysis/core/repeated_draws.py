@@ -6,26 +6,24 @@ every amplitude reruns the same trials from the same seeds — draws the same
 white noise again and again.  :func:`standard_normal` returns
 ``rng.standard_normal(shape)`` and leaves ``rng`` in the state that call would
 leave it in, but a draw already made from the same state and shape (recently:
-the oldest are dropped past a memory bound) is copied from memory instead of
+the oldest are dropped past a memory bound) is served from memory instead of
 generated.  The numbers are the generator's own, bit for bit, so a result does
 not depend on whether a draw was served from memory.
 """
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-
 import numpy as np
+
+from .memo import BoundedMemo
+from .validation import as_int
 
 __all__ = ["standard_normal", "MAX_BYTES"]
 
 #: Memory bound of the kept draws [bytes].
 MAX_BYTES = 32 * 2**20
 
-_draws: OrderedDict = OrderedDict()
-_held = [0]
-_lock = threading.Lock()
+_draws = BoundedMemo(MAX_BYTES)
 
 
 def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
@@ -41,7 +39,14 @@ def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
     Returns
     -------
     ndarray
-        Standard normal numbers (a read-only array when served from memory; new arrays result from arithmetic on it).
+        Standard normal numbers (a read-only array; new arrays result from arithmetic on it).
+
+    Raises
+    ------
+    TypeError
+        If ``rng`` is not a numpy Generator.
+    ValueError
+        For a negative size in ``shape``.
 
     Examples
     --------
@@ -51,24 +56,15 @@ def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
     >>> bool(np.array_equal(a.random(2), b.random(2)))  # the states agree after the draw
     True
     """
-    shape = tuple(int(s) for s in np.atleast_1d(shape))
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}")
+    shape = tuple(as_int(s, "shape", minimum=0) for s in np.atleast_1d(shape).tolist())
     bits = rng.bit_generator
-    key = (type(bits).__name__, repr(bits.state), shape)
-    with _lock:
-        hit = _draws.get(key)
-        if hit is not None:
-            _draws.move_to_end(key)
-    if hit is not None:
-        values, after = hit
-        bits.state = after
-        return values
-    values = rng.standard_normal(shape)
-    values.setflags(write=False)
-    with _lock:
-        if key not in _draws:
-            _draws[key] = (values, bits.state)
-            _held[0] += values.nbytes
-            while _held[0] > MAX_BYTES and len(_draws) > 1:
-                _, (old, _) = _draws.popitem(last=False)
-                _held[0] -= old.nbytes
+
+    def draw():
+        values = rng.standard_normal(shape)
+        return values, bits.state
+
+    values, after = _draws.get((type(bits).__name__, repr(bits.state), shape), draw)
+    bits.state = after  # a served draw: the state a fresh one would leave
     return values

@@ -17,7 +17,7 @@ sample or epoch, which numpy spreads over dozens of small array operations:
 They are compiled with numba on first use (the machine code is cached on disk,
 so the compile cost is paid once per installation).  Loading numba and the
 cached code still costs about half a second per process, more than a small
-run takes in numpy, so by default (:func:`worthwhile`) the callers use the
+run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
 forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine_alignment` as
@@ -31,7 +31,9 @@ import sys
 
 import numpy as np
 
-__all__ = ["START_UP_WORK", "worthwhile", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
+from ..core.validation import as_array, as_int, as_vector
+
+__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -41,15 +43,36 @@ _numpy_work = [0]
 _compiled: dict = {}
 
 
-def worthwhile(work: int) -> bool:
-    """Whether the compiled loops pay off for ``work`` more samples in this process.
+def _shaped(x, name: str, shape: tuple, *, output: bool = False) -> np.ndarray:
+    """``x`` as a C-contiguous float array of ``shape`` (None: any length); an output must be one already.
 
-    Yes once numba is loaded (by these loops or any other part of the
-    package), or once the numpy forms have taken :data:`START_UP_WORK`
-    samples; until then no.  Both forms agree to round-off.
+    The loops index without bounds checks, so every shape is checked here;
+    the entries are not (a NaN comes out as NaN, it cannot corrupt memory).
+    """
+    if output:
+        if not (isinstance(x, np.ndarray) and x.dtype == np.float64 and x.flags.c_contiguous and x.flags.writeable):
+            raise TypeError(f"Expected `{name}` to be a writable C-contiguous float64 array, got {type(x).__name__} {getattr(x, 'dtype', '')}".rstrip())
+        a = x
+    else:
+        a = np.ascontiguousarray(as_array(x, name, finite=False))
+    if a.ndim != len(shape) or any(want is not None and got != want for got, want in zip(a.shape, shape)):
+        text = ", ".join("…" if want is None else str(want) for want in shape)
+        raise ValueError(f"Expected `{name}` with shape ({text}), got shape {a.shape}")
+    return a
+
+
+def use_compiled(compiled: bool | None, work: int) -> bool:
+    """Whether a caller runs its compiled loop: ``compiled`` if given, else whether the loop pays off.
+
+    It pays off once numba is loaded (by these loops or any other part of
+    the package), or once the numpy forms have taken :data:`START_UP_WORK`
+    samples in this process; until then the numpy forms run.  Both agree to
+    round-off.
 
     Parameters
     ----------
+    compiled : bool or None
+        The caller's choice; None: decide.
     work : int
         Samples of the call (trials × samples, or the equivalent).
 
@@ -57,6 +80,8 @@ def worthwhile(work: int) -> bool:
     -------
     bool
     """
+    if compiled is not None:
+        return bool(compiled)
     if "numba" in sys.modules:
         return True
     _numpy_work[0] += int(work)
@@ -158,18 +183,27 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     dtheta, dv : ndarray
         ``(n, N, 3)`` C-contiguous float arrays, incremented in place [rad, m/s].
 
+    Raises
+    ------
+    TypeError
+        If ``dtheta`` or ``dv`` is not a writable C-contiguous float64 array.
+    ValueError
+        For a wrong shape, or a vector that is not three finite numbers.
+
     Notes
     -----
-    The rates are those of :func:`strapdown.analysis.gyrocompass.imu._ideal_rates`
-    (its numpy form is the reference of the tests).
+    The rates are those of :func:`strapdown.analysis.gyrocompass.imu.ideal_increments`
+    with ``compiled=False`` (the numpy form, the reference of the tests).
     """
-    lever = bool(np.any(lever_arm))
-    angles, rates = np.ascontiguousarray(angles, dtype=float), np.ascontiguousarray(rates, dtype=float)
-    accels = np.ascontiguousarray(accels, dtype=float) if lever else np.zeros((1, 1, 3))
-    vec = lambda x: np.ascontiguousarray(x, dtype=float).reshape(3)  # noqa: E731
-    _jit(_ideal_loop)(
-        angles, rates, accels, vec(stable), vec(earth_rate), vec(gravity), vec(lever_arm), vec(fixed_gyro), bool(in_gyros), lever, float(weight), dtheta, dv
-    )
+    angles = _shaped(angles, "angles", (None, None, 3))
+    n, N = angles.shape[:2]
+    rates = _shaped(rates, "rates", (n, N, 3))
+    named = {"stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
+    vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
+    lever = bool(np.any(vectors[3]))
+    accels = _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))
+    dtheta, dv = _shaped(dtheta, "dtheta", (n, N, 3), output=True), _shaped(dv, "dv", (n, N, 3), output=True)
+    _jit(_ideal_loop)(angles, rates, accels, *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
 
 
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
@@ -256,11 +290,21 @@ def preintegrate_loop(dtheta, dv, dt: float, samples_per_epoch: int, n_epochs: i
         ``(n, E, 4)`` rotations, ``(n, E, 3)`` velocity increments [m/s] and
         moments [m] (the fields of
         :class:`strapdown.analysis.gyrocompass.preintegration.EpochIncrements`).
+
+    Raises
+    ------
+    ValueError
+        For a wrong shape, or a record shorter than the epochs.
     """
-    th, v = np.ascontiguousarray(dtheta, dtype=float), np.ascontiguousarray(dv, dtype=float)
-    n = th.shape[0]
+    M, E = as_int(samples_per_epoch, "samples_per_epoch", minimum=1), as_int(n_epochs, "n_epochs", minimum=0)
+    th = _shaped(dtheta, "dtheta", (None, None, 3))
+    n, N = th.shape[:2]
+    v = _shaped(dv, "dv", (n, N, 3))
+    if N < M * E:
+        raise ValueError(f"Expected `dtheta` of at least samples_per_epoch × n_epochs = {M * E} samples, got {N}")
+    n_epochs = E
     R, V, S = np.empty((n, n_epochs, 4)), np.empty((n, n_epochs, 3)), np.empty((n, n_epochs, 3))
-    _jit(_preintegrate_loop)(th, v, float(dt), int(samples_per_epoch), int(n_epochs), R, V, S)
+    _jit(_preintegrate_loop)(th, v, float(dt), M, E, R, V, S)
     return R, V, S
 
 
@@ -294,11 +338,19 @@ def chain_loop(start, rotations):
     -------
     ndarray
         ``(n, E + 1, 4)``.
+
+    Raises
+    ------
+    ValueError
+        For a wrong shape.
     """
-    rot = np.ascontiguousarray(rotations, dtype=float)
-    n, E = rot.shape[0], rot.shape[1]
+    rot = _shaped(rotations, "rotations", (None, None, 4))
+    n, E = rot.shape[:2]
+    q0 = as_array(start, "start", last=4)
+    if q0.ndim > 2 or (q0.ndim == 2 and q0.shape[0] not in (1, n)):
+        raise ValueError(f"Expected `start` with shape (4,) or ({n}, 4), got shape {q0.shape}")
     out = np.empty((n, E + 1, 4))
-    _jit(_chain_loop)(np.ascontiguousarray(np.broadcast_to(start, (n, 4)), dtype=float), rot, out)
+    _jit(_chain_loop)(np.ascontiguousarray(np.broadcast_to(q0, (n, 4))), rot, out)
     return out
 
 
@@ -506,14 +558,35 @@ def fine_alignment_loop(
     tuple of ndarray
         The attitude estimates at the end ``(n, 3, 3)``; NEES, NIS and the
         heading error [rad] at each epoch, ``(n, E)`` each.
+
+    Raises
+    ------
+    ValueError
+        For a shape that does not fit ``dR`` (n trials, E epochs) and ``F_rocking`` (d rocking states).
     """
-    f = lambda a: np.ascontiguousarray(a, dtype=float)  # noqa: E731
-    n, E = dR.shape[0], dR.shape[1]
+    dR = _shaped(dR, "dR", (None, None, 3, 3))
+    n, E = dR.shape[:2]
+    F_rocking = _shaped(F_rocking, "F_rocking", (None, None))
+    d = F_rocking.shape[0]
+    dim = 12 + d  # attitude, velocity, gyro and accelerometer biases, then the rocking states
+    shapes = {
+        "C0": (n, 3, 3), "v0": (n, 3), "velocity": (n, E, 3), "moment": (n, E, 3), "noise": (n, E, 3), "end_rate": (n, E, 3),
+        "C_true": (n, E + 1, 3, 3), "v_true": (n, E + 1, 3), "eps_true": (n, E + 1, 3), "acc_true": (n, E + 1, 3), "rock_true": (n, E + 1, d),
+        "earth_turn": (3, 3), "earth_rate_skew": (3, 3), "gravity": (3,), "lever_arm": (3,), "H": (3, dim), "gains": (E, dim, 3),
+        "posterior_inv": (E, dim, dim), "innovation_inv": (E, 3, 3),
+    }  # fmt: skip
+    given = dict(
+        C0=C0, v0=v0, velocity=velocity, moment=moment, noise=noise, end_rate=end_rate, C_true=C_true, v_true=v_true, eps_true=eps_true, acc_true=acc_true,
+        rock_true=rock_true, earth_turn=earth_turn, earth_rate_skew=earth_rate_skew, gravity=gravity, lever_arm=lever_arm, H=H, gains=gains,
+        posterior_inv=posterior_inv, innovation_inv=innovation_inv,
+    )  # fmt: skip
+    a = {name: _shaped(given[name], name, shape) for name, shape in shapes.items()}
+    if F_rocking.shape != (d, d):
+        raise ValueError(f"Expected `F_rocking` square, got shape {F_rocking.shape}")
     C_out, nees, nis, heading = np.empty((n, 3, 3)), np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
-    F_rocking = f(F_rocking)
     _jit(_fine_loop)(
-        f(C0), f(v0), f(dR), f(velocity), f(moment), f(noise), f(end_rate), f(C_true), f(v_true), f(eps_true), f(acc_true), f(rock_true),
-        f(earth_turn), f(earth_rate_skew), f(gravity), float(epoch), f(lever_arm), bool(lever_arm_known), F_rocking.shape[0] > 0, F_rocking,
-        f(H), f(gains), f(posterior_inv), f(innovation_inv), C_out, nees, nis, heading,
+        a["C0"], a["v0"], dR, a["velocity"], a["moment"], a["noise"], a["end_rate"], a["C_true"], a["v_true"], a["eps_true"], a["acc_true"], a["rock_true"],
+        a["earth_turn"], a["earth_rate_skew"], a["gravity"], float(epoch), a["lever_arm"], bool(lever_arm_known), d > 0, F_rocking,
+        a["H"], a["gains"], a["posterior_inv"], a["innovation_inv"], C_out, nees, nis, heading,
     )  # fmt: skip
     return C_out, nees, nis, heading

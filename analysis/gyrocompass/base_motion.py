@@ -45,12 +45,11 @@ from __future__ import annotations
 
 import hashlib
 import math
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, as_int, positive
 from .rocking import as_generator
 
@@ -191,34 +190,8 @@ class MotionRealisation:
         return np.ascontiguousarray(np.swapaxes(x, 1, 2))
 
 
-class _SeriesMemo:
-    """The last evaluations of unit coefficients (least recently used out past ``max_bytes``); thread-safe."""
-
-    def __init__(self, max_bytes: int):
-        self.max_bytes = max_bytes
-        self._items: OrderedDict = OrderedDict()
-        self._bytes = 0
-        self._lock = threading.Lock()
-
-    def get(self, key, build):
-        with self._lock:
-            if key in self._items:
-                self._items.move_to_end(key)
-                return self._items[key]
-        value = build()
-        value.setflags(write=False)
-        with self._lock:
-            if key not in self._items:
-                self._items[key] = value
-                self._bytes += value.nbytes
-                while self._bytes > self.max_bytes and len(self._items) > 1:
-                    _, old = self._items.popitem(last=False)
-                    self._bytes -= old.nbytes
-        return value
-
-
 #: Evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
-_SERIES = _SeriesMemo(64 * 2**20)
+_SERIES = BoundedMemo(64 * 2**20)
 
 
 def _amplitude3(value, name) -> np.ndarray:

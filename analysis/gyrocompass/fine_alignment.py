@@ -48,6 +48,7 @@ import numpy as np
 
 from ..core import kalman
 from ..core.validation import as_array, as_float, nonnegative, positive
+from . import alignment_kernels as kernels
 from .alignment_estimate import AlignmentEstimate
 from .earth import earth_rate_ned, gravity_ned
 from .imu import ImuRecord, Scenario, SensorErrors, simulate_imu
@@ -508,7 +509,7 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
         over epochs vectorised over trials, kept as the reference (equal to
         round-off); None (default): the loop when it pays off
-        (:func:`.alignment_kernels.worthwhile`; an epoch of the filter counts
+        (:func:`.alignment_kernels.use_compiled`; an epoch of the filter counts
         as 30 samples).
 
     Returns
@@ -561,13 +562,7 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     Sinv = np.linalg.inv(seq.innovation)
     Pinv = np.linalg.inv(seq.posterior)
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
-    loop = _epoch_loop
-    if compiled is None:
-        from .alignment_kernels import worthwhile
-
-        compiled = worthwhile(30 * n * E)
-    if compiled:
-        from .alignment_kernels import fine_alignment_loop as loop
+    loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) else _epoch_loop
     C, nees, nis, heading_error = loop(
         C, v, dR, ep.velocity, ep.moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r,
         tuning.lever_arm_known, Fdd, model.H, seq.gains, Pinv, Sinv,

@@ -34,6 +34,7 @@ import numpy as np
 
 from ..core import repeated_draws
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
+from . import alignment_kernels as kernels
 from .azimuth import check_latitude
 from .base_motion import StillBase
 from .earth import earth_rate_ned, gravity_ned
@@ -244,32 +245,37 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     compiled : bool or None, keyword-only
         Fused compiled loop (:mod:`.alignment_kernels`) or the numpy form,
         kept as the reference (equal to round-off); None (default): the loop
-        when it pays off (:func:`.alignment_kernels.worthwhile`).
+        when it pays off (:func:`.alignment_kernels.use_compiled`).
 
     Returns
     -------
     tuple of ndarray
         ``dtheta, dv``, each ``(n, N, 3)`` [rad, m/s], ``N = scenario.n_samples``.
+
+    Raises
+    ------
+    TypeError
+        If ``scenario`` is not a Scenario or ``motion`` not a MotionRealisation.
     """
+    from .base_motion import MotionRealisation
+
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
+    if not isinstance(motion, MotionRealisation):
+        raise TypeError(f"Expected `motion` to be a MotionRealisation (a rocking model's draw), got {type(motion).__name__}")
     N, dt = scenario.n_samples, scenario.dt
     n = motion.n_trials
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
-    if compiled is None:
-        from .alignment_kernels import worthwhile
-
-        compiled = worthwhile(n * N)
-    if compiled:
-        from .alignment_kernels import accumulate_ideal_increments
-
+    if kernels.use_compiled(compiled, n * N):
         lat = scenario.latitude
         W, g = earth_rate_ned(lat), gravity_ned(lat)
         fixed = attitude_matrix(scenario.stable_angles).T @ W
         for node in _GAUSS:
             parts = motion.evaluate(N, node * dt, derivatives=order)
             acc = parts[2] if order == 2 else None
-            accumulate_ideal_increments(parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv)
+            kernels.accumulate_ideal_increments(parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv)
         return dtheta, dv
     for node in _GAUSS:
         gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))

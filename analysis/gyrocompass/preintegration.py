@@ -33,6 +33,7 @@ import numpy as np
 
 from ..core import quaternion as quat
 from ..core.validation import as_int
+from . import alignment_kernels as kernels
 
 __all__ = ["EpochIncrements", "preintegrate", "chain_rotations"]
 
@@ -84,7 +85,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
         One compiled loop over trials and samples (:mod:`.alignment_kernels`)
         or the numpy form vectorised over trials and epochs, kept as the
         reference (equal to round-off); None (default): the loop when it pays
-        off (:func:`.alignment_kernels.worthwhile`).
+        off (:func:`.alignment_kernels.use_compiled`).
 
     Returns
     -------
@@ -101,14 +102,8 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     E = N // M
     if E < 1:
         raise ValueError(f"Expected at least one epoch of {M} samples, got {N} samples")
-    if compiled is None:
-        from .alignment_kernels import worthwhile
-
-        compiled = worthwhile(n * E * M)
-    if compiled:
-        from .alignment_kernels import preintegrate_loop
-
-        return EpochIncrements(*preintegrate_loop(dtheta, dv, dt, M, E), M * dt, M)
+    if kernels.use_compiled(compiled, n * E * M):
+        return EpochIncrements(*kernels.preintegrate_loop(dtheta, dv, dt, M, E), M * dt, M)
     prev_th = np.concatenate([np.zeros((n, 1, 3)), dtheta[:, : E * M - 1]], axis=1).reshape(n, E, M, 3)
     prev_v = np.concatenate([np.zeros((n, 1, 3)), dv[:, : E * M - 1]], axis=1).reshape(n, E, M, 3)
     th = dtheta[:, : E * M].reshape(n, E, M, 3)
@@ -139,21 +134,15 @@ def chain_rotations(start, rotations, *, compiled: bool | None = None) -> np.nda
     compiled : bool or None, keyword-only
         One compiled loop (:mod:`.alignment_kernels`) or the numpy loop over
         epochs, kept as the reference (equal to round-off); None (default):
-        the loop when it pays off (:func:`.alignment_kernels.worthwhile`).
+        the loop when it pays off (:func:`.alignment_kernels.use_compiled`).
 
     Returns
     -------
     ndarray
         ``(n, E + 1, 4)``.
     """
-    if compiled is None:
-        from .alignment_kernels import worthwhile
-
-        compiled = worthwhile(np.size(rotations) // 4)  # one per epoch and trial
-    if compiled:
-        from .alignment_kernels import chain_loop
-
-        return chain_loop(np.asarray(start, dtype=float), rotations)
+    if kernels.use_compiled(compiled, np.size(rotations) // 4):  # one per epoch and trial
+        return kernels.chain_loop(np.asarray(start, dtype=float), rotations)
     rotations = np.asarray(rotations, dtype=float)
     n, E, _ = rotations.shape
     out = np.empty((n, E + 1, 4))
