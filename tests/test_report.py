@@ -67,3 +67,67 @@ def test_section_names_are_the_discovered_sections():
 def test_unknown_section_rejected(tmp_path):
     with pytest.raises(ValueError, match="Expected `only` among"):
         report.generate(tmp_path / "r", only=["nope"], show_progress=False)
+
+
+def test_shared_results_are_computed_once_per_context(tmp_path):
+    ctx = report.Context(out_dir=tmp_path, show_progress=False, sections=(object(),))
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return {"value": len(calls)}
+
+    first = ctx.shared("section/result", compute)
+    assert ctx.shared("section/result", compute) is first
+    assert calls == [1]
+    assert ctx.shared("section/other", compute) == {"value": 2}
+    other = report.Context(out_dir=tmp_path, show_progress=False, sections=(object(),))
+    assert other.shared("section/result", compute) == {"value": 3}  # a new run computes anew
+    with pytest.raises(TypeError, match="`key`"):
+        ctx.shared("", compute)
+
+
+def test_fixed_layout_places_the_grid_in_inches():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import fixed_layout, layout_overflow
+
+    fig, axes = plt.subplots(2, 3, figsize=(10.0, 6.0))
+    fixed_layout(fig, left=1.0, right=0.5, bottom=0.8, top=0.4, wgap=0.6, hgap=0.7)
+    w, h = 10.0, 6.0
+    aw, ah = (w - 1.5 - 2 * 0.6) / 3, (h - 1.2 - 0.7) / 2
+    for i in range(2):
+        for j in range(3):
+            x0, y0, x1, y1 = axes[i, j].get_position().extents
+            assert x0 * w == pytest.approx(1.0 + j * (aw + 0.6))
+            assert x1 * w == pytest.approx(1.0 + j * (aw + 0.6) + aw)
+            assert y1 * h == pytest.approx(h - 0.4 - i * (ah + 0.7))
+            assert y0 * h == pytest.approx(h - 0.4 - i * (ah + 0.7) - ah)
+    # generous margins leave the text inside; a label wider than its margin reaches past the edge
+    left, bottom, right, top = layout_overflow(fig)
+    assert max(left, bottom, right, top) < 0.0
+    axes[0, 0].set_ylabel("a very long label " * 4)
+    axes[0, 0].set_yticks([0.5], ["a tick label wider than the margin"])
+    assert layout_overflow(fig)[0] > 0.0
+    with pytest.raises(ValueError, match="room for the axes"):
+        fixed_layout(fig, left=6.0, right=6.0)
+    plt.close(fig)
+
+
+def test_savefig_hands_each_figure_to_the_check_before_closing(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    seen = []
+    ctx = report.Context(out_dir=tmp_path, show_progress=False, sections=(object(),), figure_check=lambda rel, fig: seen.append((rel, plt.fignum_exists(fig.number))))
+    fig, ax = plt.subplots(figsize=(3, 2))
+    ax.plot([0, 1], [0, 1])
+    ctx.savefig(fig, "figures/x.png")
+    assert seen == [("figures/x.png", True)]
+    assert not plt.fignum_exists(fig.number)
+    assert (tmp_path / "figures" / "x.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -27,9 +27,10 @@ from __future__ import annotations
 import importlib
 import io
 import pkgutil
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
+from typing import Any
 
 from ...derivations.reproducible import reproducible
 from . import output
@@ -145,6 +146,9 @@ class Context:
         The command line stamped in the index.
     sections : tuple
         Section modules of this run, in index order (default: :func:`discover`).
+    figure_check : callable or None
+        Called as ``figure_check(relpath, fig)`` after each figure is written and
+        before it is closed (``tools/check_figures.py`` measures the layout there).
     """
 
     out_dir: Path
@@ -154,11 +158,41 @@ class Context:
     files: list = field(default_factory=list)
     command: str = "strapdown report"
     sections: tuple = ()
+    figure_check: Callable | None = None
+    _shared: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self):
         self.out_dir = Path(self.out_dir)
         if not self.sections:
             self.sections = tuple(discover())
+
+    # ---------------------------------------------------------------- shared results
+    def shared(self, key: str, compute: Callable[[], Any]) -> Any:
+        """The result of ``compute()``, computed once per report run and shared by key.
+
+        A section and its ``errata`` (gathered later by the errata section) quote
+        the same Monte Carlo or derivation; the first caller computes it, later
+        callers get the same object.  The key must name everything the result
+        depends on besides this context (its size and seed), e.g.
+        ``"azimuth/violation-cases"``.
+
+        Parameters
+        ----------
+        key : str
+            Name of the result, unique in the report.
+        compute : callable
+            ``compute() -> result``, called at most once per key and context.
+
+        Returns
+        -------
+        object
+            The result.
+        """
+        if not isinstance(key, str) or not key:
+            raise TypeError(f"Expected `key` as a non-empty str, got {key!r}")
+        if key not in self._shared:
+            self._shared[key] = compute()
+        return self._shared[key]
 
     # ---------------------------------------------------------------- writing
     def path(self, relpath: str) -> Path:
@@ -211,6 +245,10 @@ class Context:
         No date or software metadata is written, and every drawn coordinate is
         rounded far below a pixel first (:func:`.rendering.quantise`), so the
         bytes do not depend on the last bits of the machine's floating point.
+        The figure is saved at its own size, drawn once: its layout is fixed
+        when it is built (:func:`.rendering.fixed_layout`), because a layout
+        engine or ``bbox_inches="tight"`` measures every text in extra passes
+        that cost more than the drawing itself.
 
         Parameters
         ----------
@@ -238,10 +276,12 @@ class Context:
             metadata = {"Software": None}
         quantise(fig)
         buf = io.BytesIO()
-        fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata, bbox_inches="tight")
-        plt.close(fig)
+        fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata)
         p.write_bytes(buf.getvalue())
         self._record(relpath)
+        if self.figure_check is not None:
+            self.figure_check(relpath, fig)
+        plt.close(fig)
         return p
 
     # ---------------------------------------------------------------- progress
@@ -320,6 +360,7 @@ def generate(
     show_progress: bool = True,
     command: str = "strapdown report",
     sections: Sequence | None = None,
+    figure_check: Callable | None = None,
 ) -> list[str]:
     """Regenerate the reports into ``out``, atomically and without touching foreign files.
 
@@ -347,6 +388,9 @@ def generate(
         The command line stamped in the index.
     sections : sequence of module, optional, keyword-only
         Section modules to use instead of :func:`discover` (each with ``SECTION`` and ``build``).
+    figure_check : callable, optional, keyword-only
+        ``figure_check(relpath, fig)``, called for every figure after it is written
+        (:attr:`Context.figure_check`).
 
     Returns
     -------
@@ -385,7 +429,7 @@ def generate(
         try:
             output.fault("staged")
             kept = _carry_over(dest, staged, {m.SECTION.name for m in todo}) if only is not None else {}
-            ctx = Context(out_dir=staged, quick=quick, show_progress=show_progress, command=command, sections=tuple(modules))
+            ctx = Context(out_dir=staged, quick=quick, show_progress=show_progress, command=command, sections=tuple(modules), figure_check=figure_check)
             written = dict(kept)
             progress = bar(todo, desc="report", enabled=show_progress, leave=False)
             for module in progress:

@@ -23,6 +23,7 @@ from ..coning.order_study import dot_term_study, drift_orders
 from ..coning.precession import RegularPrecession
 from ..core.units import ARCSEC_PER_RAD, deg_per_h, rad
 from . import Erratum, Section
+from .rendering import fixed_layout
 
 SECTION = Section(
     "algorithms",
@@ -353,6 +354,7 @@ def _error_figure(plt):
     ax.set_ylabel("|δφ_I| [arcsec]")
     ax.set_title("Attitude error under coning (ϑ = 1°, f = 10 Hz, H = 0.01 s)")
     ax.legend()
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3)
     return fig
 
 
@@ -367,6 +369,7 @@ def _order_figure(plt, study):
         ax.legend(fontsize=6, loc="upper left", ncol=2)
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
     axes[0].set_ylabel("constant drift [deg/h]")
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.2)
     return fig
 
 

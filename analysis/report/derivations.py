@@ -35,6 +35,7 @@ from ..coning.precession import RegularPrecession
 from ..core.cache import derived
 from ..core.units import deg_per_h, rad
 from . import Erratum, Section
+from .rendering import fixed_layout
 
 SECTION = Section(
     "derivations",
@@ -427,6 +428,7 @@ def _crosscheck_figure(plt, ratios):
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
     axes[0].set_ylabel("|u*/u_a − 1|")
     axes[1].legend(fontsize=6, loc="lower right")
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.2)
     return fig
 
 
@@ -615,6 +617,7 @@ def _extension(plt, quick: bool):
         ax.set_xlabel("f [Hz]")
     axes[0].set_ylabel("load β [million op/s]")
     axes[1].legend(fontsize=6)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.2)
     points = L45.design_points(4000.0, eps_values=c.eps, nutation=nutation, budgets=(u4, u5), algorithms=EXTENSION_ALGORITHMS)
     table = [
         f"| {p.eps:g} | {_budget(deg_per_h(p.required_drift))} | {p.row.algorithm} | {p.row.order} | {p.row.step * 1e6:.3g} | {p.row.sample_rate / 1e3:.4g} | "

@@ -18,6 +18,7 @@ from ..coning.drift_theory import coning_drift
 from ..coning.frequency_response import CHECK_CONE_ANGLE, QUARTIC_WEIGHT, ROUND_OFF_MARGIN, coning_frequency_response, finite_angle_check
 from ..core.units import DEG
 from . import Section
+from .rendering import fixed_layout
 
 SECTION = Section(
     "frequency-response",
@@ -175,7 +176,7 @@ PANELS = (
 
 
 def _figure(plt, response, published):
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), sharex=True, sharey=True, layout="constrained")
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), sharex=True, sharey=True)
     groups = [[] for _ in PANELS]
     for r in response.responses:
         groups[next(k for k, (_, test) in enumerate(PANELS) if test(r.algorithm.name))].append(r)
@@ -198,5 +199,6 @@ def _figure(plt, response, published):
     for ax in axes[:, 0]:
         ax.set_ylabel("|D(ωh)| = |u| / (α² ω)")
     axes[0, 0].set_ylim(1e-30, 1.0)
-    fig.suptitle("Coning drift against frequency (lines: closed form, dashed: derived; circles: simulator)")
+    fig.suptitle("Coning drift against frequency (lines: closed form, dashed: derived; circles: simulator)", y=0.99, va="top")
+    fixed_layout(fig, left=0.8, right=0.15, bottom=0.55, top=0.55, wgap=0.2, hgap=0.35)
     return fig

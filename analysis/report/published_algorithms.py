@@ -24,6 +24,7 @@ from ..coning.published_check import (
 )
 from ..core.units import rad
 from . import Erratum, Section
+from .rendering import fixed_layout
 
 SECTION = Section(
     "published-algorithms",
@@ -199,6 +200,7 @@ def _sculling_figure(plt, curves, points):
     ax.set_title("Sculling error of the dual extensions (× : simulator)")
     ax.set_ylim(1e-22, 10)
     ax.legend(fontsize=6, ncol=2, loc="lower right")
+    fixed_layout(fig, left=0.8, right=0.15, bottom=0.5, top=0.3)
     return fig
 
 

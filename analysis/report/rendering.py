@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off"]
+__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow"]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -181,3 +181,62 @@ def quantise(fig) -> None:
         _texts(ax)
     for ax in axes:
         _limits(ax)
+
+
+def fixed_layout(fig, *, left: float = 0.7, right: float = 0.15, bottom: float = 0.5, top: float = 0.3, wgap: float = 0.6, hgap: float = 0.5, grid=None) -> None:
+    """Place the subplot grid of ``fig`` with margins and gaps fixed in inches.
+
+    The figure is then drawn once when saved: a layout engine or
+    ``bbox_inches="tight"`` measures every tick label and text in one or two
+    extra passes, which cost more than the drawing.  Margins are chosen for the
+    figure's own labels; ``tools/check_figures.py`` draws every report figure
+    and reports any text that reaches past an edge.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (its axes on one grid, as ``plt.subplots`` makes them).
+    left, right, bottom, top : float, keyword-only
+        Margins between the grid and the figure's edges [in].
+    wgap, hgap : float, keyword-only
+        Gaps between columns and between rows of the grid [in].
+    grid : tuple of int, optional, keyword-only
+        ``(rows, columns)`` of the grid (default: that of the figure's first axes).
+
+    Raises
+    ------
+    ValueError
+        If the margins and gaps leave no room for the axes.
+    """
+    width, height = fig.get_size_inches()
+    if grid is None:
+        spec = next((ax.get_subplotspec() for ax in fig.axes if ax.get_subplotspec() is not None), None)
+        grid = (1, 1) if spec is None else spec.get_gridspec().get_geometry()
+    rows, cols = grid
+    axes_w = (width - left - right - (cols - 1) * wgap) / cols
+    axes_h = (height - bottom - top - (rows - 1) * hgap) / rows
+    if axes_w <= 0 or axes_h <= 0:
+        raise ValueError(f"Expected margins and gaps that leave room for the axes in a {width:g} x {height:g} in figure, got axes of {axes_w:.3g} x {axes_h:.3g} in")
+    fig.subplots_adjust(left=left / width, right=1.0 - right / width, bottom=bottom / height, top=1.0 - top / height, wspace=wgap / axes_w, hspace=hgap / axes_h)
+
+
+def layout_overflow(fig) -> tuple:
+    """How far the drawn content of ``fig`` reaches past each edge [in]; negative: the spare margin.
+
+    Draws the figure's layout (the cost that :func:`fixed_layout` saves the
+    report); for checks, not for the report itself.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A complete figure.
+
+    Returns
+    -------
+    tuple of float
+        ``(left, bottom, right, top)`` [in].
+    """
+    renderer = fig.canvas.get_renderer()
+    box = fig.get_tightbbox(renderer)
+    width, height = fig.get_size_inches()
+    return (-box.x0, -box.y0, box.x1 - width, box.y1 - height)
