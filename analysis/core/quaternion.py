@@ -35,11 +35,13 @@ __all__ = [
     "cross",
     "dot",
     "identity",
+    "SERIES_ANGLE",
 ]
 
-# Below this angle (rad) the series branches are used; their truncation error
-# there is below 1e-24 relative, far under round-off.
-_SMALL = 1e-2
+#: Below this angle [rad] :func:`rotvec_to_quat` and :func:`quat_to_rotvec` use their series
+#: branches; their truncation error there is below 1e-24 relative, far under round-off.
+SERIES_ANGLE = 1e-2
+_SMALL = SERIES_ANGLE
 
 
 def _arr(x):
