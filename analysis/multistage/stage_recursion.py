@@ -169,7 +169,7 @@ def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, g
 _compiled: dict = {}
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_correct", "_flow", "_switch", "_rotvec_quat", "_qmul", "_half_quat", "_angles", "_wrap", "_record")
+_HELPERS = ("_correct", "_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_angles", "_wrap", "_record")
 
 
 def _jit(fn):
@@ -336,6 +336,32 @@ def _half_quat(q0, q1, q2, q3):
     return _rotvec_quat(0.5 * (f * q1), 0.5 * (f * q2), 0.5 * (f * q3))
 
 
+def _tilt_quat(f0, f1, f2):
+    """:func:`strapdown.analysis.multistage.stages.tilt_quaternion` of one specific force, by half-angle formulas.
+
+    θ = atan2(n₁, h) and γ = atan2(−n₃, n₂) with h = √(n₂² + n₃²); their half
+    angles come from the cosines and sines by ``cos(a/2) = √((1 + cos a)/2)``,
+    ``sin(a/2) = sin a / (2 cos(a/2))`` (or the other way round where cos a < 0),
+    which is exact to round-off and needs no trigonometric function.
+    """
+    h = math.sqrt(f1 * f1 + f2 * f2)
+    n = math.sqrt(f0 * f0 + h * h)
+    if not (h > 0.0 and n < math.inf):  # vertical force along the body axis 1, or none: the angles' own branches
+        pitch, roll = 0.5 * math.atan2(f0, h), 0.5 * math.atan2(-f2, f1)
+        ct, st, cg, sg = math.cos(pitch), math.sin(pitch), math.cos(roll), math.sin(roll)
+    else:
+        ct = math.sqrt(0.5 * (1.0 + h / n))  # θ in [−π/2, π/2]: cos θ >= 0
+        st = f0 / n / (2.0 * ct)
+        c, sn = f1 / h, -f2 / h
+        if c >= 0.0:
+            cg = math.sqrt(0.5 * (1.0 + c))
+            sg = sn / (2.0 * cg)
+        else:
+            sg = math.copysign(math.sqrt(0.5 * (1.0 - c)), sn)
+            cg = sn / (2.0 * sg)
+    return ct * cg, ct * sg, st * sg, st * cg
+
+
 def _qmul(a0, a1, a2, a3, b0, b1, b2, b3):
     """Hamilton product ``a ∘ b`` of two quaternions given by components."""
     return (
@@ -381,7 +407,7 @@ def _record(i, prev, truth, peaks, nus, comps, errors, store):
         e0 = _wrap(yaw - truth[i, 0])
         e1 = _wrap(pitch - truth[i, 1])
         e2 = _wrap(roll - truth[i, 2])
-        tilt = math.hypot(e1, e2)
+        tilt = math.sqrt(e1 * e1 + e2 * e2)
         peaks[j, 0] = max(peaks[j, 0], abs(e0))
         peaks[j, 1] = max(peaks[j, 1], abs(e1))
         peaks[j, 2] = max(peaks[j, 2], abs(e2))
@@ -420,10 +446,7 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
                 s0, s1, s2, s3 = 0.0, -f2 / gravity, 0.0, f0 / gravity
                 t0, t1, t2, t3 = s0, s1, s2, s3
             else:
-                pitch = 0.5 * math.atan2(f0, math.hypot(f1, f2))
-                roll = 0.5 * math.atan2(-f2, f1)
-                ct, st, cg, sg = math.cos(pitch), math.sin(pitch), math.cos(roll), math.sin(roll)
-                s0, s1, s2, s3 = ct * cg, ct * sg, st * sg, st * cg
+                s0, s1, s2, s3 = _tilt_quat(f0, f1, f2)
                 t0, t1, t2, t3 = s0, s1, s2, s3
             while seg[j] + 1 < n_seg[j] and seg_start[j, seg[j] + 1] <= i:
                 seg[j] += 1
