@@ -89,20 +89,20 @@ def _correction_map(k, l, c, tau):
     return (e[0, 0], e[0, 1], e[1, 0], e[1, 1], e[0, 2], e[1, 2])
 
 
-def _correct(v, y, mask, e11, e12, e21, e22, f1, f2, m0, m1, m2, m3):
-    """Half a step of the correction flow on the corrected components (in place)."""
-    for j in range(4):
-        if mask[j]:
-            mj = m0 if j == 0 else (m1 if j == 1 else (m2 if j == 2 else m3))
-            vj, yj = v[j], y[j]
-            v[j] = e11 * vj + e12 * yj + f1 * mj
-            y[j] = e21 * vj + e22 * yj + f2 * mj
-
-
 def _flow(v, y, mask, mp, kinematic, norm_flow, grow, s0, s1, s2, s3, t0, t1, t2, t3, b0, b1, b2, b3):
     """One splitting step of a stage (in place): ``s``/``t`` the reference at the start/end, ``b`` the increment."""
-    _correct(v, y, mask, mp[0], mp[1], mp[2], mp[3], mp[4], mp[5], s0, s1, s2, s3)
+    e11, e12, e21, e22, f1, f2 = mp[0], mp[1], mp[2], mp[3], mp[4], mp[5]
+    k0, k1, k2, k3 = mask[0], mask[1], mask[2], mask[3]
     a0, a1, a2, a3 = v[0], v[1], v[2], v[3]
+    y0, y1, y2, y3 = y[0], y[1], y[2], y[3]
+    if k0:
+        a0, y0 = e11 * a0 + e12 * y0 + f1 * s0, e21 * a0 + e22 * y0 + f2 * s0
+    if k1:
+        a1, y1 = e11 * a1 + e12 * y1 + f1 * s1, e21 * a1 + e22 * y1 + f2 * s1
+    if k2:
+        a2, y2 = e11 * a2 + e12 * y2 + f1 * s2, e21 * a2 + e22 * y2 + f2 * s2
+    if k3:
+        a3, y3 = e11 * a3 + e12 * y3 + f1 * s3, e21 * a3 + e22 * y3 + f2 * s3
     if norm_flow:
         r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
         f = math.sqrt(grow / (1.0 - r + r * grow))
@@ -119,8 +119,16 @@ def _flow(v, y, mask, mp, kinematic, norm_flow, grow, s0, s1, s2, s3, t0, t1, t2
         r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
         f = math.sqrt(grow / (1.0 - r + r * grow))
         c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
+    if k0:
+        c0, y0 = e11 * c0 + e12 * y0 + f1 * t0, e21 * c0 + e22 * y0 + f2 * t0
+    if k1:
+        c1, y1 = e11 * c1 + e12 * y1 + f1 * t1, e21 * c1 + e22 * y1 + f2 * t1
+    if k2:
+        c2, y2 = e11 * c2 + e12 * y2 + f1 * t2, e21 * c2 + e22 * y2 + f2 * t2
+    if k3:
+        c3, y3 = e11 * c3 + e12 * y3 + f1 * t3, e21 * c3 + e22 * y3 + f2 * t3
     v[0], v[1], v[2], v[3] = c0, c1, c2, c3
-    _correct(v, y, mask, mp[0], mp[1], mp[2], mp[3], mp[4], mp[5], t0, t1, t2, t3)
+    y[0], y[1], y[2], y[3] = y0, y1, y2, y3
 
 
 def _switch(y, v, mask, gains, s, mode, c, m0, m1, m2, m3):
@@ -169,7 +177,7 @@ def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, g
 _compiled: dict = {}
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_correct", "_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_angles", "_wrap", "_record")
+_HELPERS = ("_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_angles", "_wrap", "_record")
 
 
 def _jit(fn):
