@@ -4,7 +4,9 @@ Each trial draws the sensor errors of both triads — bias signs and sizes,
 scale factors, and white noise as angle and velocity random walk
 (:class:`SensorErrorStatistics`) — adds them to one ideal record of the truth
 (:func:`strapdown.analysis.multistage.sensors.corrupt`), runs the cascade and
-keeps the peak yaw, pitch, roll and tilt errors of every stage.  The trials
+keeps the peak yaw, pitch, roll and tilt errors of every stage (in one
+compiled pass per trial that forms the peaks without keeping the series,
+:func:`strapdown.analysis.multistage.stages.multistage_peaks`).  The trials
 are grouped into blocks seeded from the spawn keys of one root
 :class:`numpy.random.SeedSequence` (:func:`strapdown.analysis.core.montecarlo.collect`,
 the seeding of the azimuth Monte Carlo), so the peaks are bit-identical for

@@ -31,8 +31,11 @@ form of (3.1); what happens to it at a change of the gain schedule is the
 ``switch`` of the stage (:data:`strapdown.analysis.multistage.stage_recursion.SWITCH_MODES`).
 
 Each stage is integrated by the splitting recursion of
-:mod:`strapdown.analysis.multistage.stage_recursion` (second order, compiled); the
-rest is vectorised.
+:mod:`strapdown.analysis.multistage.stage_recursion` (second order).  The
+compiled engine runs the whole cascade, composition and angle errors
+included, in one pass (:func:`strapdown.analysis.multistage.stage_recursion.cascade_loop`);
+the reference engine runs it stage by stage in plain Python with vectorised
+numpy in between, and the tests hold the two equal to round-off.
 """
 
 from __future__ import annotations
@@ -565,8 +568,12 @@ def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> Mul
     TypeError
         For a wrong ``data`` or ``stages`` type.
     ValueError
-        If a stage after the first uses the reference "external", or for an
-        unknown engine.
+        If a stage after the first uses the reference "external", for an
+        unknown engine, or if the composite attitude is not finite.
+
+    References
+    ----------
+    Plotnikov (1999), eqs. (1.5), (2.1)–(2.6).
     """
     stages = _checked(data, stages, engine)
     if engine == "compiled":
@@ -622,6 +629,10 @@ def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> n
         For a wrong ``data`` or ``stages`` type.
     ValueError
         As :func:`run_multistage`.
+
+    References
+    ----------
+    Plotnikov (1999), eqs. (1.5), (2.1)–(2.6).
     """
     stages = _checked(data, stages, engine)
     if engine == "compiled":
