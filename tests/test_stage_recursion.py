@@ -155,3 +155,38 @@ def test_compiled_cascade_refuses_bad_shapes_and_a_non_finite_run():
     for engine in ("compiled", "python"):
         with pytest.raises(ValueError, match="finite"):
             multistage_peaks(broken, stages, engine=engine)
+
+
+@pytest.mark.parametrize("name", list(_cascades()))
+def test_bounds_skip_only_steps_that_cannot_raise_a_peak(name):
+    """Peaks only: skipping the errors bounded below their running peaks gives the peaks of the full evaluation, bit for bit."""
+    from strapdown.analysis.multistage.sensors import SensorErrors
+    from strapdown.analysis.multistage.stage_recursion import cascade_loop
+    from strapdown.analysis.multistage.stages import _cascade_inputs
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    stages = list(_cascades()[name])
+    sc = Scenario(duration=1400.0, rocking_decay=1e-3, sensors=SensorErrors(gyro_drift=(1e-6, -2e-6, 3e-6), accel_bias=(0.01, -0.02, 0.005), gyro_noise=1e-5, accel_noise=1e-3))
+    data = sample(sc, 0.2, rng=4)
+    args = (data.gyro, data.accel, data.attitude, data.angles, sc.gravity, 0.2, *_cascade_inputs(data, stages))
+    bounded = cascade_loop(*args, store=False, bounds=True)[0]
+    full = cascade_loop(*args, store=False, bounds=False)[0]
+    stored = cascade_loop(*args, store=True)[0]
+    np.testing.assert_array_equal(bounded, full)
+    np.testing.assert_array_equal(stored, full)
+
+
+def test_bounds_are_not_used_when_truth_is_not_the_attitude():
+    """Angles that are not those of the attitude switch the bounds off (checked at 17 points); the peaks stay right."""
+    from strapdown.analysis.multistage.stage_recursion import cascade_loop
+    from strapdown.analysis.multistage.stages import _cascade_inputs, multistage_peaks, plotnikov_1999_stages
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    data = sample(Scenario(duration=1400.0), 0.2)
+    angles = data.angles.copy()
+    angles[:, 0] += 0.3  # a yaw offset: the true attitude and the angles disagree
+    shifted = replace(data, angles=angles)
+    stages = list(plotnikov_1999_stages(switch_time=150.0))
+    args = (shifted.gyro, shifted.accel, shifted.attitude, shifted.angles, 9.81, 0.2, *_cascade_inputs(shifted, stages))
+    np.testing.assert_array_equal(cascade_loop(*args, store=False, bounds=True)[0], cascade_loop(*args, store=False, bounds=False)[0])
+    np.testing.assert_allclose(multistage_peaks(shifted, stages), multistage_peaks(shifted, stages, engine="python"), rtol=1e-12, atol=0)

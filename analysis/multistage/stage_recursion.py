@@ -28,7 +28,16 @@ stage j has just modelled, and the composite, its Krylov angles, their errors
 and the peak errors are formed on the way, so that a Monte Carlo trial needs
 no array per stage.  It performs the operations of the vectorised cascade
 :func:`strapdown.analysis.multistage.stages.run_multistage` (engine "python",
-the reference it is tested against) step by step.
+the reference it is tested against) step by step.  When only the peaks are
+kept, an angle error is not evaluated (no inverse trigonometric function) at
+a step where a bound shows it :data:`BOUND_MARGIN` below its running peak:
+with the matrix (1.7) of the estimate and of the true attitude, the sine and
+cosine of a yaw or roll difference are the cross and dot products of two
+plane vectors over their lengths, those of the pitch difference follow from
+``sin θ = a12``; an angle with ``cos e > 0`` is at most q if
+``sin² e <= q²(1 − q²/3) <= sin² q``, and the tilt ``√(e1² + e2²)`` is at most
+``√(tan² e1 + tan² e2)``.  Such a step cannot change a peak, so the peaks are
+those of the full evaluation (tested bit for bit).
 """
 
 from __future__ import annotations
@@ -41,13 +50,16 @@ from scipy.linalg import expm
 
 from ..core.quaternion import SERIES_ANGLE as _SERIES
 
-__all__ = ["SWITCH_MODES", "KINDS", "correction_map", "stage_loop", "stage_loop_python", "cascade_loop"]
+__all__ = ["SWITCH_MODES", "KINDS", "BOUND_MARGIN", "correction_map", "stage_loop", "stage_loop_python", "cascade_loop"]
 
 #: How the integral state crosses a change of the gain schedule (module docstring).
 SWITCH_MODES = ("carry", "rescale", "bumpless")
 #: How a stage of :func:`cascade_loop` forms its reference m (index = code): the
 #: external attitude (with the kinematic term), the pure quaternion (1.4), the tilt quaternion (1.10).
 KINDS = ("external", "pure", "tilt")
+#: How far below its running peak [rad] the bound of an angle error must lie for :func:`cascade_loop`
+#: to skip evaluating it (far above round-off, and above any difference between ``truth`` and ``attitude``).
+BOUND_MARGIN = 1e-9
 
 
 def correction_map(k: float, l: float, c: float, tau: float) -> np.ndarray:
@@ -177,7 +189,7 @@ def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, g
 _compiled: dict = {}
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_angles", "_wrap", "_record")
+_HELPERS = ("_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_matrix", "_clip1", "_below", "_wrap", "_record")
 
 
 def _jit(fn):
@@ -380,8 +392,8 @@ def _qmul(a0, a1, a2, a3, b0, b1, b2, b3):
     )
 
 
-def _angles(q0, q1, q2, q3):
-    """:func:`strapdown.analysis.multistage.ship_angles.quat_to_angles` of one quaternion, and its norm."""
+def _matrix(q0, q1, q2, q3):
+    """Entries a11, a12, a13, a22, a32 of the matrix (1.7) of a quaternion (normalised first), and its norm."""
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     q0, q1, q2, q3 = q0 / n, q1 / n, q2 / n, q3 / n
     a11 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
@@ -389,8 +401,16 @@ def _angles(q0, q1, q2, q3):
     a13 = 2.0 * (q1 * q3 - q0 * q2)
     a22 = q0 * q0 + q2 * q2 - q1 * q1 - q3 * q3
     a32 = 2.0 * (q2 * q3 - q0 * q1)
-    pitch = math.asin(min(max(a12, -1.0), 1.0))
-    return math.atan2(-a13, a11), pitch, math.atan2(-a32, a22), n
+    return a11, a12, a13, a22, a32, n
+
+
+def _clip1(x):
+    return min(max(x, -1.0), 1.0)
+
+
+def _below(sin2, cos_positive, q):
+    """Whether an angle with this squared sine (and cos > 0) is certainly at most q [rad]: sin² a <= q²(1 − q²/3) <= sin² q."""
+    return cos_positive and q > 0.0 and q < 1.0 and sin2 <= q * q * (1.0 - q * q / 3.0)
 
 
 def _wrap(a):
@@ -401,25 +421,56 @@ def _wrap(a):
     return math.pi - x
 
 
-def _record(i, prev, truth, peaks, nus, comps, errors, store):
-    """Composite (2.6), angle errors and running peaks at grid point ``i``; False if the composite is not finite or zero."""
+def _record(i, prev, truth, attitude, bounds, peaks, nus, comps, errors, store):
+    """Composite (2.6), angle errors and running peaks at grid point ``i``; False if the composite is not finite or zero.
+
+    With ``bounds`` an error whose bound from the true attitude (:data:`BOUND_MARGIN` below
+    its running peak) shows it cannot raise the peak is not evaluated (module docstring).
+    """
     m = prev.shape[0]
     p0, p1, p2, p3 = prev[0, 0], prev[0, 1], prev[0, 2], prev[0, 3]
     ok = True
+    t11 = t13 = t22 = t32 = xt = ct = yaw_t = roll_t = 0.0
+    if bounds:
+        t11, t12, t13, t22, t32, _ = _matrix(attitude[i, 0], attitude[i, 1], attitude[i, 2], attitude[i, 3])
+        xt = _clip1(t12)
+        ct = math.sqrt(1.0 - xt * xt)
+        yaw_t, roll_t = t11 * t11 + t13 * t13, t22 * t22 + t32 * t32
     for j in range(m):
         if j > 0:
             p0, p1, p2, p3 = _qmul(prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3], p0, p1, p2, p3)
-        yaw, pitch, roll, n = _angles(p0, p1, p2, p3)
+        a11, a12, a13, a22, a32, n = _matrix(p0, p1, p2, p3)
         if not (n > 0.0 and n < math.inf):
             ok = False
-        e0 = _wrap(yaw - truth[i, 0])
-        e1 = _wrap(pitch - truth[i, 1])
-        e2 = _wrap(roll - truth[i, 2])
-        tilt = math.sqrt(e1 * e1 + e2 * e2)
-        peaks[j, 0] = max(peaks[j, 0], abs(e0))
-        peaks[j, 1] = max(peaks[j, 1], abs(e1))
-        peaks[j, 2] = max(peaks[j, 2], abs(e2))
-        peaks[j, 3] = max(peaks[j, 3], tilt)
+        yaw_exact = pr_exact = True
+        e0 = e1 = e2 = 0.0
+        if bounds:
+            # yaw and roll: sin and cos of the difference of two plane angles, scaled by both radii
+            rr = (a11 * a11 + a13 * a13) * yaw_t
+            cross = t13 * a11 - a13 * t11
+            yaw_exact = not (rr > 0.01 and _below(cross * cross / rr, a11 * t11 + a13 * t13 > 0.0, peaks[j, 0] - BOUND_MARGIN))
+            x = _clip1(a12)
+            if abs(x) <= 0.9 and abs(xt) <= 0.9:
+                cx = math.sqrt(1.0 - x * x)
+                s1 = x * ct - cx * xt
+                c1 = cx * ct + x * xt > 0.0
+                rr = (a22 * a22 + a32 * a32) * roll_t
+                cross = t32 * a22 - a32 * t22
+                s2 = cross * cross / rr if rr > 0.01 else 1.0
+                c2 = a22 * t22 + a32 * t32 > 0.0
+                q = peaks[j, 3] - BOUND_MARGIN
+                if _below(s1 * s1, c1, peaks[j, 1] - BOUND_MARGIN) and _below(s2, c2, peaks[j, 2] - BOUND_MARGIN) and q > 0.0:
+                    # |e| <= tan|e| = |sin e|/√(1 − sin² e) for |e| < π/2
+                    pr_exact = s1 * s1 / (1.0 - s1 * s1) + s2 / (1.0 - s2) > q * q
+        if yaw_exact or store:
+            e0 = _wrap(math.atan2(-a13, a11) - truth[i, 0])
+            peaks[j, 0] = max(peaks[j, 0], abs(e0))
+        if pr_exact or store:
+            e1 = _wrap(math.asin(_clip1(a12)) - truth[i, 1])
+            e2 = _wrap(math.atan2(-a32, a22) - truth[i, 2])
+            peaks[j, 1] = max(peaks[j, 1], abs(e1))
+            peaks[j, 2] = max(peaks[j, 2], abs(e2))
+            peaks[j, 3] = max(peaks[j, 3], math.sqrt(e1 * e1 + e2 * e2))
         if store:
             nus[j, i, 0], nus[j, i, 1], nus[j, i, 2], nus[j, i, 3] = prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3]
             comps[j, i, 0], comps[j, i, 1], comps[j, i, 2], comps[j, i, 3] = p0, p1, p2, p3
@@ -427,7 +478,7 @@ def _record(i, prev, truth, peaks, nus, comps, errors, store):
     return ok
 
 
-def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store, peaks, nus, comps, errors):
+def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store, bounds, peaks, nus, comps, errors):
     n_steps = gyro.shape[0]
     m = kinds.shape[0]
     v = np.empty((m, 4))
@@ -441,7 +492,7 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
         for k in range(4):
             v[j, k] = nu0[j, k]
             prev[j, k] = nu0[j, k] / n
-    ok = _record(0, prev, truth, peaks, nus, comps, errors, store)
+    ok = _record(0, prev, truth, attitude, bounds, peaks, nus, comps, errors, store)
     for i in range(n_steps):
         b0, b1, b2, b3 = _rotvec_quat(gyro[i, 0], gyro[i, 1], gyro[i, 2])
         f0, f1, f2 = accel[i, 0], accel[i, 1], accel[i, 2]
@@ -476,12 +527,12 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
                 w0, w1, w2, w3 = _qmul(p0, p1, p2, p3, b0, b1, b2, b3)
                 b0, b1, b2, b3 = _qmul(w0, w1, w2, w3, c0, -c1, -c2, -c3)
             prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3] = c0, c1, c2, c3
-        if not _record(i + 1, prev, truth, peaks, nus, comps, errors, store):
+        if not _record(i + 1, prev, truth, attitude, bounds, peaks, nus, comps, errors, store):
             ok = False
     return ok
 
 
-def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store=True):
+def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store=True, bounds=True):
     """Run a cascade of stages in one compiled pass: estimates, composite (2.6), angle errors and their peaks.
 
     Parameters
@@ -518,6 +569,12 @@ def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, 
         Initial estimate of each stage (nonzero).
     store : bool
         Keep the series (False: the peaks only).
+    bounds : bool
+        Without ``store``: skip the inverse trigonometric functions of an
+        angle error wherever a bound from ``attitude`` shows that it stays
+        :data:`BOUND_MARGIN` below its running peak (the peaks are the same).
+        Used only if ``truth`` holds the Krylov angles of ``attitude``
+        (checked at 17 grid points).
 
     Returns
     -------
@@ -564,8 +621,9 @@ def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, 
     rows = max(n_steps + 1, 1) if store else 0
     peaks = np.zeros((m, 4))
     nus, comps, errors = np.empty((m, rows, 4)), np.empty((m, rows, 4)), np.empty((m, rows, 3))
+    bounds = bool(bounds) and not store and _consistent(attitude, truth)
     loop = _jit(_cascade_loop)
-    ok = loop(gyro, accel, attitude, truth, float(gravity), float(step), kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, bool(store), peaks, nus, comps, errors)
+    ok = loop(gyro, accel, attitude, truth, float(gravity), float(step), kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, bool(store), bounds, peaks, nus, comps, errors)
     if not ok:
         raise ValueError("Expected a finite, nonzero composite attitude, got one that is not (unstable gains or non-finite inputs?)")
     return peaks, nus, comps, errors
@@ -578,3 +636,13 @@ def _shaped(x, name: str, shape: tuple) -> np.ndarray:
         text = ", ".join("…" if want is None else str(want) for want in shape)
         raise ValueError(f"Expected `{name}` with shape ({text}), got shape {a.shape}")
     return a
+
+
+def _consistent(attitude, truth) -> bool:
+    """Whether ``truth`` holds the Krylov angles of ``attitude`` (checked at 17 grid points, to 1e-10 rad)."""
+    from .ship_angles import quat_to_angles, wrap_angle
+
+    rows = np.unique(np.linspace(0, attitude.shape[0] - 1, 17).astype(np.int64))
+    if not (np.all(np.isfinite(attitude[rows])) and np.all(np.isfinite(truth[rows]))) or np.any(np.linalg.norm(attitude[rows], axis=-1) == 0.0):
+        return False
+    return bool(np.abs(wrap_angle(quat_to_angles(attitude[rows]) - truth[rows])).max() < 1e-10)
