@@ -29,7 +29,7 @@ import numpy as np  # noqa: E402
 
 from strapdown.analysis.core import quaternion as quat  # noqa: E402
 from strapdown.analysis.multistage import stage_recursion  # noqa: E402
-from strapdown.analysis.multistage.stages import plotnikov_1999_stages, recursion_inputs, run_multistage  # noqa: E402
+from strapdown.analysis.multistage.stages import multistage_peaks, plotnikov_1999_stages, recursion_inputs, run_multistage  # noqa: E402
 from strapdown.analysis.multistage.trajectory import Scenario, sample  # noqa: E402
 
 
@@ -113,13 +113,14 @@ def main(repeats: int = 5) -> None:
         print(f"{name:>26} {1e6 * t_prev / n:19.3f} {1e6 * t_ref / n:20.3f} {1e6 * t_comp / n:19.4f} {t_prev / t_comp:17.0f}x {'>= 50x':>7}")
     print()
     print("whole pipeline (sampling, both stages, composition)")
-    print(f"{'step [s]':>9} {'steps':>8} {'sample [s]':>11} {'2 stages, compiled [s]':>23} {'2 stages, reference [s]':>24}")
+    print(f"{'step [s]':>9} {'steps':>8} {'sample [s]':>11} {'2 stages, compiled [s]':>23} {'peaks only [s]':>15} {'2 stages, reference [s]':>24}")
     for h in (0.04, 0.02):
         t_sample = _best(lambda h=h: sample(scenario, h, rng=0), 3)
         d = sample(scenario, h, rng=0)
         t_c = _best(lambda d=d: run_multistage(d, stages), 3)
+        t_k = _best(lambda d=d: multistage_peaks(d, stages), 3)
         t_p = _best(lambda d=d: run_multistage(d, stages, engine="python"), 1)
-        print(f"{h:9g} {int(round(scenario.duration / h)):8d} {t_sample:11.2f} {t_c:23.2f} {t_p:24.2f}")
+        print(f"{h:9g} {int(round(scenario.duration / h)):8d} {t_sample:11.2f} {t_c:23.3f} {t_k:15.3f} {t_p:24.2f}")
 
 
 if __name__ == "__main__":

@@ -114,3 +114,15 @@ def test_corrupt_is_seeded_and_split():
 
 def test_horizontal_centripetal():
     assert earth.horizontal_centripetal(np.radians(45.0), 7.292115e-5, 6.371e6) == pytest.approx(7.292115e-5**2 * 6.371e6 / 2)
+
+
+def test_sampled_accelerometers_are_the_mean_body_force_of_the_truth():
+    """sample's accelerometer record is the 3-point Gauss–Legendre mean of truth(...).specific_force, to the last bit."""
+    from strapdown.analysis.multistage.trajectory import GAUSS3, Scenario, grid, sample, truth
+
+    for sc in (Scenario(duration=1300.0, sensors=SensorErrors()), Scenario(duration=1300.0, truth="no-coriolis", sensors=SensorErrors())):
+        data = sample(sc, 0.5)
+        t = grid(sc, 0.5)
+        x, w = GAUSS3
+        force = truth(sc, t[:-1, None] + 0.5 * x).specific_force
+        np.testing.assert_array_equal(data.accel, np.einsum("nkj,k->nj", force, w))

@@ -131,3 +131,14 @@ def test_bad_input(func, arg, match):
 def test_non_numeric_input_is_type_error():
     with pytest.raises(TypeError, match="`phi` to be a numeric array"):
         quat.rotvec_to_quat(["a", "b", "c"])
+
+
+def test_rotate_is_the_quaternion_sandwich_exactly():
+    """rotate writes out vect(q ∘ {0, v} ∘ q̄) component by component: the same products, the same bits, any broadcasting."""
+    rng = np.random.default_rng(4)
+    q = quat.normalize(rng.normal(size=(50, 4)))
+    v = rng.normal(size=(50, 3)) * 10.0 ** rng.integers(-8, 4, size=(50, 1))
+    sandwich = quat.vect(quat.multiply(quat.multiply(q, quat.vector_to_quat(v)), quat.conjugate(q)))
+    np.testing.assert_array_equal(quat.rotate(q, v), sandwich)
+    np.testing.assert_array_equal(quat.rotate(q[0], v), quat.vect(quat.multiply(quat.multiply(q[0], quat.vector_to_quat(v)), quat.conjugate(q[0]))))
+    assert quat.rotate(q[:, None, :], v[None, :5, :]).shape == (50, 5, 3)

@@ -1,5 +1,7 @@
 """The stage recursion: compiled loop against the plain-Python reference, gain switches."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from scipy.linalg import expm
@@ -86,3 +88,105 @@ def test_engine_is_checked():
     dq, force, _ = _inputs(10)
     with pytest.raises(ValueError, match="`engine`"):
         run_stage(Stage.constant(0.1, 0.01), 0.1, dq, force, engine="fortran")
+
+
+# ---------------------------------------------------------------------------
+# The whole cascade in one compiled pass against the stage-by-stage reference
+# ---------------------------------------------------------------------------
+def _cascades():
+    from strapdown.analysis.multistage.stages import plotnikov_1999_stages
+
+    default = plotnikov_1999_stages(switch_time=150.0)
+    return {
+        "section5": default,
+        "all-four-bumpless": plotnikov_1999_stages(switch_time=150.0, stage1_components=(0, 1, 2, 3), switch="bumpless"),
+        "pure-rescale": plotnikov_1999_stages(switch_time=150.0, stage1_reference="pure", switch="rescale"),
+        "external-three-stages": (
+            Stage.constant(0.05, 1e-4, "external", rho=0.5),
+            default[1],
+            # an empty segment (two switches on the same step) and a switch after the end
+            Stage(((0.0, 0.02, 1e-4), (100.0, 0.0, 2e-4), (100.01, 0.01, 1e-5), (1e6, 0.0, 1e-6)), "tilt", switch="bumpless", components=(0, 1, 2, 3)),
+        ),
+        "one-stage-no-norm-flow": (Stage.constant(0.02, 1e-4, "tilt", rho=0.0, c=2.0),),
+    }
+
+
+@pytest.mark.parametrize("name", list(_cascades()))
+def test_compiled_cascade_matches_the_reference(name):
+    """run_multistage: the one-pass compiled cascade equals the stage-by-stage Python/numpy reference to round-off."""
+    from strapdown.analysis.multistage.sensors import SensorErrors
+    from strapdown.analysis.multistage.stages import multistage_peaks, run_multistage
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    stages = _cascades()[name]
+    sc = Scenario(duration=1400.0, rocking_decay=1e-3, sensors=SensorErrors(gyro_drift=(1e-6, -2e-6, 3e-6), accel_bias=(0.01, -0.02, 0.005), gyro_noise=1e-5, accel_noise=1e-3))
+    data = sample(sc, 0.2, rng=3)
+    got = run_multistage(data, stages, engine="compiled")
+    ref = run_multistage(data, stages, engine="python")
+    assert np.abs(ref.errors).max() > 1e-3  # the errors are not trivial
+    for field in ("stages", "composite", "errors"):
+        np.testing.assert_allclose(getattr(got, field), getattr(ref, field), rtol=0, atol=1e-13)
+    peaks = np.array([tuple(p) for p in ref.peaks()])
+    np.testing.assert_allclose(multistage_peaks(data, stages), peaks, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(multistage_peaks(data, stages, engine="python"), peaks, rtol=0, atol=0)
+
+
+def test_compiled_cascade_refuses_bad_shapes_and_a_non_finite_run():
+    from strapdown.analysis.multistage.stage_recursion import cascade_loop
+    from strapdown.analysis.multistage.stages import _cascade_inputs, multistage_peaks
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    data = sample(Scenario(duration=20.0), 0.5)
+    stages = [Stage.constant(0.1, 0.01, "tilt")]
+    inputs = _cascade_inputs(data, stages)
+    with pytest.raises(ValueError, match="`accel`"):
+        cascade_loop(data.gyro, data.accel[:-1], data.attitude, data.angles, 9.81, 0.5, *inputs)
+    with pytest.raises(ValueError, match="`truth`"):
+        cascade_loop(data.gyro, data.accel, data.attitude, data.angles[:-1], 9.81, 0.5, *inputs)
+    with pytest.raises(ValueError, match="`kinds`"):
+        cascade_loop(data.gyro, data.accel, data.attitude, data.angles, 9.81, 0.5, np.array([1, 0]), *inputs[1:])
+    with pytest.raises(ValueError, match="`masks`"):
+        cascade_loop(data.gyro, data.accel, data.attitude, data.angles, 9.81, 0.5, inputs[0], np.ones((1, 3), bool), *inputs[2:])
+    with pytest.raises(ValueError, match="`engine`"):
+        multistage_peaks(data, stages, engine="fortran")
+    gyro = data.gyro.copy()
+    gyro[7, 1] = np.nan
+    broken = replace(data, gyro=gyro)
+    for engine in ("compiled", "python"):
+        with pytest.raises(ValueError, match="finite"):
+            multistage_peaks(broken, stages, engine=engine)
+
+
+@pytest.mark.parametrize("name", list(_cascades()))
+def test_bounds_skip_only_steps_that_cannot_raise_a_peak(name):
+    """Peaks only: skipping the errors bounded below their running peaks gives the peaks of the full evaluation, bit for bit."""
+    from strapdown.analysis.multistage.sensors import SensorErrors
+    from strapdown.analysis.multistage.stage_recursion import cascade_loop
+    from strapdown.analysis.multistage.stages import _cascade_inputs
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    stages = list(_cascades()[name])
+    sc = Scenario(duration=1400.0, rocking_decay=1e-3, sensors=SensorErrors(gyro_drift=(1e-6, -2e-6, 3e-6), accel_bias=(0.01, -0.02, 0.005), gyro_noise=1e-5, accel_noise=1e-3))
+    data = sample(sc, 0.2, rng=4)
+    args = (data.gyro, data.accel, data.attitude, data.angles, sc.gravity, 0.2, *_cascade_inputs(data, stages))
+    bounded = cascade_loop(*args, store=False, bounds=True)[0]
+    full = cascade_loop(*args, store=False, bounds=False)[0]
+    stored = cascade_loop(*args, store=True)[0]
+    np.testing.assert_array_equal(bounded, full)
+    np.testing.assert_array_equal(stored, full)
+
+
+def test_bounds_are_not_used_when_truth_is_not_the_attitude():
+    """Angles that are not those of the attitude switch the bounds off (checked at 17 points); the peaks stay right."""
+    from strapdown.analysis.multistage.stage_recursion import cascade_loop
+    from strapdown.analysis.multistage.stages import _cascade_inputs, multistage_peaks, plotnikov_1999_stages
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    data = sample(Scenario(duration=1400.0), 0.2)
+    angles = data.angles.copy()
+    angles[:, 0] += 0.3  # a yaw offset: the true attitude and the angles disagree
+    shifted = replace(data, angles=angles)
+    stages = list(plotnikov_1999_stages(switch_time=150.0))
+    args = (shifted.gyro, shifted.accel, shifted.attitude, shifted.angles, 9.81, 0.2, *_cascade_inputs(shifted, stages))
+    np.testing.assert_array_equal(cascade_loop(*args, store=False, bounds=True)[0], cascade_loop(*args, store=False, bounds=False)[0])
+    np.testing.assert_allclose(multistage_peaks(shifted, stages), multistage_peaks(shifted, stages, engine="python"), rtol=1e-12, atol=0)

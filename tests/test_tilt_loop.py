@@ -104,3 +104,42 @@ def test_typed_responses():
     assert r.accel_step.shape == r.drift_step.shape == (101,) and r.accel_step[0] == 0.0
     f = complementary_filter(loop, np.logspace(-5, 0, 40))
     assert f.max_sum_error < 1e-12 and f.gyro_magnitude[0] < 1e-5 and f.accel_magnitude[-1] < 0.02
+
+
+@pytest.mark.parametrize("k,l", [(K1 / 2, L1 / 2), (K2, L2), (0.0, 9.81 / 6.371e6), (0.0, 1.24e-3), (0.02, 1e-4)])
+def test_step_response_on_grid_matches_control_step_response(k, l):
+    """The zero-order-hold recursion run by lfilter gives the samples of control.step_response (its per-step loop)."""
+    from strapdown.analysis.multistage.tilt_loop import step_response_on_grid
+
+    loop = StageLoop(k, l)
+    t = np.arange(10149) * 1.0
+    for system in (loop.error_from_accel(), loop.error_from_drift(), loop.gyro_highpass(), loop.accel_lowpass()):
+        ref = np.asarray(control.step_response(system, T=t).outputs, dtype=float).ravel()
+        got = step_response_on_grid(system, t)
+        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-9 * max(np.abs(ref).max(), 1e-12))
+
+
+def test_pulse_response_is_the_superposition_of_control_step_responses():
+    loop = StageLoop(K2, L2)
+    t, e = loop.pulse_response(20.0, 20.0)
+    step = np.asarray(control.step_response(loop.error_from_accel(), T=t).outputs, dtype=float).ravel()
+    m = int(round(20.0 / (t[1] - t[0])))
+    ref = 20.0 * (step - np.concatenate([np.zeros(m), step[:-m]]))
+    np.testing.assert_allclose(e, ref, rtol=0, atol=1e-9 * np.abs(ref).max())
+    assert loop.peak_tilt_error(20.0, 20.0) == pytest.approx(np.abs(ref).max(), rel=1e-9)
+
+
+def test_step_response_on_grid_refuses_bad_input():
+    from strapdown.analysis.multistage.tilt_loop import step_response_on_grid
+
+    sys = StageLoop(K2, L2).error_from_drift()
+    with pytest.raises(TypeError, match="`system`"):
+        step_response_on_grid([1.0, 2.0], [0.0, 1.0])
+    with pytest.raises(ValueError, match="`system`"):
+        step_response_on_grid(control.tf([1.0], [1.0, 0.5], 1.0), [0.0, 1.0])
+    with pytest.raises(ValueError, match="`system`"):
+        step_response_on_grid(StageLoop(K2, L2).state_space(), [0.0, 1.0])
+    with pytest.raises(ValueError, match="uniform"):
+        step_response_on_grid(sys, [0.0, 1.0, 3.0])
+    with pytest.raises(ValueError, match="from 0"):
+        step_response_on_grid(sys, [1.0, 2.0, 3.0])

@@ -35,11 +35,13 @@ __all__ = [
     "cross",
     "dot",
     "identity",
+    "SERIES_ANGLE",
 ]
 
-# Below this angle (rad) the series branches are used; their truncation error
-# there is below 1e-24 relative, far under round-off.
-_SMALL = 1e-2
+#: Below this angle [rad] :func:`rotvec_to_quat` and :func:`quat_to_rotvec` use their series
+#: branches; their truncation error there is below 1e-24 relative, far under round-off.
+SERIES_ANGLE = 1e-2
+_SMALL = SERIES_ANGLE
 
 
 def _arr(x):
@@ -230,7 +232,20 @@ def rotate(q, v):
     ----------
     Lebedev & Panov (1989), section 1 (``v_I = Λ ∘ v_E ∘ Λ̄``).
     """
-    return vect(multiply(multiply(q, vector_to_quat(v)), conjugate(q)))
+    q, v = _arr(q), _arr(v)
+    q0, q1, q2, q3 = (q[..., i] for i in range(4))
+    v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
+    # the products of multiply(multiply(q, vector_to_quat(v)), conjugate(q)), component by component
+    w0, w1, w2, w3 = multiply_parts((q0, q1, q2, q3), (v0 * 0.0, v0, v1, v2))
+    c1, c2, c3 = -q1, -q2, -q3
+    return np.stack(
+        [
+            w0 * c1 + w1 * q0 + w2 * c3 - w3 * c2,
+            w0 * c2 - w1 * c3 + w2 * q0 + w3 * c1,
+            w0 * c3 + w1 * c2 - w2 * c1 + w3 * q0,
+        ],
+        axis=-1,
+    )
 
 
 def cross(a, b):

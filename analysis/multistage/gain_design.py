@@ -47,7 +47,7 @@ from ..core.validation import as_array, as_float, nonnegative, positive
 from . import earth
 from .sensors import SensorErrors
 from .stages import REFERENCES, Stage, StagePeaks, simulate
-from .tilt_loop import StageLoop
+from .tilt_loop import StageLoop, step_response_on_grid
 from .trajectory import Scenario
 
 __all__ = [
@@ -638,8 +638,6 @@ def check_design(gains: StageGains, *, tilt: float = 0.01, duration: float = 150
     -------
     DesignCheck
     """
-    import control
-
     if not isinstance(gains, StageGains):
         raise TypeError(f"Expected `gains` to be a StageGains, got {type(gains).__name__}")
     pitch = as_float(tilt, "tilt")
@@ -657,7 +655,7 @@ def check_design(gains: StageGains, *, tilt: float = 0.01, duration: float = 150
     )
     res = simulate(sc, (gains.stage(rho=1.0),), step=step)
     sim = res.errors[0, :, 1]
-    pred = -pitch * np.asarray(control.step_response(gains.loop(sc.gravity, sc.earth_radius).gyro_highpass(), T=res.time).outputs, dtype=float).reshape(-1)
+    pred = -pitch * step_response_on_grid(gains.loop(sc.gravity, sc.earth_radius).gyro_highpass(), res.time)
     return DesignCheck(gains, res.time, sim, pred, float(np.abs(sim - pred).max()))
 
 

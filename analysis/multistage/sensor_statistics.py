@@ -4,7 +4,9 @@ Each trial draws the sensor errors of both triads — bias signs and sizes,
 scale factors, and white noise as angle and velocity random walk
 (:class:`SensorErrorStatistics`) — adds them to one ideal record of the truth
 (:func:`strapdown.analysis.multistage.sensors.corrupt`), runs the cascade and
-keeps the peak yaw, pitch, roll and tilt errors of every stage.  The trials
+keeps the peak yaw, pitch, roll and tilt errors of every stage (in one
+compiled pass per trial that forms the peaks without keeping the series,
+:func:`strapdown.analysis.multistage.stages.multistage_peaks`).  The trials
 are grouped into blocks seeded from the spawn keys of one root
 :class:`numpy.random.SeedSequence` (:func:`strapdown.analysis.core.montecarlo.collect`,
 the seeding of the azimuth Monte Carlo), so the peaks are bit-identical for
@@ -21,7 +23,7 @@ from ...derivations.multistage.published import SECTION5
 from ..core import montecarlo
 from ..core.validation import as_int, nonnegative, positive
 from .sensors import SensorData, SensorErrors, corrupt
-from .stages import Stage, plotnikov_1999_stages, run_multistage
+from .stages import ENGINES, Stage, multistage_peaks, plotnikov_1999_stages
 from .trajectory import Scenario, sample
 
 __all__ = ["DISTRIBUTIONS", "SensorErrorStatistics", "PeakErrorKernel", "PeakStatistics", "sensor_error_monte_carlo"]
@@ -141,11 +143,14 @@ class PeakErrorKernel:
         The cascade.
     statistics : SensorErrorStatistics
         What to draw.
+    engine : {"compiled", "python"}
+        Implementation of the cascade (:func:`strapdown.analysis.multistage.stages.multistage_peaks`).
     """
 
     ideal: SensorData
     stages: tuple
     statistics: SensorErrorStatistics
+    engine: str = "compiled"
 
     def __call__(self, n_trials: int, rng) -> np.ndarray:
         """Peaks of ``n_trials`` trials.
@@ -165,8 +170,7 @@ class PeakErrorKernel:
         out = np.empty((n_trials, 4 * len(self.stages)))
         for i, trial in enumerate(rng.spawn(n_trials)):
             errors = self.statistics.draw(trial)
-            res = run_multistage(corrupt(self.ideal, errors, rng=trial), self.stages)
-            out[i] = np.concatenate([np.asarray(p) for p in res.peaks()])
+            out[i] = multistage_peaks(corrupt(self.ideal, errors, rng=trial), self.stages, engine=self.engine).ravel()
         return out
 
 
@@ -251,6 +255,7 @@ def sensor_error_monte_carlo(
     blocks_per_chunk: int = 4,
     executor=None,
     progress: bool = False,
+    engine: str = "compiled",
 ) -> PeakStatistics:
     """Percentiles of the peak errors of each stage over random sensor errors.
 
@@ -278,6 +283,10 @@ def sensor_error_monte_carlo(
         Where chunks run (does not change the result).
     progress : bool
         tqdm bar on stderr.
+    engine : {"compiled", "python"}
+        Implementation of the cascade: one compiled pass per trial, or the
+        reference (plain-Python stage recursion, numpy in between); the two
+        agree to round-off.
 
     Returns
     -------
@@ -286,13 +295,15 @@ def sensor_error_monte_carlo(
     Raises
     ------
     ValueError
-        For ``n_trials < 2``, bad levels or a bad step.
+        For ``n_trials < 2``, bad levels, a bad step or an unknown engine.
     """
     stats = SensorErrorStatistics.plotnikov_1999() if statistics is None else statistics
     if not isinstance(stats, SensorErrorStatistics):
         raise TypeError(f"Expected `statistics` to be a SensorErrorStatistics, got {type(stats).__name__}")
     n_trials = as_int(n_trials, "n_trials", minimum=2)
     positive(step, "step")
+    if engine not in ENGINES:
+        raise ValueError(f"Expected `engine` in {ENGINES}, got {engine!r}")
     levels = tuple(float(v) for v in levels)
     if not levels or any(not 0.0 <= v <= 100.0 for v in levels):
         raise ValueError(f"Expected `levels` in [0, 100], got {levels}")
@@ -303,10 +314,10 @@ def sensor_error_monte_carlo(
         raise TypeError("Expected `stages` to be a non-empty sequence of Stage")
     ideal = sample(clean, step)
     root = montecarlo.root_seed_sequence(rng)
-    kernel = PeakErrorKernel(ideal, stages, stats)
+    kernel = PeakErrorKernel(ideal, stages, stats, engine)
     rows = montecarlo.collect(kernel, n_trials, rng=root, trials_per_block=trials_per_block, blocks_per_chunk=blocks_per_chunk, executor=executor, progress=progress)
     peaks = rows.reshape(n_trials, len(stages), 4)
-    nominal = np.array([np.asarray(p) for p in run_multistage(ideal, stages).peaks()])
+    nominal = multistage_peaks(ideal, stages, engine=engine)
     pct = np.percentile(peaks, levels, axis=0)
     entropy = root.entropy if isinstance(root.entropy, int) else int(np.asarray(root.entropy).ravel()[0])
     return PeakStatistics(peaks, levels, pct, nominal, stats, entropy)

@@ -163,10 +163,17 @@ def corrupt(data: SensorData, errors: SensorErrors, *, rng=None) -> SensorData:
         raise TypeError(f"Expected `errors` to be a SensorErrors, got {type(errors).__name__}")
     h = data.step
     gyro_rng, accel_rng = np.random.default_rng(rng).spawn(2)
-    gyro = (1.0 + np.asarray(errors.gyro_scale)) * data.gyro + np.asarray(errors.gyro_drift) * h
+    # in place, in the order of Δφ_meas = (1 + s_g) Δφ + d h + N_g √h n (the same roundings as written out)
+    gyro = (1.0 + np.asarray(errors.gyro_scale)) * data.gyro
+    gyro += np.asarray(errors.gyro_drift) * h
     if errors.gyro_noise > 0.0:
-        gyro = gyro + errors.gyro_noise * np.sqrt(h) * gyro_rng.standard_normal(gyro.shape)
-    accel = (1.0 + np.asarray(errors.accel_scale)) * data.accel + np.asarray(errors.accel_bias)
+        noise = gyro_rng.standard_normal(gyro.shape)
+        noise *= errors.gyro_noise * np.sqrt(h)
+        gyro += noise
+    accel = (1.0 + np.asarray(errors.accel_scale)) * data.accel
+    accel += np.asarray(errors.accel_bias)
     if errors.accel_noise > 0.0:
-        accel = accel + errors.accel_noise / np.sqrt(h) * accel_rng.standard_normal(accel.shape)
+        noise = accel_rng.standard_normal(accel.shape)
+        noise *= errors.accel_noise / np.sqrt(h)
+        accel += noise
     return replace(data, gyro=gyro, accel=accel)

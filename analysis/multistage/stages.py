@@ -31,8 +31,11 @@ form of (3.1); what happens to it at a change of the gain schedule is the
 ``switch`` of the stage (:data:`strapdown.analysis.multistage.stage_recursion.SWITCH_MODES`).
 
 Each stage is integrated by the splitting recursion of
-:mod:`strapdown.analysis.multistage.stage_recursion` (second order, compiled); the
-rest is vectorised.
+:mod:`strapdown.analysis.multistage.stage_recursion` (second order).  The
+compiled engine runs the whole cascade, composition and angle errors
+included, in one pass (:func:`strapdown.analysis.multistage.stage_recursion.cascade_loop`);
+the reference engine runs it stage by stage in plain Python with vectorised
+numpy in between, and the tests hold the two equal to round-off.
 """
 
 from __future__ import annotations
@@ -60,6 +63,7 @@ __all__ = [
     "run_stage",
     "recursion_inputs",
     "run_multistage",
+    "multistage_peaks",
     "plotnikov_1999_stages",
     "simulate",
 ]
@@ -486,6 +490,52 @@ def _half(dq):
     return quat.rotvec_to_quat(0.5 * quat.quat_to_rotvec(dq, canonical=True, validate=False), validate=False)
 
 
+def _cascade_inputs(data: SensorData, stages: list) -> tuple:
+    """The stage parameters of :func:`strapdown.analysis.multistage.stage_recursion.cascade_loop`, padded to the longest schedule."""
+    from .stage_recursion import KINDS
+
+    n_steps, h = data.gyro.shape[0], data.step
+    m, n_max = len(stages), max(len(st.schedule) for st in stages)
+    seg_start = np.full((m, n_max + 1), n_steps, dtype=np.int64)
+    maps, gains = np.zeros((m, n_max, 6)), np.ones((m, n_max, 2))
+    for j, st in enumerate(stages):
+        rows = len(st.schedule)
+        seg_start[j, : rows + 1] = _segments(st.schedule, n_steps, h)
+        maps[j, :rows] = [correction_map(k, l, st.c, 0.5 * h) for _, k, l in st.schedule]
+        gains[j, :rows] = [(k, l) for _, k, l in st.schedule]
+    return (
+        np.array([KINDS.index(st.reference) for st in stages], dtype=np.int64),
+        np.array([[i in st.components for i in range(4)] for st in stages]),
+        np.array([st.c for st in stages]),
+        np.array([st.rho for st in stages]),
+        np.array([SWITCH_MODES.index(st.switch) for st in stages], dtype=np.int64),
+        seg_start,
+        np.array([len(st.schedule) for st in stages], dtype=np.int64),
+        maps,
+        gains,
+        np.tile([1.0, 0.0, 0.0, 0.0], (m, 1)),
+    )
+
+
+def _checked(data, stages, engine) -> list:
+    if not isinstance(data, SensorData):
+        raise TypeError(f"Expected `data` to be a SensorData, got {type(data).__name__}")
+    stages = list(stages)
+    if not stages or not all(isinstance(s, Stage) for s in stages):
+        raise TypeError("Expected `stages` to be a non-empty sequence of Stage")
+    if any(s.reference == "external" for s in stages[1:]):
+        raise ValueError("Expected the reference 'external' on stage 1 only")
+    if engine not in ENGINES:
+        raise ValueError(f"Expected `engine` in {ENGINES}, got {engine!r}")
+    return stages
+
+
+def _compiled_cascade(data: SensorData, stages: list, store: bool) -> tuple:
+    from .stage_recursion import cascade_loop
+
+    return cascade_loop(data.gyro, data.accel, data.attitude, data.angles, data.scenario.gravity, data.step, *_cascade_inputs(data, stages), store=store)
+
+
 def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> MultistageResult:
     """Run the cascade (1.5), (2.1)–(2.4) on sampled signals and compose by (2.6).
 
@@ -503,7 +553,11 @@ def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> Mul
         Stage 1 first.  Only stage 1 may use the reference "external"
         (fed with the true attitude).
     engine : {"compiled", "python"}
-        Implementation of the stage recursion (:func:`run_stage`).
+        "compiled": the whole cascade in one compiled pass
+        (:func:`strapdown.analysis.multistage.stage_recursion.cascade_loop`);
+        "python": stage after stage with the plain-Python recursion
+        (:func:`run_stage`) and vectorised numpy in between, the reference.
+        Both agree to round-off.
 
     Returns
     -------
@@ -514,15 +568,17 @@ def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> Mul
     TypeError
         For a wrong ``data`` or ``stages`` type.
     ValueError
-        If a stage after the first uses the reference "external".
+        If a stage after the first uses the reference "external", for an
+        unknown engine, or if the composite attitude is not finite.
+
+    References
+    ----------
+    Plotnikov (1999), eqs. (1.5), (2.1)–(2.6).
     """
-    if not isinstance(data, SensorData):
-        raise TypeError(f"Expected `data` to be a SensorData, got {type(data).__name__}")
-    stages = list(stages)
-    if not stages or not all(isinstance(s, Stage) for s in stages):
-        raise TypeError("Expected `stages` to be a non-empty sequence of Stage")
-    if any(s.reference == "external" for s in stages[1:]):
-        raise ValueError("Expected the reference 'external' on stage 1 only")
+    stages = _checked(data, stages, engine)
+    if engine == "compiled":
+        _, nus, comps, errors = _compiled_cascade(data, stages, True)
+        return MultistageResult(time=data.time, stages=nus, composite=comps, errors=errors, truth=data.angles)
     g = data.scenario.gravity
     dq = quat.rotvec_to_quat(data.gyro, validate=False)
     force = data.accel
@@ -545,6 +601,43 @@ def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> Mul
     est = quat_to_angles(comps)
     errors = wrap_angle(est - data.angles)
     return MultistageResult(time=data.time, stages=np.array(nus), composite=comps, errors=errors, truth=data.angles)
+
+
+def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> np.ndarray:
+    """Peak errors of the cascade over the whole run, without keeping the series.
+
+    The same as ``run_multistage(data, stages).peaks()`` (to round-off), for
+    Monte Carlo trials: the compiled engine forms the peaks on the way.
+
+    Parameters
+    ----------
+    data : SensorData
+        Gyro increments and specific force of the body.
+    stages : sequence of Stage
+        Stage 1 first (as for :func:`run_multistage`).
+    engine : {"compiled", "python"}
+        As for :func:`run_multistage`.
+
+    Returns
+    -------
+    ndarray, shape (m, 4)
+        Largest |Δψ|, |Δθ|, |Δγ| and √(Δθ² + Δγ²) after 1, …, m stages [rad].
+
+    Raises
+    ------
+    TypeError
+        For a wrong ``data`` or ``stages`` type.
+    ValueError
+        As :func:`run_multistage`.
+
+    References
+    ----------
+    Plotnikov (1999), eqs. (1.5), (2.1)–(2.6).
+    """
+    stages = _checked(data, stages, engine)
+    if engine == "compiled":
+        return _compiled_cascade(data, stages, False)[0]
+    return np.array([tuple(p) for p in run_multistage(data, stages, engine=engine).peaks()])
 
 
 def plotnikov_1999_stages(

@@ -463,6 +463,17 @@ def _motion(sc: Scenario, t):
     return lat, vel, wander, mu_geo, mu, angles, f_geo, f_body
 
 
+def _body_force(sc: Scenario, t):
+    """The specific force in body axes of :func:`_motion` alone (the same operations, without the attitude relative to η)."""
+    if sc.truth != "rotating-earth":
+        return _motion(sc, t)[-1]
+    lat = sc.latitude_at(t)
+    rock = sc.rocking_angles(t)
+    mu_geo = angles_to_quat(rock[..., 0], rock[..., 1], rock[..., 2])
+    f_geo = earth.specific_force_geographic(lat, sc.north_velocity(t), sc.north_acceleration(t), gravity=sc.gravity, earth_rate=sc.earth_rate, earth_radius=sc.earth_radius)
+    return quat.rotate(quat.conjugate(mu_geo), f_geo)
+
+
 def grid(scenario: Scenario, step) -> np.ndarray:
     """Uniform time grid of step ``step`` that contains every event of ``scenario``.
 
@@ -528,7 +539,7 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     lam = at_grid.attitude_inertial
     d_body = quat.multiply(quat.conjugate(lam[:-1]), lam[1:])
     gyro = quat.quat_to_rotvec(d_body, canonical=True, validate=False)
-    f_nodes = _motion(scenario, t[:-1, None] + h * x)[-1]
+    f_nodes = _body_force(scenario, t[:-1, None] + h * x)
     accel = np.einsum("nkj,k->nj", f_nodes, w)
     ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=at_grid.attitude, angles=at_grid.angles, velocity=at_grid.velocity, scenario=scenario)
     if scenario.sensors.is_ideal:
