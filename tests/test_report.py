@@ -117,6 +117,24 @@ def test_fixed_layout_places_the_grid_in_inches():
     plt.close(fig)
 
 
+def test_layout_overlaps_finds_labels_inside_a_neighbouring_frame():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import fixed_layout, layout_overlaps
+
+    fig, (a, b) = plt.subplots(1, 2, figsize=(8.0, 3.0))
+    b.set_yticks([0.5], ["a long tick label"])
+    fixed_layout(fig, wgap=1.5)
+    assert layout_overlaps(fig) == []
+    fixed_layout(fig, wgap=0.1)
+    ((i, j, w, h),) = layout_overlaps(fig)
+    assert (i, j) == (1, 0) and w > 0.3 and h > 0.05
+    plt.close(fig)
+
+
 def test_savefig_hands_each_figure_to_the_check_before_closing(tmp_path):
     import matplotlib
 

@@ -11,10 +11,13 @@ content reaches past each edge of the canvas
 
 * a side whose content reaches more than ``--clip`` inches past the edge is
   clipped: the check fails;
+* the labels or ticks of one axes that reach more than ``--clip`` inches into
+  the frame of another overlap it: the check fails too
+  (:func:`strapdown.analysis.report.rendering.layout_overlaps`);
 * a side with more than ``--spare`` inches of empty margin is listed as a
   warning (space the figure could give to its axes).
 
-Exit status: 0 when no figure is clipped, 1 otherwise, 2 for bad arguments.
+Exit status: 0 when no figure is clipped or overlapping, 1 otherwise, 2 for bad arguments.
 
 Usage::
 
@@ -39,12 +42,12 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
 
     from strapdown.analysis import report
-    from strapdown.analysis.report.rendering import layout_overflow
+    from strapdown.analysis.report.rendering import layout_overflow, layout_overlaps
 
     rows = []
 
     def measure(relpath, fig):
-        rows.append((relpath, layout_overflow(fig)))
+        rows.append((relpath, layout_overflow(fig), layout_overlaps(fig, args.clip)))
 
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out if args.out is not None else Path(tmp) / "report"
@@ -56,16 +59,18 @@ def main(argv=None) -> int:
     sides = ("left", "bottom", "right", "top")
     clipped = 0
     print(f"{'figure':48s} " + " ".join(f"{s:>7s}" for s in sides) + "   [in past the edge; negative: empty margin]")
-    for relpath, over in rows:
+    for relpath, over, overlaps in rows:
         flags = []
         if any(v > args.clip for v in over):
-            clipped += 1
             flags.append("CLIPPED " + ", ".join(s for s, v in zip(sides, over) if v > args.clip))
+        if overlaps:
+            flags.append("OVERLAP " + ", ".join(f"axes {i} into axes {j} by {w:.2f} x {h:.2f} in" for i, j, w, h in overlaps))
+        clipped += bool(flags)
         wide = [s for s, v in zip(sides, over) if -v > args.spare]
         if wide:
             flags.append("wide margin " + ", ".join(wide))
         print(f"{relpath:48s} " + " ".join(f"{v:7.2f}" for v in over) + ("   " + "; ".join(flags) if flags else ""))
-    print(f"{len(rows)} figures, {clipped} clipped")
+    print(f"{len(rows)} figures, {clipped} clipped or overlapping")
     return 1 if clipped else 0
 
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow"]
+__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps"]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -240,3 +240,38 @@ def layout_overflow(fig) -> tuple:
     box = fig.get_tightbbox(renderer)
     width, height = fig.get_size_inches()
     return (-box.x0, -box.y0, box.x1 - width, box.y1 - height)
+
+
+def layout_overlaps(fig, tolerance: float = 0.01) -> list:
+    """Pairs of axes where the labels or ticks of one reach into the frame of the other.
+
+    Like :func:`layout_overflow`, for checks (it draws the figure's layout).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A complete figure.
+    tolerance : float
+        Overlap that is ignored, in each direction [in].
+
+    Returns
+    -------
+    list of tuple
+        ``(i, j, width, height)``: the decorations of ``fig.axes[i]`` overlap the
+        frame of ``fig.axes[j]`` by ``width`` x ``height`` [in].
+    """
+    renderer = fig.canvas.get_renderer()
+    dpi = fig.dpi
+    axes = [ax for ax in fig.axes if ax.get_visible()]
+    boxes = [ax.get_tightbbox(renderer) for ax in axes]
+    frames = [ax.get_window_extent(renderer) for ax in axes]
+    out = []
+    for i, box in enumerate(boxes):
+        for j, frame in enumerate(frames):
+            if i == j or box is None:
+                continue
+            w = (min(box.x1, frame.x1) - max(box.x0, frame.x0)) / dpi
+            h = (min(box.y1, frame.y1) - max(box.y0, frame.y0)) / dpi
+            if w > tolerance and h > tolerance:
+                out.append((fig.axes.index(axes[i]), fig.axes.index(axes[j]), w, h))
+    return out

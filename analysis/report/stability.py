@@ -13,7 +13,7 @@ import numpy as np
 from ...derivations.multistage.published import PAPER, PRINTED_GAINS, SECTION5
 from ..core import units
 from . import Erratum, Section
-from .rendering import at_round_off
+from .rendering import at_round_off, fixed_layout
 
 SECTION = Section(
     "stability",
@@ -272,6 +272,7 @@ def _root_locus_figure(ctx, loops, g, r) -> None:
     axes[0].set_ylim(-0.015, 0.015)
     axes[1].set_xlim(-0.02, 0.002)
     axes[1].set_ylim(-0.03, 0.03)
+    fixed_layout(fig, left=0.85, right=0.15, bottom=0.5, top=0.3, wgap=0.85)
     ctx.savefig(fig, "figures/stability-root-locus.png")
 
 
@@ -293,6 +294,7 @@ def _responses_figure(ctx, loops) -> None:
     for ax in axes:
         ax.set_xlabel("t [s]")
     axes[0].legend(fontsize=6)
+    fixed_layout(fig, left=0.6, right=0.15, bottom=0.5, top=0.5, wgap=0.75)
     ctx.savefig(fig, "figures/stability-responses.png")
 
 
@@ -316,6 +318,7 @@ def _bode_figure(ctx, loops, schuler_frequency) -> None:
     axes[1].set_ylabel("phase [deg]")
     axes[1].set_xlabel("ω [rad/s] (grey: Schuler frequency)")
     axes[0].legend(fontsize=6)
+    fixed_layout(fig, left=0.8, right=0.15, bottom=0.5, top=0.15, hgap=0.15)
     ctx.savefig(fig, "figures/stability-bode.png")
 
 
@@ -394,6 +397,7 @@ def _design_figure(ctx, checks) -> None:
         ax.set_xlabel("t [s]")
         ax.legend(fontsize=6)
     axes[0].set_ylabel("pitch error [rad]")
+    fixed_layout(fig, left=0.9, right=0.15, bottom=0.5, top=0.3, wgap=0.2)
     ctx.savefig(fig, "figures/stability-design.png")
 
 
@@ -418,6 +422,7 @@ def _budget_figure(ctx, check, run) -> None:
     axes[1].set_title("section 5: two-stage pitch error")
     axes[1].set_xlabel("t [s]")
     axes[1].legend(fontsize=6, loc="upper right")  # where "best" puts it; "best" searches 10⁵ points at every draw
+    fixed_layout(fig, left=0.85, right=0.15, bottom=0.5, top=0.3, wgap=0.8)
     ctx.savefig(fig, "figures/stability-budget.png")
 
 
@@ -540,6 +545,7 @@ def _scenario_figure(ctx, run) -> None:
     axes[0].legend(fontsize=7, loc="lower right")  # where "best" puts them; "best" searches 10⁵ points at every draw
     axes[1].legend(fontsize=7, loc="upper right")
     axes[2].set_xlabel("t [s] (grey: gain switch at 600 s, start of the acceleration)")
+    fixed_layout(fig, left=0.9, right=0.15, bottom=0.5, top=0.15, hgap=0.15)
     ctx.savefig(fig, "figures/stability-scenario.png")
 
 
@@ -713,6 +719,7 @@ def _yaw_figure(ctx, study) -> None:
         ax.set_xlabel("t [s]")
         ax.set_ylabel("Δψ [rad]")
         ax.legend(fontsize=6)
+    fixed_layout(fig, left=0.9, right=0.15, bottom=0.5, top=0.3, wgap=0.85)
     ctx.savefig(fig, "figures/stability-yaw.png")
 
 
@@ -762,6 +769,7 @@ def _statistics_figure(ctx, mc) -> None:
         ax.set_xlabel("[rad]")
         ax.legend(fontsize=6)
     axes[0].set_ylabel("trials")
+    fixed_layout(fig, left=0.7, right=0.2, bottom=0.5, top=0.3, wgap=0.65)
     ctx.savefig(fig, "figures/stability-sensor-statistics.png")
 
 
