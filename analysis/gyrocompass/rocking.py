@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.validation import as_float, as_int, nonnegative, positive
 
-__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "tilt_domain_limit", "MODELS"]
+__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "mean_law", "tilt_domain_limit", "MODELS"]
 
 
 def as_generator(rng) -> np.random.Generator:
@@ -70,6 +70,22 @@ def _shape(n_trials, n_steps) -> tuple[int, int]:
 
 def _dt(dt):
     return None if dt is None else positive(dt, "dt")
+
+
+def _order(k) -> int:
+    return as_int(k, "k", minimum=0)
+
+
+def _normal_moment(k) -> float:
+    """``E u^k`` of a standard normal u: 0 for odd k, ``(k − 1)!!`` for even k."""
+    k = _order(k)
+    return 0.0 if k % 2 else float(math.prod(range(k - 1, 0, -2)))
+
+
+def _arcsine_moment(k) -> float:
+    """``E u^k`` of ``u = √2 sin ψ``, ψ uniform: 0 for odd k, ``2^{k/2} C(k, k/2) / 2^k`` for even k."""
+    k = _order(k)
+    return 0.0 if k % 2 else math.comb(k, k // 2) * 2.0 ** (k // 2) / 2.0**k
 
 
 @dataclass(frozen=True)
@@ -126,6 +142,23 @@ class GaussianRocking:
         z[0] *= self.sigma_xi
         z[1] *= self.sigma_eta
         return z[0], z[1]
+
+    def standard_moment(self, k: int) -> float:
+        """``E (ξ/σξ)^k`` (the same for η) [dimensionless]: the moments of the standard normal law.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+
+        Returns
+        -------
+        float
+
+        >>> GaussianRocking(0.01, 0.01).standard_moment(4)
+        3.0
+        """
+        return _normal_moment(k)
 
     def autocorrelation(self, lag):
         """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]: 1 at 0, else 0.
@@ -214,6 +247,23 @@ class SineRocking:
             out.append(phase)
         return out[0], out[1]
 
+    def standard_moment(self, k: int) -> float:
+        """``E (ξ/σξ)^k`` at a random instant (the same for η) [dimensionless]: ``ξ/σξ = √2 sin ψ``, ψ uniform.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+
+        Returns
+        -------
+        float
+
+        >>> SineRocking(0.01, 0.01).standard_moment(4)
+        1.5
+        """
+        return _arcsine_moment(k)
+
     def autocorrelation(self, lag, *, axis: str = "xi"):
         """Normalised autocorrelation ``cos(2π τ / T)`` at lags ``lag`` [s].
 
@@ -275,6 +325,20 @@ class NarrowbandRocking:
         if not 0.0 < damping < 1.0:
             raise ValueError(f"Expected `damping` in (0, 1), got {damping:g}")
         object.__setattr__(self, "damping", damping)
+
+    def standard_moment(self, k: int) -> float:
+        """``E (ξ/σξ)^k`` (the same for η) [dimensionless]: the stationary law is normal.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+
+        Returns
+        -------
+        float
+        """
+        return _normal_moment(k)
 
     @property
     def omega0(self) -> float:
@@ -529,6 +593,63 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
     else:
         rho = model.autocorrelation(k * dt)
     return max(float((1.0 + 2.0 * np.sum((1.0 - k / n) * rho)) / n), 0.0)
+
+
+def mean_law(model, n_steps: int, dt: float | None):
+    """The rocking model whose draws at independent instants have the law of one record's sample means.
+
+    The sample means ``(ξ̄_n, η̄_n)`` of ``n_steps`` samples taken every ``dt``
+    are independent, zero-mean, with variances ``v σ²``
+    (:func:`mean_variance_factor`), and their law is exact:
+
+    * Gaussian and narrow-band rocking: a linear functional of a Gaussian
+      process is Gaussian, so the means are :class:`GaussianRocking` with
+      standard deviations ``σ √v``;
+    * a sinusoid sampled every ``dt``: the mean of ``a sin(ω k dt + ψ)`` is
+      ``a |S| sin(ψ + arg S)`` with ``S = (1/n) Σ exp(iωk dt)`` and
+      ``|S|² = v``, again a sinusoid with a uniform phase: :class:`SineRocking`
+      with standard deviations ``σ √v``.
+
+    Parameters
+    ----------
+    model : GaussianRocking | SineRocking | NarrowbandRocking
+        The rocking.
+    n_steps : int
+        Samples averaged, ≥ 1.
+    dt : float or None
+        Sample interval [s]; None for independent samples (not for a sinusoid,
+        whose mean of independent instants has no closed law).
+
+    Returns
+    -------
+    GaussianRocking | SineRocking
+
+    Raises
+    ------
+    ValueError
+        For a sinusoid with ``dt=None``.
+    TypeError
+        For an unknown model.
+
+    References
+    ----------
+    Hrechka & Koroliov, eq. (16) (the sample means); Priestley, M. B., *Spectral
+    Analysis and Time Series*, Academic Press, 1981, sec. 5.3.
+
+    >>> m = mean_law(GaussianRocking(0.02, 0.01), 4, None)
+    >>> m.sigma_xi, m.sigma_eta
+    (0.01, 0.005)
+    """
+    n = as_int(n_steps, "n_steps", minimum=1)
+    if not isinstance(model, (GaussianRocking, SineRocking, NarrowbandRocking)):
+        raise TypeError(f"Expected `model` to be a rocking model, got {type(model).__name__}")
+    if isinstance(model, SineRocking) and dt is None:
+        raise ValueError("Expected `dt` for a sinusoid (its mean over independent instants has no closed law), got None")
+    sx = model.sigma_xi * math.sqrt(mean_variance_factor(model, n, dt, axis="xi"))
+    se = model.sigma_eta * math.sqrt(mean_variance_factor(model, n, dt, axis="eta"))
+    if isinstance(model, SineRocking):
+        return SineRocking(sx, se, model.period_xi, model.period_eta)
+    return GaussianRocking(sx, se)
 
 
 def tilt_domain_limit(model, beta0: float, gamma0: float) -> float:
