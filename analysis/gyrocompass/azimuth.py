@@ -48,6 +48,7 @@ __all__ = [
     "AzimuthErrorKernel",
     "ControlVariateSummary",
     "AzimuthMonteCarlo",
+    "far_rocking_probability",
     "azimuth_monte_carlo",
     "check_latitude",
 ]
@@ -530,6 +531,29 @@ class TaylorControls:
         moments = tuple(rocking.standard_moment(k) for k in range(degree + 1))
         return cls(degree, rocking.sigma_xi, rocking.sigma_eta, moments, moments)
 
+    def fitted(self, xi, eta, errors) -> TaylorControls:
+        """These controls with coefficients fitted on pilot draws (:func:`strapdown.analysis.core.montecarlo.fit_controls`).
+
+        Parameters
+        ----------
+        xi, eta : array_like
+            Pilot rocking samples [rad].
+        errors : array_like
+            Their azimuth errors [rad].
+
+        Returns
+        -------
+        TaylorControls
+
+        Raises
+        ------
+        ValueError
+            If the pilot has fewer than ``2p + 4`` draws (p monomials).
+        """
+        e = np.ravel(errors)
+        fit = montecarlo.fit_controls(np.stack([e, e * e], axis=1), self.monomials(xi, eta))
+        return replace(self, coefficients=fit.coefficients, offsets=fit.intercepts, variance_ratios=fit.variance_ratios)
+
     @property
     def variance_ratio(self) -> float:
         """The larger of :attr:`variance_ratios` (1 when not fitted) [dimensionless]."""
@@ -696,9 +720,10 @@ class ControlVariateSummary:
     Attributes
     ----------
     degree : int
-        Highest total degree of the :class:`TaylorControls`.
+        Highest total degree of the controls (:class:`TaylorControls`; 1 for
+        linear controls); 0: the run is a plain Monte Carlo.
     pilot_samples : int
-        Draws of the pilot that fitted the coefficients [count].
+        Draws of the pilots that fitted and sized the run (0: none, coefficients fixed in advance or no controls) [count].
     samples : int
         Draws of the run whose statistics are reported [count].
     reference_samples : int
@@ -740,12 +765,22 @@ class AzimuthMonteCarlo:
 
 
 #: main-run size over (variance ratio × reference size): a margin for the pilot's estimate of the ratio
-_SIZE_MARGIN = 1.25
+_SIZE_MARGIN = 1.5
 #: draws per block of a control-variate run (the unit of randomness)
 _CONTROL_BLOCK = 8192
-#: larger redraws allowed when a run falls short of the reference precision, and their margin
-_EXTENSIONS = 3
-_EXTENSION_MARGIN = 1.5
+#: the Taylor controls are trusted for tilts within this fraction of the distance to the horizon of the tilt correction
+_TRUSTED_FRACTION = 0.9
+#: a plain run of the reference size expecting fewer excursions beyond it than this is not shortened by them;
+#: otherwise a sinusoid's controlled run contains at least ``_FAR_VISITS`` of them, and unbounded rocking runs plain
+_RARE_VISITS = 0.05
+_FAR_VISITS = 100
+#: a run longer than this many pilots is fitted and sized on a second pilot of a quarter of its length
+_LONG_RUN = 16
+#: longer runs allowed when a run still falls short of the reference precision
+_EXTENSIONS = 2
+#: highest degree of the controls of unbounded (Gaussian) rocking: the residual of degree-4 controls of Gaussian
+#: draws has a skewness of 10-40, too much for the normal interval of a run of a few thousand draws
+_UNBOUNDED_DEGREE = 2
 
 
 def azimuth_monte_carlo(
@@ -761,7 +796,7 @@ def azimuth_monte_carlo(
     progress: bool = False,
     blocks_per_chunk: int = 16,
     control_degree: int = 0,
-    pilot_samples: int = 2048,
+    pilot_samples: int = 1024,
     min_samples: int = 4096,
 ) -> AzimuthMonteCarlo:
     """Monte Carlo of ``α − α*`` at independent instants, with bounds (14), (15) and theory.
@@ -771,13 +806,22 @@ def azimuth_monte_carlo(
     ``steps_per_trial`` samples).  With ``control_degree ≥ 1`` the mean and the
     mean square are control-variate estimates (:class:`TaylorControls` of that
     degree): a pilot of ``pilot_samples`` draws (its own stream) fits the
-    coefficients and the fraction of the variance they leave; the run then
-    draws that fraction of ``n_samples`` (with a margin, at least
-    ``min_samples``), so that its standard errors are at most those of a plain
-    run of ``n_samples``.  The estimates are unbiased (the coefficients do not depend on the
-    run) and their intervals are the ordinary ones of independent draws.
-    If the run shows less precision than the reference (heavy tails the pilot
-    missed), it is redrawn larger, at most three times.
+    coefficients and the fraction of the variance they leave (out of sample);
+    the run then draws that fraction of ``n_samples`` (with a margin of 1.5, at
+    least ``min_samples``), so that its standard errors are at most those of a
+    plain run of ``n_samples``.  When that run is long, a second independent
+    pilot of a quarter of its length refits and resizes it (heavy tails show
+    only in larger samples).  The estimates are unbiased (the coefficients do
+    not depend on the run) and their intervals are the ordinary ones of
+    independent draws.  A run that still shows less precision than the
+    reference is extended, at most twice.  Where the rocking reaches
+    towards the horizon of the tilt correction (:func:`far_rocking_probability`)
+    often enough for a plain run of ``n_samples`` to meet it, the controls
+    cannot follow the error: the rare large errors there would dominate what
+    they leave, and a short run would miss them.  Such a run is the plain run
+    of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`), except
+    for a sinusoid (bounded), whose controlled run then contains at least
+    100 such excursions in expectation.
 
     Parameters
     ----------
@@ -801,7 +845,10 @@ def azimuth_monte_carlo(
     blocks_per_chunk : int
         Blocks per work item (the result does not depend on it).
     control_degree : int
-        0 for a plain Monte Carlo, else the highest total degree of the control monomials.
+        0 for a plain Monte Carlo, else the highest total degree of the control
+        monomials; at most 2 for unbounded (Gaussian) rocking, whose residuals
+        after higher-degree controls are too heavy-tailed for the interval of
+        a short run (a sinusoid is bounded: any degree).
     pilot_samples : int
         Draws of the pilot (control variates) [count].
     min_samples : int
@@ -849,18 +896,82 @@ def azimuth_monte_carlo(
     pilot_samples = as_int(pilot_samples, "pilot_samples", minimum=2)
     min_samples = as_int(min_samples, "min_samples", minimum=2)
     root = montecarlo.root_seed_sequence(rng)
-    controls = _fit_controls(replace(kernel, n_steps=1), control_degree, pilot_samples, montecarlo.block_seed(root, 0))
+    far = far_rocking_probability(latitude, kernel.beta0, kernel.gamma0, rocking)
+    bounded = isinstance(rocking, SineRocking)
+    if n_samples * far >= _RARE_VISITS and not (bounded and n_samples * far >= _FAR_VISITS):
+        # excursions towards the horizon that a plain run would meet: their rare, large errors dominate the
+        # variance the controls leave, so no shorter run can be trusted to see them (unbounded rocking) or
+        # they are too rare for 100 of them in a shorter run (a sinusoid): the plain run
+        n_trials = max(2, -(-n_samples // steps))
+        result = montecarlo.run(kernel, n_trials, rng=montecarlo.block_seed(root, 1), trials_per_block=max(1, 65536 // steps), **options)
+        return AzimuthMonteCarlo(result, *bounds, theory, ControlVariateSummary(0, 0, result.n_samples, n_samples, float(result.n_samples)))
+    pilot_kernel = replace(kernel, n_steps=1)
+    degree = control_degree if bounded else min(control_degree, _UNBOUNDED_DEGREE)
+
+    def sized(controls):
+        size = max(min_samples, math.ceil(_SIZE_MARGIN * controls.variance_ratio * n_samples))
+        return max(size, math.ceil(_FAR_VISITS / far)) if n_samples * far >= _FAR_VISITS else size
+
+    controls = _fit_controls(pilot_kernel, degree, pilot_samples, montecarlo.block_seed(root, 0))
+    size, pilots = sized(controls), pilot_samples
+    if size > _LONG_RUN * pilot_samples:  # a long run: fit and size it on a larger, independent pilot
+        second = math.ceil(size / 4)
+        controls = _fit_controls(pilot_kernel, degree, second, montecarlo.block_seed(root, 2))
+        size, pilots = max(size, sized(controls)), pilots + second
     kernel = replace(kernel, n_steps=1, controls=controls)
-    size = max(min_samples, math.ceil(_SIZE_MARGIN * controls.variance_ratio * n_samples))
-    for attempt in range(_EXTENSIONS + 1):
+    for attempt in range(_EXTENSIONS + 1):  # blocks are prefix-stable: a longer run extends the shorter one
         raw = montecarlo.run(kernel, size, rng=montecarlo.block_seed(root, 1), trials_per_block=_CONTROL_BLOCK, **options)
         result = montecarlo.controlled(raw, offsets=controls.offsets)
         worth = _plain_equivalent(raw, result)
         if worth >= n_samples or attempt == _EXTENSIONS:
             break
-        size = math.ceil(size * _EXTENSION_MARGIN * n_samples / worth)
-    summary = ControlVariateSummary(control_degree, pilot_samples, size, n_samples, worth)
+        size = math.ceil(size * _SIZE_MARGIN * n_samples / worth)
+    summary = ControlVariateSummary(degree, pilots, size, n_samples, worth)
     return AzimuthMonteCarlo(result, *bounds, theory, summary)
+
+
+def far_rocking_probability(latitude, beta0, gamma0, rocking) -> float:
+    """Probability that the rocking leaves the tilts where Taylor controls of the error can be trusted.
+
+    The tilt correction ``σ = arg(A + iB)`` is singular where ``A + iB = 0``:
+    at ``β = 0``, ``γ = φ − π/2`` (for φ > 0), a tilt ``π/2 − |φ|`` from level
+    and at least ``d = π/2 − |φ| − |β0| − |γ0|`` from the stable tilts.  Near it
+    the error turns fast and wraps, which no polynomial follows.  This is
+    ``P(|ξ| > ρ or |η| > ρ)`` with ``ρ = 0.9 d`` (1 when ``d ≤ 0``), exact for
+    the rocking law (ξ, η independent).
+
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad], |φ| < π/2.
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    rocking : GaussianRocking | SineRocking | NarrowbandRocking
+        The rocking at independent instants.
+
+    Returns
+    -------
+    float
+        In [0, 1] [dimensionless].
+
+    References
+    ----------
+    Hrechka & Koroliov, eq. (2) (A, B).
+
+    >>> from strapdown.analysis.gyrocompass.rocking import SineRocking
+    >>> far_rocking_probability(math.radians(80), 0.0, 0.0, SineRocking(math.radians(1), math.radians(1)))
+    0.0
+    """
+    latitude = check_latitude(latitude)
+    d = 0.5 * math.pi - abs(latitude) - abs(as_float(beta0, "beta0")) - abs(as_float(gamma0, "gamma0"))
+    if d <= 0.0:
+        return 1.0
+    rho = _TRUSTED_FRACTION * d
+    inside = 1.0
+    for sigma in (rocking.sigma_xi, rocking.sigma_eta):
+        if sigma > 0.0:
+            inside *= rocking.standard_moment(0, rho / sigma)
+    return max(0.0, 1.0 - inside)
 
 
 def _fit_controls(kernel: AzimuthErrorKernel, degree: int, n: int, seed) -> TaylorControls:
@@ -870,10 +981,7 @@ def _fit_controls(kernel: AzimuthErrorKernel, degree: int, n: int, seed) -> Tayl
     if n < 2 * p + 4:
         raise ValueError(f"Expected `pilot_samples` >= {2 * p + 4} for degree {degree}, got {n}")
     xi, eta = kernel.rocking.sample(np.random.default_rng(seed), n, 1, None)
-    monomials = basis.monomials(xi, eta)
-    e = azimuth_error(xi.ravel(), eta.ravel(), latitude=kernel.latitude, beta0=kernel.beta0, gamma0=kernel.gamma0)
-    fit = montecarlo.fit_controls(np.stack([e, e * e], axis=1), monomials)
-    return replace(basis, coefficients=fit.coefficients, offsets=fit.intercepts, variance_ratios=fit.variance_ratios)
+    return basis.fitted(xi, eta, azimuth_error(xi.ravel(), eta.ravel(), latitude=kernel.latitude, beta0=kernel.beta0, gamma0=kernel.gamma0))
 
 
 def _plain_equivalent(raw: montecarlo.MonteCarloResult, controlled: montecarlo.MonteCarloResult) -> float:

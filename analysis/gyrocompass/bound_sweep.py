@@ -29,7 +29,8 @@ The alignment error of (16) depends on a record only through its sample means,
 whose law is exact (:func:`strapdown.analysis.gyrocompass.rocking.mean_law`):
 it is drawn from that law, with the monomials of the means as controls; the
 plug-in (14) needs the sample variances as well, so its records are simulated,
-with the sample variances (exact mean ``(1 − v) σ²``) as controls.
+with the sample variances (exact mean ``(1 − v) σ²``) as controls, their
+coefficients the derivatives of (14)².
 """
 
 from __future__ import annotations
@@ -217,9 +218,9 @@ def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int 
     return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, b14, b15, th.rms, th.rms_first_order, th.bias, plugin14=math.sqrt(r.aux_mean[0]))
 
 
-#: records of the pilot, and fewest of the run, of the controlled plug-in (14)
-_PLUGIN_PILOT = 24
-_PLUGIN_MIN = 16
+#: fewest records of the controlled plug-in (14), and the margin of a larger redraw
+_PLUGIN_MIN = 24
+_PLUGIN_MARGIN = 1.5
 
 
 @dataclass(frozen=True)
@@ -241,28 +242,37 @@ class _PluginKernel:
 def _controlled_plugin14(case: SweepCase, n_trials: int, seed):
     """rms of the plug-in (14) with the sample variances as controls: ``(value [rad], ControlVariateSummary)``.
 
-    ``E σ̂² = (1 − v) σ²`` exactly (:mod:`strapdown.analysis.gyrocompass.finite_sample`);
-    a pilot of records fits the coefficients and sets how many records match
-    the precision of a plain run of ``n_trials``.
+    ``E σ̂² = (1 − v) σ²`` exactly (:mod:`strapdown.analysis.gyrocompass.finite_sample`).
+    The coefficients are fixed in advance: the derivatives of (14)² with
+    respect to the two variances at the stable tilts and the expected sample
+    variances, so the estimate is unbiased without a pilot.  The run starts
+    with ``_PLUGIN_MIN`` records and is redrawn larger until its standard
+    error is at most that of a plain run of ``n_trials`` records.
     """
     rocking = case.rocking()
     means = [s * s * (1.0 - mean_variance_factor(rocking, case.n_steps, case.dt, axis=a)) for s, a in ((rocking.sigma_xi, "xi"), (rocking.sigma_eta, "eta"))]
     kernel = _PluginKernel(case, *means)
-    root = montecarlo.root_seed_sequence(seed)
-    pilot = montecarlo.collect(kernel, _PLUGIN_PILOT, rng=montecarlo.block_seed(root, 0), trials_per_block=_PLUGIN_PILOT)
-    fit = montecarlo.fit_controls(pilot[:, :1], pilot[:, 1:])
-    c, offset = np.array(fit.coefficients[0]), fit.intercepts[0]
-    size = max(_PLUGIN_MIN, math.ceil(1.25 * fit.variance_ratios[0] * n_trials))
-    for attempt in range(3):
-        rows = montecarlo.collect(kernel, size, rng=montecarlo.block_seed(root, 1), trials_per_block=64)
+
+    def plug_in(dxi, deta):
+        return float(bound14_squared(case.latitude, case.beta0, case.gamma0, dxi, deta))
+
+    offset = plug_in(*means)
+    c = np.zeros(2)
+    for k, m in enumerate(means):
+        if m > 0.0:
+            h = 1e-3 * m
+            c[k] = (plug_in(*(m + h if j == k else x for j, x in enumerate(means))) - plug_in(*(m - h if j == k else x for j, x in enumerate(means)))) / (2.0 * h)
+    size, root = _PLUGIN_MIN, montecarlo.root_seed_sequence(seed)
+    for attempt in range(4):
+        rows = montecarlo.collect(kernel, size, rng=root, trials_per_block=64)
         z = rows[:, 0] - rows[:, 1:] @ c - offset
         var_z, var_plain = float(z.var(ddof=1)), float(rows[:, 0].var(ddof=1))
         worth = size * var_plain / var_z if var_z > 0.0 else math.inf
-        if worth >= n_trials or attempt == 2:
+        if worth >= n_trials or attempt == 3:
             break
-        size = math.ceil(size * 1.25 * n_trials / worth)
+        size = math.ceil(size * _PLUGIN_MARGIN * n_trials / worth)
     value = offset + float(z.mean())
-    return math.sqrt(max(value, 0.0)), ControlVariateSummary(1, _PLUGIN_PILOT, size, n_trials, worth)
+    return math.sqrt(max(value, 0.0)), ControlVariateSummary(1, 0, size, n_trials, worth)
 
 
 @dataclass(frozen=True)

@@ -76,18 +76,38 @@ def _order(k) -> int:
     return as_int(k, "k", minimum=0)
 
 
-def _normal_moment(k) -> float:
-    """``E u^k`` of a standard normal u: 0 for odd k, ``(k − 1)!!`` for even k."""
+def _bound(bound) -> float:
+    """A truncation bound: positive, or +inf for none."""
+    if isinstance(bound, (float, np.floating)) and bound == math.inf:
+        return math.inf
+    return positive(bound, "bound")
+
+
+def _normal_moment(k, bound=math.inf) -> float:
+    """``E[u^k; |u| ≤ bound]`` of a standard normal u: 0 for odd k, ``(k − 1)!! P((k + 1)/2, bound²/2)`` for even k."""
     k = _order(k)
-    return 0.0 if k % 2 else float(math.prod(range(k - 1, 0, -2)))
+    if k % 2:
+        return 0.0
+    full = float(math.prod(range(k - 1, 0, -2)))
+    if math.isinf(bound):
+        return full
+    from scipy.special import gammainc
+
+    return full * float(gammainc((k + 1) / 2.0, bound * bound / 2.0))
 
 
-def _arcsine_moment(k) -> float:
-    """``E u^k`` of ``u = √2 sin ψ``, ψ uniform: 0 for odd k, ``2^{k/2} C(k, k/2) / 2^k`` for even k."""
+def _arcsine_moment(k, bound=math.inf) -> float:
+    """``E[u^k; |u| ≤ bound]`` of ``u = √2 sin ψ``, ψ uniform: 0 for odd k, ``2^{k/2} (2/π) ∫₀^a sin^k t dt`` (``sin a = bound/√2``)."""
     k = _order(k)
-    return 0.0 if k % 2 else math.comb(k, k // 2) * 2.0 ** (k // 2) / 2.0**k
-
-
+    if k % 2:
+        return 0.0
+    if bound >= math.sqrt(2.0):
+        return math.comb(k, k // 2) * 2.0 ** (k // 2) / 2.0**k
+    a = math.asin(bound / math.sqrt(2.0))
+    integral = a  # ∫₀^a sin^m t dt by m ← m − 2 recursion
+    for m in range(2, k + 1, 2):
+        integral = -(math.sin(a) ** (m - 1)) * math.cos(a) / m + (m - 1) / m * integral
+    return 2.0 ** (k // 2) * 2.0 / math.pi * integral
 @dataclass(frozen=True)
 class GaussianRocking:
     """Independent zero-mean Gaussian tilts.
@@ -143,13 +163,15 @@ class GaussianRocking:
         z[1] *= self.sigma_eta
         return z[0], z[1]
 
-    def standard_moment(self, k: int) -> float:
-        """``E (ξ/σξ)^k`` (the same for η) [dimensionless]: the moments of the standard normal law.
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` (the same for η) [dimensionless]: the moments of the standard normal law.
 
         Parameters
         ----------
         k : int
             Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none).
 
         Returns
         -------
@@ -157,8 +179,10 @@ class GaussianRocking:
 
         >>> GaussianRocking(0.01, 0.01).standard_moment(4)
         3.0
+        >>> round(GaussianRocking(0.01, 0.01).standard_moment(0, 1.959963984540054), 12)
+        0.95
         """
-        return _normal_moment(k)
+        return _normal_moment(k, _bound(bound))
 
     def autocorrelation(self, lag):
         """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]: 1 at 0, else 0.
@@ -247,13 +271,15 @@ class SineRocking:
             out.append(phase)
         return out[0], out[1]
 
-    def standard_moment(self, k: int) -> float:
-        """``E (ξ/σξ)^k`` at a random instant (the same for η) [dimensionless]: ``ξ/σξ = √2 sin ψ``, ψ uniform.
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` at a random instant (the same for η) [dimensionless]: ``ξ/σξ = √2 sin ψ``, ψ uniform.
 
         Parameters
         ----------
         k : int
             Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none; none either from √2 up).
 
         Returns
         -------
@@ -261,8 +287,10 @@ class SineRocking:
 
         >>> SineRocking(0.01, 0.01).standard_moment(4)
         1.5
+        >>> round(SineRocking(0.01, 0.01).standard_moment(0, 1.0), 12)
+        0.5
         """
-        return _arcsine_moment(k)
+        return _arcsine_moment(k, _bound(bound))
 
     def autocorrelation(self, lag, *, axis: str = "xi"):
         """Normalised autocorrelation ``cos(2π τ / T)`` at lags ``lag`` [s].
@@ -326,19 +354,21 @@ class NarrowbandRocking:
             raise ValueError(f"Expected `damping` in (0, 1), got {damping:g}")
         object.__setattr__(self, "damping", damping)
 
-    def standard_moment(self, k: int) -> float:
-        """``E (ξ/σξ)^k`` (the same for η) [dimensionless]: the stationary law is normal.
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` (the same for η) [dimensionless]: the stationary law is normal.
 
         Parameters
         ----------
         k : int
             Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none).
 
         Returns
         -------
         float
         """
-        return _normal_moment(k)
+        return _normal_moment(k, _bound(bound))
 
     @property
     def omega0(self) -> float:

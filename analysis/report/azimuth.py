@@ -35,6 +35,14 @@ def _seed(ctx, *key):
     return np.random.SeedSequence(ctx.seed, spawn_key=(50, *key))
 
 
+def _formula_checks() -> tuple:
+    """The printed formulas against the derivation (SymPy simplification: cached with the derived results)."""
+    from ..core.cache import derived
+    from ..gyrocompass.formula_checks import check_printed_formulas
+
+    return derived("gyrocompass:printed-formula-checks:v1", check_printed_formulas)
+
+
 def _latex(expr) -> str:
     import sympy as sp
 
@@ -74,11 +82,16 @@ def _samples(mc) -> str:
 def _controls_text(n) -> list:
     return [
         "The mean and the mean square are control-variate estimates: from each error and its square the Monte Carlo subtracts",
-        f"a combination of the monomials $u^i v^j$ ($u = \\xi/\\sigma_\\xi$, $v = \\eta/\\sigma_\\eta$, $1 \\le i + j \\le {CONTROL_DEGREE}$), whose means are exact,",
-        "with coefficients fitted on an independent pilot run. The estimates stay unbiased and their 95 % intervals are the",
-        "ordinary ones of independent draws; the Taylor part of the error no longer adds variance. Each run is sized so that",
+        f"a combination of the monomials $u^i v^j$ ($u = \\xi/\\sigma_\\xi$, $v = \\eta/\\sigma_\\eta$, $1 \\le i + j \\le {CONTROL_DEGREE}$ for a sinusoid, $\\le 2$",
+        "for Gaussian rocking, whose residuals after higher degrees are too heavy-tailed for the interval of a short run),",
+        "whose means are exact, with coefficients fitted on an independent pilot run. The estimates stay unbiased and their",
+        "95 % intervals are the ordinary ones of independent draws (their coverage is tested against exact quadrature); the",
+        "Taylor part of the error no longer adds variance. Each run is sized so that",
         f"its intervals are at most as wide as those of a plain Monte Carlo of {n} samples (column 'samples': draws used and,",
-        "in brackets, how many a plain Monte Carlo would need for the same intervals).",
+        "in brackets, how many a plain Monte Carlo would need for the same intervals). Where the rocking reaches towards the",
+        "horizon of the tilt correction ($A + iB = 0$, where the error wraps) often enough for a plain run to meet it, no",
+        "polynomial follows the error and the rare large errors there would dominate what the controls leave: such a run is",
+        "the plain one (a sinusoid, being bounded, keeps its controls and meets that region at least 100 times).",
     ]
 
 
@@ -158,7 +171,7 @@ def _distribution_figure(ctx, results) -> None:
         m = counts[: len(counts) // k * k].reshape(-1, k).sum(axis=1)
         e = edges[::k][: len(m) + 1] * D
         width = e[1] - e[0]
-        ax.bar(e[:-1], m / (m.sum() * width), width=width, align="edge", color="0.7", label="Monte Carlo")
+        ax.stairs(m / (m.sum() * width), e, fill=True, color="0.7", label="Monte Carlo")
         for value, style, name in ((mc.result.rms, "-", "MC rms"), (mc.bound14, "--", "bound (14)"), (mc.bound15, ":", "bound (15)")):
             ax.axvline(value * D, color="k", ls=style, label=name)
             ax.axvline(-value * D, color="k", ls=style)
@@ -248,27 +261,34 @@ def _label_outer(axes):
                 ax.set_xlabel("")
 
 
-def _validity_figures(ctx, maps) -> None:
+def _map_grid(n_columns: int, width: float):
+    """Two rows of map panels and a colour-bar axis, laid out by hand (no layout engine: one draw fewer)."""
     import matplotlib.pyplot as plt
 
+    fig, axes = plt.subplots(2, n_columns, figsize=(width * n_columns, 7.0), squeeze=False)
+    fig.subplots_adjust(left=0.07, right=0.9, bottom=0.1, top=0.93, wspace=0.25, hspace=0.45)
+    return fig, axes, fig.add_axes((0.92, 0.2, 0.012, 0.6))
+
+
+def _validity_figures(ctx, maps) -> None:
     known = [k for k in maps if "narrowband" not in k]
-    fig, axes = plt.subplots(2, len(known), figsize=(3.9 * len(known), 7.0), squeeze=False, layout="constrained")
+    fig, axes, cax = _map_grid(len(known), 3.9)
     im = None
     for j, name in enumerate(known):
         m = maps[name]
         im = _map_panel(axes[0, j], m, m.ratio14, m.holds14, m.fails14, f"{name}:\nMC rms / (14)")
         _map_panel(axes[1, j], m, m.ratio15, m.holds15, m.fails15, f"{name}:\nMC rms / (15)")
     _label_outer(axes)
-    fig.colorbar(im, ax=axes, label="log10(MC rms / bound); x: fails (CI above), ·: holds", shrink=0.8)
+    fig.colorbar(im, cax=cax, label="log10(MC rms / bound); x: fails (CI above), ·: holds")
     ctx.savefig(fig, "figures/azimuth-validity-known.png")
     corr = [k for k in maps if "narrowband" in k]
-    fig, axes = plt.subplots(2, len(corr), figsize=(4.2 * len(corr), 7.0), squeeze=False, layout="constrained")
+    fig, axes, cax = _map_grid(len(corr), 4.2)
     for j, name in enumerate(corr):
         m = maps[name]
         im = _map_panel(axes[0, j], m, m.ratio14, m.holds14, m.fails14, f"{name}:\nrms Δ / (14) at the variance of the mean")
         _map_panel(axes[1, j], m, m.plugin_ratio14, None, None, f"{name}:\nrms Δ / (14) with the sample variances of (16)")
     _label_outer(axes)
-    fig.colorbar(im, ax=axes, label="log10(rms alignment error / bound)", shrink=0.8)
+    fig.colorbar(im, cax=cax, label="log10(rms alignment error / bound)")
     ctx.savefig(fig, "figures/azimuth-validity-correlation.png")
 
 
@@ -278,9 +298,10 @@ def _validity_lines(maps) -> list:
         "## 4. Validity maps",
         "",
         "Latitude × rocking standard deviation (both axes equal). Colour: log10(MC rms / bound); x: the bound fails (CI entirely",
-        "above it), dot: it holds (CI entirely below), blank: undecided. Every cell is a control-variate Monte Carlo (part 2)",
-        f"whose 95 % intervals are at most as wide as those of a plain Monte Carlo of {first.reference_samples} samples (for the",
-        "narrow-band maps: of as many samples in records of 30 s); the table gives the fewest plain-equivalent samples over the cells.",
+        "above it), dot: it holds (CI entirely below), blank: undecided. Every cell is a control-variate Monte Carlo as in part 2",
+        "(or the plain one near the horizon) whose 95 % intervals are at most as wide as those of a plain Monte Carlo of",
+        f"{first.reference_samples} samples (for the narrow-band maps: of as many samples in records of 30 s); the table gives the",
+        "fewest plain-equivalent samples over the cells.",
         "",
         "![validity maps, known stable tilts](figures/azimuth-validity-known.png)",
         "",
@@ -306,7 +327,11 @@ def _validity_lines(maps) -> list:
         "30 s at 10 Hz: an error of a *mean*. It is compared with (14) and (15) evaluated at the variances of the means",
         "($D\\xi \\to v D\\xi$, $v$ the variance factor of the mean of correlated samples), the bound that applies to it (top row).",
         "The paper's prescription after (16) — (14) with the sample variances — bounds the instantaneous error (12), and",
-        "overstates the error of the estimate by $1/\\sqrt{v}$ (bottom row, off the colour scale).",
+        "overstates the error of the estimate by $1/\\sqrt{v}$ (bottom row, off the colour scale). Δ depends on a record only",
+        "through its two sample means, whose law is exact (independent zero-mean Gaussians of variance $v D$, the mean of a",
+        "Gaussian record): the Monte Carlo draws them from it, with the monomials of the means as controls. The plug-in bound",
+        "needs the sample variances too, so for it whole records are simulated, with the sample variances (exact mean",
+        "$(1 - v) D$) as controls.",
         "",
         "![validity maps, correlated rocking](figures/azimuth-validity-correlation.png)",
         "",
@@ -462,7 +487,6 @@ def build(ctx) -> None:
     ctx : Context
         Report context (output, sizes, seed).
     """
-    from ..gyrocompass.formula_checks import check_printed_formulas
     from ..gyrocompass.studies import DISTRIBUTION_CASES, SMALL_ROCKING_CASES, VIOLATION_CASES, run_cases
 
     big, mid = (400_000, 200_000) if ctx.quick else (4_000_000, 2_000_000)
@@ -478,7 +502,7 @@ def build(ctx) -> None:
         "accelerometers (the tilts) and not the gyros.",
         "",
     ]
-    lines += _derivation_lines(check_printed_formulas())
+    lines += _derivation_lines(_formula_checks())
     violations = run_cases(VIOLATION_CASES, n_samples=big, rng=_seed(ctx, 0), control_degree=CONTROL_DEGREE)
     lines += _violation_lines(violations)
     _distribution_figure(ctx, run_cases(DISTRIBUTION_CASES, n_samples=mid, rng=_seed(ctx, 2)))
@@ -517,10 +541,9 @@ def errata(ctx) -> list:
     list of Erratum
     """
     from ...derivations.gyrocompass import azimuth_error as g
-    from ..gyrocompass.formula_checks import check_printed_formulas
     from ..gyrocompass.studies import BoundCase, run_cases
 
-    rows = {c.label: c for c in check_printed_formulas()}
+    rows = {c.label: c for c in _formula_checks()}
     p = g.linear_parts()
     out = [
         Erratum(
