@@ -770,8 +770,9 @@ _SIZE_MARGIN = 1.5
 _CONTROL_BLOCK = 8192
 #: the Taylor controls are trusted for tilts within this fraction of the distance to the horizon of the tilt correction
 _TRUSTED_FRACTION = 0.9
-#: a plain run of the reference size expecting fewer excursions beyond it than this is not shortened by them;
-#: otherwise a sinusoid's controlled run contains at least ``_FAR_VISITS`` of them, and unbounded rocking runs plain
+#: a plain run of the reference size expecting fewer excursions beyond it than ``_RARE_VISITS`` is not changed by
+#: them; otherwise the controlled run contains at least ``_FAR_VISITS`` of them, or, if even the plain run would
+#: expect fewer, it is the plain run
 _RARE_VISITS = 0.05
 _FAR_VISITS = 100
 #: a run longer than this many pilots is fitted and sized on a second pilot of a quarter of its length
@@ -814,14 +815,13 @@ def azimuth_monte_carlo(
     only in larger samples).  The estimates are unbiased (the coefficients do
     not depend on the run) and their intervals are the ordinary ones of
     independent draws.  A run that still shows less precision than the
-    reference is extended, at most twice.  Where the rocking reaches
-    towards the horizon of the tilt correction (:func:`far_rocking_probability`)
-    often enough for a plain run of ``n_samples`` to meet it, the controls
-    cannot follow the error: the rare large errors there would dominate what
-    they leave, and a short run would miss them.  Such a run is the plain run
-    of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`), except
-    for a sinusoid (bounded), whose controlled run then contains at least
-    100 such excursions in expectation.
+    reference is extended, at most twice.  Where the rocking reaches towards
+    the horizon of the tilt correction (:func:`far_rocking_probability`) often
+    enough for a plain run of ``n_samples`` to meet it, the controls cannot
+    follow the error, and the large errors there would dominate what they
+    leave: the controlled run then contains at least 100 such excursions in
+    expectation, and where even the plain run would expect fewer, it is the
+    plain run of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`).
 
     Parameters
     ----------
@@ -898,10 +898,9 @@ def azimuth_monte_carlo(
     root = montecarlo.root_seed_sequence(rng)
     far = far_rocking_probability(latitude, kernel.beta0, kernel.gamma0, rocking)
     bounded = isinstance(rocking, SineRocking)
-    if n_samples * far >= _RARE_VISITS and not (bounded and n_samples * far >= _FAR_VISITS):
-        # excursions towards the horizon that a plain run would meet: their rare, large errors dominate the
-        # variance the controls leave, so no shorter run can be trusted to see them (unbounded rocking) or
-        # they are too rare for 100 of them in a shorter run (a sinusoid): the plain run
+    if _RARE_VISITS <= n_samples * far < _FAR_VISITS:
+        # excursions towards the horizon that a plain run would meet, too rare for 100 of them in a shorter
+        # run: their large errors would dominate the variance the controls leave, unseen; the plain run
         n_trials = max(2, -(-n_samples // steps))
         result = montecarlo.run(kernel, n_trials, rng=montecarlo.block_seed(root, 1), trials_per_block=max(1, 65536 // steps), **options)
         return AzimuthMonteCarlo(result, *bounds, theory, ControlVariateSummary(0, 0, result.n_samples, n_samples, float(result.n_samples)))
