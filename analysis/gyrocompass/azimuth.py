@@ -623,7 +623,7 @@ class TaylorControls:
             raise ValueError("Expected fitted `coefficients`, got none")
         e = np.ravel(errors)
         out = np.stack([e, e * e], axis=1)
-        out -= monomials @ np.array(self.coefficients).T
+        out -= montecarlo.combine(monomials, np.array(self.coefficients).T)
         out -= np.array(self.offsets)
         return out
 
@@ -779,6 +779,8 @@ _FAR_VISITS = 100
 _LONG_RUN = 16
 #: longer runs allowed when a run still falls short of the reference precision
 _EXTENSIONS = 2
+#: a controlled run planned at least this fraction of the plain one is the plain one (a controlled draw costs ~1.4 plain ones)
+_NOT_SHORTER = 0.5
 #: highest degree of the controls of unbounded (Gaussian) rocking: the residual of degree-4 controls of Gaussian
 #: draws has a skewness of 10-40, too much for the normal interval of a run of a few thousand draws
 _UNBOUNDED_DEGREE = 2
@@ -821,7 +823,9 @@ def azimuth_monte_carlo(
     follow the error, and the large errors there would dominate what they
     leave: the controlled run then contains at least 100 such excursions in
     expectation, and where even the plain run would expect fewer, it is the
-    plain run of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`).
+    plain run of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`),
+    as it is where the pilots plan a controlled run of at least half its length
+    (a controlled draw costs about 1.4 plain ones).
 
     Parameters
     ----------
@@ -896,16 +900,25 @@ def azimuth_monte_carlo(
     pilot_samples = as_int(pilot_samples, "pilot_samples", minimum=2)
     min_samples = as_int(min_samples, "min_samples", minimum=2)
     root = montecarlo.root_seed_sequence(rng)
+    degree = control_degree if isinstance(rocking, SineRocking) else min(control_degree, _UNBOUNDED_DEGREE)
+    p = len(TaylorControls.for_rocking(rocking, degree).exponents)
+    if pilot_samples < 2 * p + 4:
+        raise ValueError(f"Expected `pilot_samples` >= {2 * p + 4} for degree {degree}, got {pilot_samples}")
     far = far_rocking_probability(latitude, kernel.beta0, kernel.gamma0, rocking)
-    bounded = isinstance(rocking, SineRocking)
+
+    def plain(pilots):  # the plain run, with at least 512 batches for its standard errors
+        n_steps = max(1, min(steps, n_samples // 512))
+        n_trials = max(2, -(-n_samples // n_steps))
+        result = montecarlo.run(replace(kernel, n_steps=n_steps), n_trials, rng=montecarlo.block_seed(root, 1), trials_per_block=max(1, 65536 // n_steps), **options)
+        return AzimuthMonteCarlo(result, *bounds, theory, ControlVariateSummary(0, pilots, result.n_samples, n_samples, float(result.n_samples)))
+
     if _RARE_VISITS <= n_samples * far < _FAR_VISITS:
         # excursions towards the horizon that a plain run would meet, too rare for 100 of them in a shorter
-        # run: their large errors would dominate the variance the controls leave, unseen; the plain run
-        n_trials = max(2, -(-n_samples // steps))
-        result = montecarlo.run(kernel, n_trials, rng=montecarlo.block_seed(root, 1), trials_per_block=max(1, 65536 // steps), **options)
-        return AzimuthMonteCarlo(result, *bounds, theory, ControlVariateSummary(0, 0, result.n_samples, n_samples, float(result.n_samples)))
+        # run: their large errors would dominate the variance the controls leave, unseen
+        return plain(0)
+    if min_samples >= _NOT_SHORTER * n_samples:  # no controlled run could be shorter enough
+        return plain(0)
     pilot_kernel = replace(kernel, n_steps=1)
-    degree = control_degree if bounded else min(control_degree, _UNBOUNDED_DEGREE)
 
     def sized(controls):
         size = max(min_samples, math.ceil(_SIZE_MARGIN * controls.variance_ratio * n_samples))
@@ -913,10 +926,14 @@ def azimuth_monte_carlo(
 
     controls = _fit_controls(pilot_kernel, degree, pilot_samples, montecarlo.block_seed(root, 0))
     size, pilots = sized(controls), pilot_samples
+    if size >= _NOT_SHORTER * n_samples:  # the controls would save little: the plain run
+        return plain(pilots)
     if size > _LONG_RUN * pilot_samples:  # a long run: fit and size it on a larger, independent pilot
         second = math.ceil(size / 4)
         controls = _fit_controls(pilot_kernel, degree, second, montecarlo.block_seed(root, 2))
         size, pilots = max(size, sized(controls)), pilots + second
+        if size >= _NOT_SHORTER * n_samples:
+            return plain(pilots)
     kernel = replace(kernel, n_steps=1, controls=controls)
     for attempt in range(_EXTENSIONS + 1):  # blocks are prefix-stable: a longer run extends the shorter one
         raw = montecarlo.run(kernel, size, rng=montecarlo.block_seed(root, 1), trials_per_block=_CONTROL_BLOCK, **options)

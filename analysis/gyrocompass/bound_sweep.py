@@ -265,7 +265,7 @@ def _controlled_plugin14(case: SweepCase, n_trials: int, seed):
     size, root = _PLUGIN_MIN, montecarlo.root_seed_sequence(seed)
     for attempt in range(4):
         rows = montecarlo.collect(kernel, size, rng=root, trials_per_block=64)
-        z = rows[:, 0] - rows[:, 1:] @ c - offset
+        z = rows[:, 0] - montecarlo.combine(rows[:, 1:], c) - offset
         var_z, var_plain = float(z.var(ddof=1)), float(rows[:, 0].var(ddof=1))
         worth = size * var_plain / var_z if var_z > 0.0 else math.inf
         if worth >= n_trials or attempt == 3:
