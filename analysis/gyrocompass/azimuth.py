@@ -779,8 +779,10 @@ _FAR_VISITS = 100
 _LONG_RUN = 16
 #: longer runs allowed when a run still falls short of the reference precision
 _EXTENSIONS = 2
-#: a controlled run planned at least this fraction of the plain one is the plain one (a controlled draw costs ~1.4 plain ones)
+#: a controlled run planned at least this fraction of a plain one longer than ``_SHORT_RUN`` draws is the plain one
+#: (a controlled draw costs about 1.4 plain ones; shorter runs cost little either way, and the controlled one is tighter)
 _NOT_SHORTER = 0.5
+_SHORT_RUN = 8192
 #: highest degree of the controls of unbounded (Gaussian) rocking: the residual of degree-4 controls of Gaussian
 #: draws has a skewness of 10-40, too much for the normal interval of a run of a few thousand draws
 _UNBOUNDED_DEGREE = 2
@@ -825,7 +827,8 @@ def azimuth_monte_carlo(
     expectation, and where even the plain run would expect fewer, it is the
     plain run of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`),
     as it is where the pilots plan a controlled run of at least half its length
-    (a controlled draw costs about 1.4 plain ones).
+    and that is more than 8192 draws (a controlled draw costs about 1.4 plain
+    ones).
 
     Parameters
     ----------
@@ -916,8 +919,6 @@ def azimuth_monte_carlo(
         # excursions towards the horizon that a plain run would meet, too rare for 100 of them in a shorter
         # run: their large errors would dominate the variance the controls leave, unseen
         return plain(0)
-    if min_samples >= _NOT_SHORTER * n_samples:  # no controlled run could be shorter enough
-        return plain(0)
     pilot_kernel = replace(kernel, n_steps=1)
 
     def sized(controls):
@@ -926,13 +927,13 @@ def azimuth_monte_carlo(
 
     controls = _fit_controls(pilot_kernel, degree, pilot_samples, montecarlo.block_seed(root, 0))
     size, pilots = sized(controls), pilot_samples
-    if size >= _NOT_SHORTER * n_samples:  # the controls would save little: the plain run
+    if size >= _NOT_SHORTER * n_samples > _SHORT_RUN:  # the controls would save little on a long run: the plain run
         return plain(pilots)
     if size > _LONG_RUN * pilot_samples:  # a long run: fit and size it on a larger, independent pilot
         second = math.ceil(size / 4)
         controls = _fit_controls(pilot_kernel, degree, second, montecarlo.block_seed(root, 2))
         size, pilots = max(size, sized(controls)), pilots + second
-        if size >= _NOT_SHORTER * n_samples:
+        if size >= _NOT_SHORTER * n_samples > _SHORT_RUN:
             return plain(pilots)
     kernel = replace(kernel, n_steps=1, controls=controls)
     for attempt in range(_EXTENSIONS + 1):  # blocks are prefix-stable: a longer run extends the shorter one

@@ -325,11 +325,7 @@ def _validity_lines(maps) -> list:
         )
     nb_rows = [r for m in maps.values() for r in m.rows if r.case.estimate == "sample-mean"]
     nb_plain = sum(1 for r in nb_rows if r.controls.degree == 0)
-    nb_controls = (
-        "one draw for each record a plain simulation would take (so few that controls would not shorten the run)"
-        if nb_plain == len(nb_rows)
-        else f"with the monomials of the means as controls ({nb_plain} of {len(nb_rows)} cells: one draw per record of a plain simulation)"
-    )
+    nb_controls = "with the monomials of the means as controls" + (f" (plain in {nb_plain} of the {len(nb_rows)} cells, near the horizon)" if nb_plain else "")
     zero = maps["normal, β0=γ0=0"]
     off = zero.latitudes != 0.0
     zero_cells, zero_fails, zero_holds = int(zero.fails14[off].size), int(zero.fails14[off].sum()), int(zero.holds14[off].sum())
@@ -348,8 +344,9 @@ def _validity_lines(maps) -> list:
         "The paper's prescription after (16) — (14) with the sample variances — bounds the instantaneous error (12), and",
         "overstates the error of the estimate by $1/\\sqrt{v}$ (bottom row, off the colour scale). Δ depends on a record only",
         "through its two sample means, whose law is exact (independent zero-mean Gaussians of variance $v D$, the mean of a",
-        f"Gaussian record): the Monte Carlo draws them from it, {nb_controls}. The plug-in bound needs the sample variances",
-        "too, so for it whole records are simulated, with the sample variances (exact mean $(1 - v) D$) as controls.",
+        f"Gaussian record): the Monte Carlo draws them from it, {nb_controls}. The plug-in bound needs",
+        "the sample variances too, so for it whole records are simulated, with the sample variances (exact mean $(1 - v) D$)",
+        "as controls.",
         "",
         "![validity maps, correlated rocking](figures/azimuth-validity-correlation.png)",
         "",
