@@ -11,7 +11,8 @@ This module evaluates that error (vectorised, as the angle of
 ``A, A* > 0`` and the wrapped angle difference otherwise), the bounds (14) and
 (15), and the second-order theory of :mod:`strapdown.derivations.gyrocompass.azimuth_error`
 (lambdified), and runs the Monte Carlo of the error through
-:mod:`strapdown.analysis.core.montecarlo`.
+:mod:`strapdown.analysis.core.montecarlo`, either plain or with the monomials
+of the rocking as control variates (:class:`TaylorControls`).
 
 References
 ----------
@@ -21,7 +22,7 @@ Hrechka & Koroliov, eqs. (2), (4), (11)–(16).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -43,8 +44,11 @@ __all__ = [
     "second_order_theory",
     "TiltSensitivity",
     "gradient",
+    "TaylorControls",
     "AzimuthErrorKernel",
+    "ControlVariateSummary",
     "AzimuthMonteCarlo",
+    "far_rocking_probability",
     "azimuth_monte_carlo",
     "check_latitude",
 ]
@@ -448,6 +452,183 @@ _ESTIMATES = ("known", "sample-mean")
 
 
 @dataclass(frozen=True)
+class TaylorControls:
+    """Control variates of the azimuth error: the monomials of the standardised rocking.
+
+    The error ``e(ξ, η)`` and its square are smooth in the rocking, so their
+    Taylor polynomials are combinations of the monomials ``u^i v^j``
+    (``u = ξ/σξ``, ``v = η/ση``, ``1 ≤ i + j ≤ degree``), whose means
+    ``E u^i · E v^j`` are exact (ξ and η are independent; the moments are those
+    of the rocking law).  ``e − c₁·m`` and ``e² − c₂·m``, with the monomials
+    ``m`` centred at their means and coefficients fixed in advance, have the
+    means of ``e`` and ``e²`` and only the variance of what the polynomial
+    misses: for small rocking almost none.
+
+    Parameters
+    ----------
+    degree : int
+        Highest total degree of the monomials, ≥ 1.
+    sigma_xi, sigma_eta : float
+        Standard deviations of ξ, η [rad]; an axis with zero spread has no monomials.
+    moments_xi, moments_eta : tuple of float
+        ``E u^k`` and ``E v^k`` for ``k = 0 … degree`` [dimensionless].
+    coefficients : tuple of tuple of float
+        For the error [rad] and the squared error [rad²], the coefficient of every
+        monomial (in the order of :attr:`exponents`); empty: not fitted yet.
+    offsets : tuple of float
+        Constants subtracted from the two controlled quantities (the pilot's
+        estimates of ``E e`` [rad] and ``E e²`` [rad²]), so that their sums of
+        squares carry no cancellation.
+    variance_ratios : tuple of float
+        The pilot's fraction of the variance of ``e`` and of ``e²`` that the
+        fitted controls leave [dimensionless]; empty: not fitted yet.
+
+    References
+    ----------
+    Lavenberg & Welch (1981), *Management Science* 27(3), 322–335 (control
+    variables); Hrechka & Koroliov, eq. (12) (the error).
+    """
+
+    degree: int
+    sigma_xi: float
+    sigma_eta: float
+    moments_xi: tuple
+    moments_eta: tuple
+    coefficients: tuple = ()
+    offsets: tuple = (0.0, 0.0)
+    variance_ratios: tuple = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "degree", as_int(self.degree, "degree", minimum=1))
+        object.__setattr__(self, "sigma_xi", nonnegative(self.sigma_xi, "sigma_xi"))
+        object.__setattr__(self, "sigma_eta", nonnegative(self.sigma_eta, "sigma_eta"))
+        for name in ("moments_xi", "moments_eta"):
+            if len(getattr(self, name)) != self.degree + 1:
+                raise ValueError(f"Expected `{name}` of length degree + 1 = {self.degree + 1}, got {len(getattr(self, name))}")
+        if self.coefficients and (len(self.coefficients) != 2 or any(len(c) != len(self.exponents) for c in self.coefficients)):
+            raise ValueError(f"Expected `coefficients` as two rows of {len(self.exponents)}, got {self.coefficients!r}")
+
+    @classmethod
+    def for_rocking(cls, rocking, degree: int) -> TaylorControls:
+        """The unfitted controls of a rocking model (its standard deviations and moments).
+
+        Parameters
+        ----------
+        rocking : GaussianRocking | SineRocking | NarrowbandRocking
+            The rocking at independent instants.
+        degree : int
+            Highest total degree, ≥ 1.
+
+        Returns
+        -------
+        TaylorControls
+
+        >>> from strapdown.analysis.gyrocompass.rocking import GaussianRocking
+        >>> TaylorControls.for_rocking(GaussianRocking(0.01, 0.02), 2).exponents
+        ((1, 0), (0, 1), (2, 0), (1, 1), (0, 2))
+        """
+        degree = as_int(degree, "degree", minimum=1)
+        moments = tuple(rocking.standard_moment(k) for k in range(degree + 1))
+        return cls(degree, rocking.sigma_xi, rocking.sigma_eta, moments, moments)
+
+    def fitted(self, xi, eta, errors) -> TaylorControls:
+        """These controls with coefficients fitted on pilot draws (:func:`strapdown.analysis.core.montecarlo.fit_controls`).
+
+        Parameters
+        ----------
+        xi, eta : array_like
+            Pilot rocking samples [rad].
+        errors : array_like
+            Their azimuth errors [rad].
+
+        Returns
+        -------
+        TaylorControls
+
+        Raises
+        ------
+        ValueError
+            If the pilot has fewer than ``2p + 4`` draws (p monomials).
+        """
+        e = np.ravel(errors)
+        fit = montecarlo.fit_controls(np.stack([e, e * e], axis=1), self.monomials(xi, eta))
+        return replace(self, coefficients=fit.coefficients, offsets=fit.intercepts, variance_ratios=fit.variance_ratios)
+
+    @property
+    def variance_ratio(self) -> float:
+        """The larger of :attr:`variance_ratios` (1 when not fitted) [dimensionless]."""
+        return max(self.variance_ratios) if self.variance_ratios else 1.0
+
+    @property
+    def exponents(self) -> tuple:
+        """``(i, j)`` of the monomials ``u^i v^j``, by total degree."""
+        out = []
+        for d in range(1, self.degree + 1):
+            for i in range(d, -1, -1):
+                j = d - i
+                if (i == 0 or self.sigma_xi > 0.0) and (j == 0 or self.sigma_eta > 0.0):
+                    out.append((i, j))
+        return tuple(out)
+
+    def monomials(self, xi, eta) -> np.ndarray:
+        """The monomials minus their exact means, shape ``(n, p)``.
+
+        Parameters
+        ----------
+        xi, eta : array_like
+            Rocking samples [rad] (flattened).
+
+        Returns
+        -------
+        ndarray
+        """
+        exps = self.exponents
+        xi, eta = np.ravel(xi), np.ravel(eta)
+        out = np.empty((xi.size, len(exps)))
+        powers = {}
+        for axis, values, sigma in (("u", xi, self.sigma_xi), ("v", eta, self.sigma_eta)):
+            if sigma > 0.0:
+                base = values / sigma
+                powers[axis, 1] = base
+                for k in range(2, self.degree + 1):
+                    powers[axis, k] = powers[axis, k - 1] * base
+        for col, (i, j) in enumerate(exps):
+            if i and j:
+                np.multiply(powers["u", i], powers["v", j], out=out[:, col])
+            else:
+                out[:, col] = powers["u", i] if i else powers["v", j]
+            out[:, col] -= self.moments_xi[i] * self.moments_eta[j]
+        return out
+
+    def residuals(self, errors, monomials) -> np.ndarray:
+        """``(e − c₁·m − o₁, e² − c₂·m − o₂)`` per sample, shape ``(n, 2)``.
+
+        Parameters
+        ----------
+        errors : array_like
+            Azimuth errors e [rad] (flattened).
+        monomials : ndarray
+            Their :meth:`monomials`.
+
+        Returns
+        -------
+        ndarray
+
+        Raises
+        ------
+        ValueError
+            If the coefficients have not been fitted.
+        """
+        if not self.coefficients:
+            raise ValueError("Expected fitted `coefficients`, got none")
+        e = np.ravel(errors)
+        out = np.stack([e, e * e], axis=1)
+        out -= montecarlo.combine(monomials, np.array(self.coefficients).T)
+        out -= np.array(self.offsets)
+        return out
+
+
+@dataclass(frozen=True)
 class AzimuthErrorKernel:
     """Monte Carlo kernel: azimuth errors of ``n_trials`` rocking records.
 
@@ -469,6 +650,9 @@ class AzimuthErrorKernel:
         ``"sample-mean"``: the alignment error ``σ(β̂0, γ̂0) − σ*`` of the
         estimate (16) from the ``n_steps`` samples of a trial (one error per
         trial).  With one sample it is the error of (12).
+    controls : TaylorControls or None
+        Fitted control variates (``estimate="known"`` only): the kernel then also
+        returns, per trial, the means of the two :meth:`TaylorControls.residuals`.
 
     Notes
     -----
@@ -484,6 +668,7 @@ class AzimuthErrorKernel:
     n_steps: int = 1024
     dt: float | None = None
     estimate: str = "known"
+    controls: TaylorControls | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "latitude", check_latitude(self.latitude))
@@ -496,16 +681,28 @@ class AzimuthErrorKernel:
             raise ValueError(f"Expected `estimate` in {_ESTIMATES}, got {self.estimate!r}")
         if self.estimate == "sample-mean" and self.n_steps < 2:
             raise ValueError(f"Expected `n_steps` >= 2 for sample-mean estimates, got {self.n_steps}")
+        if self.controls is not None:
+            if not isinstance(self.controls, TaylorControls):
+                raise TypeError(f"Expected `controls` to be TaylorControls or None, got {type(self.controls).__name__}")
+            if self.estimate != "known":
+                raise ValueError(f"Expected `controls` only with estimate='known', got estimate={self.estimate!r}")
+            if not self.controls.coefficients:
+                raise ValueError("Expected fitted `controls` (coefficients), got none")
 
     def __call__(self, n_trials: int, rng):
         xi, eta = self.rocking.sample(rng, n_trials, self.n_steps, self.dt)
+        monomials = None if self.controls is None else self.controls.monomials(xi, eta)
         sphi, cphi = math.sin(self.latitude), math.cos(self.latitude)
         xi += self.beta0
         eta += self.gamma0
         A_ref, B_ref = tilt_components(np.float64(self.beta0), np.float64(self.gamma0), sphi, cphi)
         if self.estimate == "known":
             A, B = tilt_components(xi, eta, sphi, cphi)
-            return relative_angle(A, B, A_ref, B_ref)
+            errors = relative_angle(A, B, A_ref, B_ref)
+            if monomials is None:
+                return errors
+            aux = self.controls.residuals(errors, monomials).reshape(errors.shape[0], errors.shape[1], 2).mean(axis=1)
+            return errors, aux
         b_hat, g_hat = xi.mean(axis=1), eta.mean(axis=1)
         dxi = xi.var(axis=1)  # 1/n normalisation, as in (16)
         deta = eta.var(axis=1)
@@ -514,6 +711,34 @@ class AzimuthErrorKernel:
         b14sq = np.broadcast_to(bound14_squared(self.latitude, b_hat, g_hat, dxi, deta), dxi.shape)
         b15sq = math.tan(self.latitude) ** 2 * dxi
         return errors, np.stack([b14sq, b15sq], axis=-1)
+
+
+@dataclass(frozen=True)
+class ControlVariateSummary:
+    """How a control-variate Monte Carlo was sized, and what its intervals are worth.
+
+    Attributes
+    ----------
+    degree : int
+        Highest total degree of the controls (:class:`TaylorControls`; 1 for
+        linear controls); 0: the run is a plain Monte Carlo.
+    pilot_samples : int
+        Draws of the pilots that fitted and sized the run (0: none, coefficients fixed in advance or no controls) [count].
+    samples : int
+        Draws of the run whose statistics are reported [count].
+    reference_samples : int
+        The plain Monte Carlo whose precision was the target [count].
+    plain_equivalent : float
+        Draws a plain Monte Carlo would need for standard errors as small as
+        these, the smaller over the mean and the mean square (estimated from
+        the same run; ``inf`` when the controlled error has no spread) [count].
+    """
+
+    degree: int
+    pilot_samples: int
+    samples: int
+    reference_samples: int
+    plain_equivalent: float
 
 
 @dataclass(frozen=True)
@@ -528,16 +753,82 @@ class AzimuthMonteCarlo:
         Bounds (14), (15) at the true variances [rad].
     theory : SecondOrderTheory
         Second-order theory of the case.
+    controls : ControlVariateSummary or None
+        The control variates behind the mean and rms of ``result`` (None: plain Monte Carlo).
     """
 
     result: montecarlo.MonteCarloResult
     bound14: float
     bound15: float
     theory: SecondOrderTheory
+    controls: ControlVariateSummary | None = None
 
 
-def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None, steps_per_trial: int = 1024, executor=None, progress: bool = False, blocks_per_chunk: int = 16) -> AzimuthMonteCarlo:
+#: main-run size over (variance ratio × reference size): a margin for the pilot's estimate of the ratio
+_SIZE_MARGIN = 1.5
+#: draws per block of a control-variate run (the unit of randomness)
+_CONTROL_BLOCK = 8192
+#: the Taylor controls are trusted for tilts within this fraction of the distance to the horizon of the tilt correction
+_TRUSTED_FRACTION = 0.9
+#: a plain run of the reference size expecting fewer excursions beyond it than ``_RARE_VISITS`` is not changed by
+#: them; otherwise the controlled run contains at least ``_FAR_VISITS`` of them, or, if even the plain run would
+#: expect fewer, it is the plain run
+_RARE_VISITS = 0.05
+_FAR_VISITS = 100
+#: a run longer than this many pilots is fitted and sized on a second pilot of a quarter of its length
+_LONG_RUN = 16
+#: longer runs allowed when a run still falls short of the reference precision
+_EXTENSIONS = 2
+#: a controlled run planned at least this fraction of a plain one longer than ``_SHORT_RUN`` draws is the plain one
+#: (a controlled draw costs about 1.4 plain ones; shorter runs cost little either way, and the controlled one is tighter)
+_NOT_SHORTER = 0.5
+_SHORT_RUN = 8192
+#: highest degree of the controls of unbounded (Gaussian) rocking: the residual of degree-4 controls of Gaussian
+#: draws has a skewness of 10-40, too much for the normal interval of a run of a few thousand draws
+_UNBOUNDED_DEGREE = 2
+
+
+def azimuth_monte_carlo(
+    latitude,
+    beta0,
+    gamma0,
+    rocking,
+    n_samples,
+    *,
+    rng=None,
+    steps_per_trial: int = 1024,
+    executor=None,
+    progress: bool = False,
+    blocks_per_chunk: int = 16,
+    control_degree: int = 0,
+    pilot_samples: int = 1024,
+    min_samples: int = 4096,
+) -> AzimuthMonteCarlo:
     """Monte Carlo of ``α − α*`` at independent instants, with bounds (14), (15) and theory.
+
+    With ``control_degree = 0`` it draws ``n_samples`` rocking samples and
+    reports their statistics (standard errors from batch means of
+    ``steps_per_trial`` samples).  With ``control_degree ≥ 1`` the mean and the
+    mean square are control-variate estimates (:class:`TaylorControls` of that
+    degree): a pilot of ``pilot_samples`` draws (its own stream) fits the
+    coefficients and the fraction of the variance they leave (out of sample);
+    the run then draws that fraction of ``n_samples`` (with a margin of 1.5, at
+    least ``min_samples``), so that its standard errors are at most those of a
+    plain run of ``n_samples``.  When that run is long, a second independent
+    pilot of a quarter of its length refits and resizes it (heavy tails show
+    only in larger samples).  The estimates are unbiased (the coefficients do
+    not depend on the run) and their intervals are the ordinary ones of
+    independent draws.  A run that still shows less precision than the
+    reference is extended, at most twice.  Where the rocking reaches towards
+    the horizon of the tilt correction (:func:`far_rocking_probability`) often
+    enough for a plain run of ``n_samples`` to meet it, the controls cannot
+    follow the error, and the large errors there would dominate what they
+    leave: the controlled run then contains at least 100 such excursions in
+    expectation, and where even the plain run would expect fewer, it is the
+    plain run of ``n_samples`` (degree 0 in :attr:`AzimuthMonteCarlo.controls`),
+    as it is where the pilots plan a controlled run of at least half its length
+    and that is more than 8192 draws (a controlled draw costs about 1.4 plain
+    ones).
 
     Parameters
     ----------
@@ -548,17 +839,27 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     rocking : rocking model
         From :mod:`strapdown.analysis.gyrocompass.rocking`.
     n_samples : int
-        Rocking samples (rounded up to whole trials), at least 2.
+        Rocking samples (rounded up to whole trials), at least 2; with control
+        variates, the plain run whose precision is to be matched [count].
     rng : Generator | SeedSequence | int | None
         Random streams.
     steps_per_trial : int
-        Samples per trial (batch size of the standard error).
+        Samples per trial (batch size of the standard error; plain runs).
     executor : Executor | dask Client | None
         Where chunks run (the result does not depend on it).
     progress : bool
         tqdm progress bar on stderr.
     blocks_per_chunk : int
         Blocks per work item (the result does not depend on it).
+    control_degree : int
+        0 for a plain Monte Carlo, else the highest total degree of the control
+        monomials; at most 2 for unbounded (Gaussian) rocking, whose residuals
+        after higher-degree controls are too heavy-tailed for the interval of
+        a short run (a sinusoid is bounded: any degree).
+    pilot_samples : int
+        Draws of the pilot (control variates) [count].
+    min_samples : int
+        Fewest draws of the run (control variates) [count].
 
     Returns
     -------
@@ -567,7 +868,13 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     Raises
     ------
     ValueError
-        For |latitude| ≥ 90°, negative sigmas, ``n_samples < 2`` or non-finite input.
+        For |latitude| ≥ 90°, negative sigmas, ``n_samples < 2``, a negative
+        ``control_degree``, too small a pilot or non-finite input.
+
+    References
+    ----------
+    Hrechka & Koroliov, eqs. (12), (14), (15); Lavenberg & Welch (1981),
+    *Management Science* 27(3), 322–335 (control variables).
 
     Examples
     --------
@@ -576,13 +883,129 @@ def azimuth_monte_carlo(latitude, beta0, gamma0, rocking, n_samples, *, rng=None
     >>> lo, hi = mc.result.rms_ci
     >>> bool(lo < mc.theory.rms < hi)
     True
+    >>> cv = azimuth_monte_carlo(math.radians(45), 0.0, 0.0, GaussianRocking(1e-3, 1e-3), 10**6, rng=1, control_degree=4)
+    >>> cv.controls.samples, cv.controls.plain_equivalent > 10**6
+    (4096, True)
     """
     latitude = check_latitude(latitude)
     n_samples = as_int(n_samples, "n_samples", minimum=2)
+    control_degree = as_int(control_degree, "control_degree", minimum=0)
     steps = min(as_int(steps_per_trial, "steps_per_trial", minimum=1), max(1, n_samples // 2))
     kernel = AzimuthErrorKernel(latitude, beta0, gamma0, rocking, n_steps=steps)
     theory = second_order_theory(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
-    n_trials = max(2, -(-n_samples // steps))
     scale = theory.rms_first_order if theory.rms_first_order > 0 else 1e-12
-    result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress)
-    return AzimuthMonteCarlo(result, bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi), theory)
+    bounds = bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi)
+    options = dict(blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress)
+    if control_degree == 0:
+        n_trials = max(2, -(-n_samples // steps))
+        result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), **options)
+        return AzimuthMonteCarlo(result, *bounds, theory)
+    pilot_samples = as_int(pilot_samples, "pilot_samples", minimum=2)
+    min_samples = as_int(min_samples, "min_samples", minimum=2)
+    root = montecarlo.root_seed_sequence(rng)
+    degree = control_degree if isinstance(rocking, SineRocking) else min(control_degree, _UNBOUNDED_DEGREE)
+    p = len(TaylorControls.for_rocking(rocking, degree).exponents)
+    if pilot_samples < 2 * p + 4:
+        raise ValueError(f"Expected `pilot_samples` >= {2 * p + 4} for degree {degree}, got {pilot_samples}")
+    far = far_rocking_probability(latitude, kernel.beta0, kernel.gamma0, rocking)
+
+    def plain(pilots):  # the plain run, with at least 512 batches for its standard errors
+        n_steps = max(1, min(steps, n_samples // 512))
+        n_trials = max(2, -(-n_samples // n_steps))
+        result = montecarlo.run(replace(kernel, n_steps=n_steps), n_trials, rng=montecarlo.block_seed(root, 1), trials_per_block=max(1, 65536 // n_steps), **options)
+        return AzimuthMonteCarlo(result, *bounds, theory, ControlVariateSummary(0, pilots, result.n_samples, n_samples, float(result.n_samples)))
+
+    if _RARE_VISITS <= n_samples * far < _FAR_VISITS:
+        # excursions towards the horizon that a plain run would meet, too rare for 100 of them in a shorter
+        # run: their large errors would dominate the variance the controls leave, unseen
+        return plain(0)
+    pilot_kernel = replace(kernel, n_steps=1)
+
+    def sized(controls):
+        size = max(min_samples, math.ceil(_SIZE_MARGIN * controls.variance_ratio * n_samples))
+        return max(size, math.ceil(_FAR_VISITS / far)) if n_samples * far >= _FAR_VISITS else size
+
+    controls = _fit_controls(pilot_kernel, degree, pilot_samples, montecarlo.block_seed(root, 0))
+    size, pilots = sized(controls), pilot_samples
+    if size >= _NOT_SHORTER * n_samples > _SHORT_RUN:  # the controls would save little on a long run: the plain run
+        return plain(pilots)
+    if size > _LONG_RUN * pilot_samples:  # a long run: fit and size it on a larger, independent pilot
+        second = math.ceil(size / 4)
+        controls = _fit_controls(pilot_kernel, degree, second, montecarlo.block_seed(root, 2))
+        size, pilots = max(size, sized(controls)), pilots + second
+        if size >= _NOT_SHORTER * n_samples > _SHORT_RUN:
+            return plain(pilots)
+    kernel = replace(kernel, n_steps=1, controls=controls)
+    for attempt in range(_EXTENSIONS + 1):  # blocks are prefix-stable: a longer run extends the shorter one
+        raw = montecarlo.run(kernel, size, rng=montecarlo.block_seed(root, 1), trials_per_block=_CONTROL_BLOCK, **options)
+        result = montecarlo.controlled(raw, offsets=controls.offsets)
+        worth = _plain_equivalent(raw, result)
+        if worth >= n_samples or attempt == _EXTENSIONS:
+            break
+        size = math.ceil(size * _SIZE_MARGIN * n_samples / worth)
+    summary = ControlVariateSummary(degree, pilots, size, n_samples, worth)
+    return AzimuthMonteCarlo(result, *bounds, theory, summary)
+
+
+def far_rocking_probability(latitude, beta0, gamma0, rocking) -> float:
+    """Probability that the rocking leaves the tilts where Taylor controls of the error can be trusted.
+
+    The tilt correction ``σ = arg(A + iB)`` is singular where ``A + iB = 0``:
+    at ``β = 0``, ``γ = φ − π/2`` (for φ > 0), a tilt ``π/2 − |φ|`` from level
+    and at least ``d = π/2 − |φ| − |β0| − |γ0|`` from the stable tilts.  Near it
+    the error turns fast and wraps, which no polynomial follows.  This is
+    ``P(|ξ| > ρ or |η| > ρ)`` with ``ρ = 0.9 d`` (1 when ``d ≤ 0``), exact for
+    the rocking law (ξ, η independent).
+
+    Parameters
+    ----------
+    latitude : float
+        Latitude φ [rad], |φ| < π/2.
+    beta0, gamma0 : float
+        Stable tilts [rad].
+    rocking : GaussianRocking | SineRocking | NarrowbandRocking
+        The rocking at independent instants.
+
+    Returns
+    -------
+    float
+        In [0, 1] [dimensionless].
+
+    References
+    ----------
+    Hrechka & Koroliov, eq. (2) (A, B).
+
+    >>> from strapdown.analysis.gyrocompass.rocking import SineRocking
+    >>> far_rocking_probability(math.radians(80), 0.0, 0.0, SineRocking(math.radians(1), math.radians(1)))
+    0.0
+    """
+    latitude = check_latitude(latitude)
+    d = 0.5 * math.pi - abs(latitude) - abs(as_float(beta0, "beta0")) - abs(as_float(gamma0, "gamma0"))
+    if d <= 0.0:
+        return 1.0
+    rho = _TRUSTED_FRACTION * d
+    inside = 1.0
+    for sigma in (rocking.sigma_xi, rocking.sigma_eta):
+        if sigma > 0.0:
+            inside *= rocking.standard_moment(0, rho / sigma)
+    return max(0.0, 1.0 - inside)
+
+
+def _fit_controls(kernel: AzimuthErrorKernel, degree: int, n: int, seed) -> TaylorControls:
+    """Fit :class:`TaylorControls` of ``degree`` on ``n`` pilot draws of the kernel's error (one block, stream ``seed``)."""
+    basis = TaylorControls.for_rocking(kernel.rocking, degree)
+    p = len(basis.exponents)
+    if n < 2 * p + 4:
+        raise ValueError(f"Expected `pilot_samples` >= {2 * p + 4} for degree {degree}, got {n}")
+    xi, eta = kernel.rocking.sample(np.random.default_rng(seed), n, 1, None)
+    return basis.fitted(xi, eta, azimuth_error(xi.ravel(), eta.ravel(), latitude=kernel.latitude, beta0=kernel.beta0, gamma0=kernel.gamma0))
+
+
+def _plain_equivalent(raw: montecarlo.MonteCarloResult, controlled: montecarlo.MonteCarloResult) -> float:
+    """Draws a plain run needs for the controlled standard errors (the smaller over mean and mean square)."""
+    plain_mean = (raw.mean_ci[1] - raw.mean) / montecarlo.Z95
+    out = math.inf
+    for plain, cv in ((plain_mean, controlled.aux_std_error[0]), (raw.mse_std_error, controlled.mse_std_error)):
+        if cv > 0.0:
+            out = min(out, raw.n_samples * (plain / cv) ** 2)
+    return out

@@ -20,6 +20,17 @@ Two estimates are compared with different yardsticks:
     prescription (14) with the sample variances of (16) bounds the
     instantaneous error, not the error of the mean; it is kept as
     ``plugin14`` to show by how much it overstates.
+
+With ``control_degree ≥ 1`` each case is a control-variate Monte Carlo whose
+standard errors are at most those of a plain one of ``n_samples`` rocking
+samples, from far fewer draws.  The error of (12) takes the monomials of the
+rocking as controls (:class:`strapdown.analysis.gyrocompass.azimuth.TaylorControls`).
+The alignment error of (16) depends on a record only through its sample means,
+whose law is exact (:func:`strapdown.analysis.gyrocompass.rocking.mean_law`):
+it is drawn from that law, with the monomials of the means as controls; the
+plug-in (14) needs the sample variances as well, so its records are simulated,
+with the sample variances (exact mean ``(1 − v) σ²``) as controls, their
+coefficients the derivatives of (14)².
 """
 
 from __future__ import annotations
@@ -31,8 +42,8 @@ import numpy as np
 
 from ..core import montecarlo
 from ..core.validation import as_array, as_int, nonnegative, positive
-from .azimuth import AzimuthErrorKernel, azimuth_monte_carlo, bound14, bound15, check_latitude, gradient, second_order_theory
-from .rocking import mean_variance_factor, rocking_model
+from .azimuth import AzimuthErrorKernel, ControlVariateSummary, azimuth_monte_carlo, bound14, bound14_squared, bound15, check_latitude, gradient, second_order_theory
+from .rocking import mean_law, mean_variance_factor, rocking_model
 
 __all__ = ["SweepCase", "SweepRow", "ValidityMap", "evaluate_case", "sweep", "grid_cases", "validity_map", "first_order_alignment_rms", "local_cluster"]
 
@@ -123,6 +134,10 @@ class SweepRow:
     plugin14 : float or None
         Sample-mean cases: rms of (14) evaluated as the paper prescribes after
         (16), with the sample means and sample variances; None otherwise.
+    controls : ControlVariateSummary or None
+        The control variates behind ``rms`` and ``mean`` (None: plain Monte Carlo).
+    plugin_controls : ControlVariateSummary or None
+        The control variates behind ``plugin14`` (sample-mean cases with control variates).
     """
 
     case: SweepCase
@@ -136,6 +151,8 @@ class SweepRow:
     theory_rms_first_order: float
     theory_bias: float
     plugin14: float | None = None
+    controls: ControlVariateSummary | None = None
+    plugin_controls: ControlVariateSummary | None = None
 
     def covers(self, bound: float) -> str:
         """``"holds"``, ``"fails"`` or ``"undecided"``: the 95 % interval of the rms against ``bound``.
@@ -156,7 +173,7 @@ class SweepRow:
         return "undecided"
 
 
-def evaluate_case(case: SweepCase, n_samples: int, seed) -> SweepRow:
+def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int = 0) -> SweepRow:
     """Monte Carlo of one case with its bounds and theory (angles in rad).
 
     Parameters
@@ -164,20 +181,33 @@ def evaluate_case(case: SweepCase, n_samples: int, seed) -> SweepRow:
     case : SweepCase
         The configuration.
     n_samples : int
-        Rocking samples (known tilt) or trials × steps (sample mean).
+        Rocking samples (known tilt) or trials × steps (sample mean); with
+        control variates, those of the plain Monte Carlo whose precision is matched.
     seed : SeedSequence | int
         The case's random stream.
+    control_degree : int
+        0: plain Monte Carlo; else the degree of the Taylor control variates.
 
     Returns
     -------
     SweepRow
     """
     rocking = case.rocking()
+    control_degree = as_int(control_degree, "control_degree", minimum=0)
     if case.estimate == "known":
-        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, rocking, n_samples, rng=seed, steps_per_trial=256)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, rocking, n_samples, rng=seed, steps_per_trial=256, control_degree=control_degree)
         r, th = mc.result, mc.theory
-        return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, mc.bound14, mc.bound15, th.rms, th.rms_first_order, th.bias)
+        return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, mc.bound14, mc.bound15, th.rms, th.rms_first_order, th.bias, controls=mc.controls)
     n_steps = case.n_steps
+    if control_degree:
+        root = montecarlo.root_seed_sequence(seed)
+        n_trials = max(2, n_samples // n_steps)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, mean_law(rocking, n_steps, case.dt), n_trials, rng=montecarlo.block_seed(root, 0), control_degree=control_degree)
+        plugin, plugin_controls = _controlled_plugin14(case, n_trials, montecarlo.block_seed(root, 1))
+        r, th = mc.result, mc.theory
+        return SweepRow(
+            case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, mc.bound14, mc.bound15, th.rms, th.rms_first_order, th.bias, plugin14=plugin, controls=mc.controls, plugin_controls=plugin_controls
+        )
     kernel = AzimuthErrorKernel(case.latitude, case.beta0, case.gamma0, rocking, n_steps=n_steps, dt=case.dt, estimate="sample-mean")
     sx = rocking.sigma_xi * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="xi"))
     se = rocking.sigma_eta * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="eta"))
@@ -188,6 +218,63 @@ def evaluate_case(case: SweepCase, n_samples: int, seed) -> SweepRow:
     return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, b14, b15, th.rms, th.rms_first_order, th.bias, plugin14=math.sqrt(r.aux_mean[0]))
 
 
+#: fewest records of the controlled plug-in (14), and the margin of a larger redraw
+_PLUGIN_MIN = 24
+_PLUGIN_MARGIN = 1.5
+
+
+@dataclass(frozen=True)
+class _PluginKernel:
+    """Per record: (14)² with the sample means and variances of (16), and the sample variances minus their exact means."""
+
+    case: SweepCase
+    var_mean_xi: float
+    var_mean_eta: float
+
+    def __call__(self, n_trials, rng):
+        c = self.case
+        xi, eta = c.rocking().sample(rng, n_trials, c.n_steps, c.dt)
+        dxi, deta = xi.var(axis=1), eta.var(axis=1)  # 1/n normalisation, as in (16)
+        b14sq = np.broadcast_to(bound14_squared(c.latitude, c.beta0 + xi.mean(axis=1), c.gamma0 + eta.mean(axis=1), dxi, deta), dxi.shape)
+        return np.stack([b14sq, dxi - self.var_mean_xi, deta - self.var_mean_eta], axis=1)
+
+
+def _controlled_plugin14(case: SweepCase, n_trials: int, seed):
+    """rms of the plug-in (14) with the sample variances as controls: ``(value [rad], ControlVariateSummary)``.
+
+    ``E σ̂² = (1 − v) σ²`` exactly (:mod:`strapdown.analysis.gyrocompass.finite_sample`).
+    The coefficients are fixed in advance: the derivatives of (14)² with
+    respect to the two variances at the stable tilts and the expected sample
+    variances, so the estimate is unbiased without a pilot.  The run starts
+    with ``_PLUGIN_MIN`` records and is redrawn larger until its standard
+    error is at most that of a plain run of ``n_trials`` records.
+    """
+    rocking = case.rocking()
+    means = [s * s * (1.0 - mean_variance_factor(rocking, case.n_steps, case.dt, axis=a)) for s, a in ((rocking.sigma_xi, "xi"), (rocking.sigma_eta, "eta"))]
+    kernel = _PluginKernel(case, *means)
+
+    def plug_in(dxi, deta):
+        return float(bound14_squared(case.latitude, case.beta0, case.gamma0, dxi, deta))
+
+    offset = plug_in(*means)
+    c = np.zeros(2)
+    for k, m in enumerate(means):
+        if m > 0.0:
+            h = 1e-3 * m
+            c[k] = (plug_in(*(m + h if j == k else x for j, x in enumerate(means))) - plug_in(*(m - h if j == k else x for j, x in enumerate(means)))) / (2.0 * h)
+    size, root = _PLUGIN_MIN, montecarlo.root_seed_sequence(seed)
+    for attempt in range(4):
+        rows = montecarlo.collect(kernel, size, rng=root, trials_per_block=64)
+        z = rows[:, 0] - montecarlo.combine(rows[:, 1:], c) - offset
+        var_z, var_plain = float(z.var(ddof=1)), float(rows[:, 0].var(ddof=1))
+        worth = size * var_plain / var_z if var_z > 0.0 else math.inf
+        if worth >= n_trials or attempt == 3:
+            break
+        size = math.ceil(size * _PLUGIN_MARGIN * n_trials / worth)
+    value = offset + float(z.mean())
+    return math.sqrt(max(value, 0.0)), ControlVariateSummary(1, 0, size, n_trials, worth)
+
+
 @dataclass(frozen=True)
 class _CaseTask:
     case: SweepCase
@@ -195,13 +282,14 @@ class _CaseTask:
     entropy: object
     spawn_key: tuple
     index: int
+    control_degree: int = 0
 
     def __call__(self):
         root = np.random.SeedSequence(self.entropy, spawn_key=self.spawn_key)
-        return evaluate_case(self.case, self.n_samples, montecarlo.block_seed(root, self.index))
+        return evaluate_case(self.case, self.n_samples, montecarlo.block_seed(root, self.index), control_degree=self.control_degree)
 
 
-def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = False) -> list:
+def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0) -> list:
     """Evaluate every case; the rows come back in case order.
 
     Parameters
@@ -216,18 +304,22 @@ def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = Fa
         Where cases run (does not change the result).
     progress : bool
         tqdm bar on stderr.
+    control_degree : int
+        0: plain Monte Carlo; else the degree of the control variates (see
+        :func:`evaluate_case`).
 
     Returns
     -------
     list of SweepRow
     """
     n_samples = as_int(n_samples, "n_samples", minimum=2)
+    control_degree = as_int(control_degree, "control_degree", minimum=0)
     root = montecarlo.root_seed_sequence(rng)
     cases = list(cases)
     for c in cases:
         if not isinstance(c, SweepCase):
             raise TypeError(f"Expected `cases` of SweepCase, got {type(c).__name__}")
-    tasks = [_CaseTask(c, n_samples, root.entropy, tuple(root.spawn_key), i) for i, c in enumerate(cases)]
+    tasks = [_CaseTask(c, n_samples, root.entropy, tuple(root.spawn_key), i, control_degree) for i, c in enumerate(cases)]
     return montecarlo.map_tasks(executor, tasks, progress=progress, desc="azimuth sweep")
 
 
@@ -287,7 +379,7 @@ class ValidityMap:
         return np.array(values, dtype=float).reshape(len(self.latitudes), len(self.sigmas))
 
 
-def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, progress: bool = False, **fields) -> ValidityMap:
+def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0, **fields) -> ValidityMap:
     """Sweep the latitude × amplitude grid and classify bounds (14), (15) in every cell.
 
     Parameters
@@ -304,6 +396,9 @@ def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, 
         Where cells run (does not change the result).
     progress : bool
         tqdm bar on stderr.
+    control_degree : int
+        0: plain Monte Carlo; else the degree of the control variates (see
+        :func:`evaluate_case`).
     **fields
         The other :class:`SweepCase` fields.
 
@@ -312,7 +407,7 @@ def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, 
     ValidityMap
     """
     lats, sig = as_array(latitudes, "latitudes").ravel(), as_array(sigmas, "sigmas").ravel()
-    rows = tuple(sweep(grid_cases(lats, sig, **fields), n_samples=n_samples, rng=rng, executor=executor, progress=progress))
+    rows = tuple(sweep(grid_cases(lats, sig, **fields), n_samples=n_samples, rng=rng, executor=executor, progress=progress, control_degree=control_degree))
     shape = (len(lats), len(sig))
 
     def grid(values, dtype=float):

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.validation import as_float, as_int, nonnegative, positive
 
-__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "tilt_domain_limit", "MODELS"]
+__all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "mean_law", "tilt_domain_limit", "MODELS"]
 
 
 def as_generator(rng) -> np.random.Generator:
@@ -72,6 +72,42 @@ def _dt(dt):
     return None if dt is None else positive(dt, "dt")
 
 
+def _order(k) -> int:
+    return as_int(k, "k", minimum=0)
+
+
+def _bound(bound) -> float:
+    """A truncation bound: positive, or +inf for none."""
+    if isinstance(bound, (float, np.floating)) and bound == math.inf:
+        return math.inf
+    return positive(bound, "bound")
+
+
+def _normal_moment(k, bound=math.inf) -> float:
+    """``E[u^k; |u| ≤ bound]`` of a standard normal u: 0 for odd k, ``(k − 1)!! P((k + 1)/2, bound²/2)`` for even k."""
+    k = _order(k)
+    if k % 2:
+        return 0.0
+    full = float(math.prod(range(k - 1, 0, -2)))
+    if math.isinf(bound):
+        return full
+    from scipy.special import gammainc
+
+    return full * float(gammainc((k + 1) / 2.0, bound * bound / 2.0))
+
+
+def _arcsine_moment(k, bound=math.inf) -> float:
+    """``E[u^k; |u| ≤ bound]`` of ``u = √2 sin ψ``, ψ uniform: 0 for odd k, ``2^{k/2} (2/π) ∫₀^a sin^k t dt`` (``sin a = bound/√2``)."""
+    k = _order(k)
+    if k % 2:
+        return 0.0
+    if bound >= math.sqrt(2.0):
+        return math.comb(k, k // 2) * 2.0 ** (k // 2) / 2.0**k
+    a = math.asin(bound / math.sqrt(2.0))
+    integral = a  # ∫₀^a sin^m t dt by m ← m − 2 recursion
+    for m in range(2, k + 1, 2):
+        integral = -(math.sin(a) ** (m - 1)) * math.cos(a) / m + (m - 1) / m * integral
+    return 2.0 ** (k // 2) * 2.0 / math.pi * integral
 @dataclass(frozen=True)
 class GaussianRocking:
     """Independent zero-mean Gaussian tilts.
@@ -126,6 +162,27 @@ class GaussianRocking:
         z[0] *= self.sigma_xi
         z[1] *= self.sigma_eta
         return z[0], z[1]
+
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` (the same for η) [dimensionless]: the moments of the standard normal law.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none).
+
+        Returns
+        -------
+        float
+
+        >>> GaussianRocking(0.01, 0.01).standard_moment(4)
+        3.0
+        >>> round(GaussianRocking(0.01, 0.01).standard_moment(0, 1.959963984540054), 12)
+        0.95
+        """
+        return _normal_moment(k, _bound(bound))
 
     def autocorrelation(self, lag):
         """Normalised autocorrelation ρ(τ) at lags ``lag`` [s]: 1 at 0, else 0.
@@ -214,6 +271,27 @@ class SineRocking:
             out.append(phase)
         return out[0], out[1]
 
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` at a random instant (the same for η) [dimensionless]: ``ξ/σξ = √2 sin ψ``, ψ uniform.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none; none either from √2 up).
+
+        Returns
+        -------
+        float
+
+        >>> SineRocking(0.01, 0.01).standard_moment(4)
+        1.5
+        >>> round(SineRocking(0.01, 0.01).standard_moment(0, 1.0), 12)
+        0.5
+        """
+        return _arcsine_moment(k, _bound(bound))
+
     def autocorrelation(self, lag, *, axis: str = "xi"):
         """Normalised autocorrelation ``cos(2π τ / T)`` at lags ``lag`` [s].
 
@@ -275,6 +353,22 @@ class NarrowbandRocking:
         if not 0.0 < damping < 1.0:
             raise ValueError(f"Expected `damping` in (0, 1), got {damping:g}")
         object.__setattr__(self, "damping", damping)
+
+    def standard_moment(self, k: int, bound: float = math.inf) -> float:
+        """``E[(ξ/σξ)^k; |ξ/σξ| ≤ bound]`` (the same for η) [dimensionless]: the stationary law is normal.
+
+        Parameters
+        ----------
+        k : int
+            Order, ≥ 0.
+        bound : float
+            Truncation in standard deviations, > 0 (default none).
+
+        Returns
+        -------
+        float
+        """
+        return _normal_moment(k, _bound(bound))
 
     @property
     def omega0(self) -> float:
@@ -529,6 +623,63 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
     else:
         rho = model.autocorrelation(k * dt)
     return max(float((1.0 + 2.0 * np.sum((1.0 - k / n) * rho)) / n), 0.0)
+
+
+def mean_law(model, n_steps: int, dt: float | None):
+    """The rocking model whose draws at independent instants have the law of one record's sample means.
+
+    The sample means ``(ξ̄_n, η̄_n)`` of ``n_steps`` samples taken every ``dt``
+    are independent, zero-mean, with variances ``v σ²``
+    (:func:`mean_variance_factor`), and their law is exact:
+
+    * Gaussian and narrow-band rocking: a linear functional of a Gaussian
+      process is Gaussian, so the means are :class:`GaussianRocking` with
+      standard deviations ``σ √v``;
+    * a sinusoid sampled every ``dt``: the mean of ``a sin(ω k dt + ψ)`` is
+      ``a |S| sin(ψ + arg S)`` with ``S = (1/n) Σ exp(iωk dt)`` and
+      ``|S|² = v``, again a sinusoid with a uniform phase: :class:`SineRocking`
+      with standard deviations ``σ √v``.
+
+    Parameters
+    ----------
+    model : GaussianRocking | SineRocking | NarrowbandRocking
+        The rocking.
+    n_steps : int
+        Samples averaged, ≥ 1.
+    dt : float or None
+        Sample interval [s]; None for independent samples (not for a sinusoid,
+        whose mean of independent instants has no closed law).
+
+    Returns
+    -------
+    GaussianRocking | SineRocking
+
+    Raises
+    ------
+    ValueError
+        For a sinusoid with ``dt=None``.
+    TypeError
+        For an unknown model.
+
+    References
+    ----------
+    Hrechka & Koroliov, eq. (16) (the sample means); Priestley, M. B., *Spectral
+    Analysis and Time Series*, Academic Press, 1981, sec. 5.3.
+
+    >>> m = mean_law(GaussianRocking(0.02, 0.01), 4, None)
+    >>> m.sigma_xi, m.sigma_eta
+    (0.01, 0.005)
+    """
+    n = as_int(n_steps, "n_steps", minimum=1)
+    if not isinstance(model, (GaussianRocking, SineRocking, NarrowbandRocking)):
+        raise TypeError(f"Expected `model` to be a rocking model, got {type(model).__name__}")
+    if isinstance(model, SineRocking) and dt is None:
+        raise ValueError("Expected `dt` for a sinusoid (its mean over independent instants has no closed law), got None")
+    sx = model.sigma_xi * math.sqrt(mean_variance_factor(model, n, dt, axis="xi"))
+    se = model.sigma_eta * math.sqrt(mean_variance_factor(model, n, dt, axis="eta"))
+    if isinstance(model, SineRocking):
+        return SineRocking(sx, se, model.period_xi, model.period_eta)
+    return GaussianRocking(sx, se)
 
 
 def tilt_domain_limit(model, beta0: float, gamma0: float) -> float:

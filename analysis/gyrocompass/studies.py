@@ -138,7 +138,7 @@ class CaseResult:
         return bool(lo <= self.mc.theory.rms <= hi)
 
 
-def run_cases(cases, *, n_samples: int, rng=None) -> tuple:
+def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0) -> tuple:
     """Monte Carlo of each case from its own child stream of ``rng``.
 
     Parameters
@@ -146,9 +146,13 @@ def run_cases(cases, *, n_samples: int, rng=None) -> tuple:
     cases : sequence of BoundCase
         The configurations.
     n_samples : int
-        Rocking samples per case, at least 2.
+        Rocking samples per case, at least 2; with control variates, the plain
+        Monte Carlo whose precision each case matches.
     rng : Generator | SeedSequence | int | None
         Root of the per-case streams.
+    control_degree : int
+        0: plain Monte Carlo; else the degree of the control variates of
+        :func:`strapdown.analysis.gyrocompass.azimuth.azimuth_monte_carlo`.
 
     Returns
     -------
@@ -160,7 +164,7 @@ def run_cases(cases, *, n_samples: int, rng=None) -> tuple:
     for i, case in enumerate(cases):
         if not isinstance(case, BoundCase):
             raise TypeError(f"Expected `cases` of BoundCase, got {type(case).__name__}")
-        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, case.rocking(), n_samples, rng=montecarlo.block_seed(root, i))
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, case.rocking(), n_samples, rng=montecarlo.block_seed(root, i), control_degree=control_degree)
         out.append(CaseResult(case, mc))
     return tuple(out)
 

@@ -202,9 +202,13 @@ def compare_estimators(
     means = np.cumsum(z, axis=-1)[:, :, idx] / steps
     # Kalman filter, gains from filterpy, applied to all trials at once
     est, sig, nees_vals, dim = [], None, None, 1  # NEES on β0: one degree of freedom per trial
+    sequences = {}  # the gains do not depend on the data: one Riccati recursion per distinct axis model
     for ax, name in enumerate(("xi", "eta")):
         model = tilt_filter_model(rocking, dt, axis=name, prior_sigma=prior, noise_sigma=max(r, 1e-12))
-        gains, covs = kalman.gain_sequence(model.F, model.Q, model.H, model.R, model.P0, n_max)
+        key = tuple(np.asarray(m, dtype=float).tobytes() for m in (model.F, model.Q, model.H, model.R, model.P0))
+        if key not in sequences:
+            sequences[key] = kalman.gain_sequence(model.F, model.Q, model.H, model.R, model.P0, n_max)
+        gains, covs = sequences[key]
         x = kalman.apply_gains(model.F, model.H, gains, np.zeros(model.F.shape[0]), z[ax][:, :, None])
         est.append(x[:, idx, 0])
         if ax == 0:
