@@ -16,7 +16,7 @@ import numpy as np
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import rad
 from . import Erratum, Section
-from .rendering import at_round_off
+from .rendering import at_round_off, fixed_layout
 
 SECTION = Section(
     "azimuth",
@@ -35,6 +35,17 @@ CONTROL_DEGREE = 4
 
 def _seed(ctx, *key):
     return np.random.SeedSequence(ctx.seed, spawn_key=(50, *key))
+
+
+#: Reference sizes of the violation cases (their plain-run precision) [count], quick and full.
+_VIOLATION_SAMPLES = {True: 400_000, False: 4_000_000}
+
+
+def _violations(ctx) -> list:
+    """The violation cases of part 2, computed once per report run (the errata quote one of them)."""
+    from ..gyrocompass.studies import VIOLATION_CASES, run_cases
+
+    return ctx.shared("azimuth/violation-cases", lambda: run_cases(VIOLATION_CASES, n_samples=_VIOLATION_SAMPLES[ctx.quick], rng=_seed(ctx, 0), control_degree=CONTROL_DEGREE))
 
 
 def _formula_checks() -> tuple:
@@ -183,6 +194,7 @@ def _distribution_figure(ctx, results) -> None:
         ax.set_xlabel("azimuth error α − α* [deg]")
     axes[0].set_ylabel("density [1/deg]")
     axes[0].legend(loc="upper left")
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.6)
     ctx.savefig(fig, "figures/azimuth-distribution.png")
 
 
@@ -274,8 +286,9 @@ def _map_grid(n_columns: int, width: float):
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(2, n_columns, figsize=(width * n_columns, 7.0), squeeze=False)
-    fig.subplots_adjust(left=0.07, right=0.9, bottom=0.1, top=0.93, wspace=0.25, hspace=0.45)
-    return fig, axes, fig.add_axes((0.92, 0.2, 0.012, 0.6))
+    fixed_layout(fig, left=0.5, right=1.2, bottom=0.65, top=0.5, wgap=0.45, hgap=0.9)
+    w = width * n_columns
+    return fig, axes, fig.add_axes(((w - 1.0) / w, 0.2, 0.14 / w, 0.6))
 
 
 def _validity_figures(ctx, maps) -> None:
@@ -395,6 +408,7 @@ def _estimator_figure(ctx, results) -> None:
     ax2.set_xlabel("averaging time [s]")
     ax2.set_ylabel("mean NEES of β̂0 (1 dof)")
     ax2.legend(fontsize=6)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.75)
     ctx.savefig(fig, "figures/azimuth-estimators.png")
 
 
@@ -453,6 +467,7 @@ def _design_figure(ctx, curves, exact_sine, check, freqs) -> None:
     axes[0].plot(check.frequencies, check.amplitudes * D, "ko", ms=4, label="Monte Carlo check")
     for ax in axes:
         ax.legend(fontsize=6)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.7)
     ctx.savefig(fig, "figures/azimuth-design.png")
 
 
@@ -502,7 +517,7 @@ def build(ctx) -> None:
     ctx : Context
         Report context (output, sizes, seed).
     """
-    from ..gyrocompass.studies import DISTRIBUTION_CASES, SMALL_ROCKING_CASES, VIOLATION_CASES, run_cases
+    from ..gyrocompass.studies import DISTRIBUTION_CASES, SMALL_ROCKING_CASES, run_cases
 
     big, mid = (400_000, 200_000) if ctx.quick else (4_000_000, 2_000_000)
     lines = [
@@ -518,8 +533,7 @@ def build(ctx) -> None:
         "",
     ]
     lines += _derivation_lines(_formula_checks())
-    violations = run_cases(VIOLATION_CASES, n_samples=big, rng=_seed(ctx, 0), control_degree=CONTROL_DEGREE)
-    lines += _violation_lines(violations)
+    lines += _violation_lines(_violations(ctx))
     _distribution_figure(ctx, run_cases(DISTRIBUTION_CASES, n_samples=mid, rng=_seed(ctx, 2)))
     lines += _small_rocking_lines(run_cases(SMALL_ROCKING_CASES, n_samples=big, rng=_seed(ctx, 1), control_degree=CONTROL_DEGREE))
     maps = _validity_maps(ctx)
@@ -556,7 +570,6 @@ def errata(ctx) -> list:
     list of Erratum
     """
     from ...derivations.gyrocompass import azimuth_error as g
-    from ..gyrocompass.studies import BoundCase, run_cases
 
     rows = {c.label: c for c in _formula_checks()}
     p = g.linear_parts()
@@ -580,8 +593,8 @@ def errata(ctx) -> list:
             kind="misprint",
         ),
     ]
-    n = 400_000 if ctx.quick else 4_000_000
-    (v,) = run_cases([BoundCase("zero tilt", "normal", rad(80.0), 0.0, 0.0, rad(1.0))], n_samples=n, rng=_seed(ctx, 6), control_degree=CONTROL_DEGREE)
+    n = _VIOLATION_SAMPLES[ctx.quick]
+    v = next(v for v in _violations(ctx) if v.case.model == "normal" and v.case.latitude == rad(80.0) and v.case.beta0 == v.case.gamma0 == 0.0 and v.case.sigma == rad(1.0))
     r, mc = v.mc.result, v.mc
     out.append(
         Erratum(

@@ -585,13 +585,21 @@ def _remaining_errors(run) -> list:
     ]
 
 
-def _readings(ctx, run) -> tuple:
+def _all_readings(ctx) -> tuple:
+    """Every standard reading of section 5, run once per report (the page and the errata quote them).
+
+    Each reading draws the same sensor noise (:func:`strapdown.analysis.multistage.readings.run_readings`),
+    so a reading's result does not depend on which others run with it.
+    """
     from ..multistage.readings import run_readings, standard_readings
 
-    readings = standard_readings()
+    return ctx.shared("stability/readings", lambda: run_readings(standard_readings(), step=0.2, rng=_seeds(ctx)[_READINGS_STREAM], progress=ctx.progress))
+
+
+def _readings(ctx, run) -> tuple:
+    results = _all_readings(ctx)
     if ctx.quick:
-        readings = (readings[0], readings[5], readings[7])
-    results = run_readings(readings, step=0.2, rng=run.seeds[_READINGS_STREAM], progress=ctx.progress)
+        results = (results[0], results[5], results[7])
     rows = []
     for r in results:
         p1, p2 = r.peaks
@@ -876,17 +884,14 @@ def errata(ctx) -> list:
     from ...derivations.multistage.tilt_quaternion import derive as derive_tilt
     from ..multistage.formula_checks import check_printed_formulas
     from ..multistage.gain_design import static_tilt_estimate
-    from ..multistage.readings import run_readings, standard_readings
     from ..multistage.stages import Stage
     from ..multistage.tilt_loop import StageLoop
     from ..multistage.trajectory import Scenario
 
     seeds = _seeds(ctx)
     c = check_printed_formulas(rng=seeds[_FORMULA_STREAM])
-    std = standard_readings()
-    default, printed_env, slow_env, accel2, accel2_pure, printed_c, all_four, rescale, bumpless = run_readings(
-        (std[0], std[1], std[2], std[3], std[5], std[6], std[7], std[9], std[10]), step=0.2, rng=seeds[_READINGS_STREAM]
-    )
+    every = _all_readings(ctx)
+    default, printed_env, slow_env, accel2, accel2_pure, printed_c, all_four, rescale, bumpless = (every[i] for i in (0, 1, 2, 3, 5, 6, 7, 9, 10))
     tilt = derive_tilt()
     sc = Scenario()
     g, r = sc.gravity, sc.earth_radius
