@@ -138,6 +138,44 @@ def test_scaled_draws_share_their_evaluations_and_equal_the_direct_sum(model):
         np.testing.assert_allclose(r.evaluate(300, 0.03, derivatives=0)[0] * (3.0 / scale), direct, rtol=0, atol=1e-13 * np.max(np.abs(direct)))
 
 
+def test_unit_evaluation_times_its_scale_is_the_evaluation_and_the_compiled_loop_applies_it():
+    """A scaled draw hands its shared unit arrays and amplitudes to the compiled loop, which scales them itself:
+    the same increments as the loop on the multiplied-out rocking (the same products), to the last bit."""
+    from strapdown.analysis.gyrocompass import alignment_kernels as k
+
+    sc = Scenario(R(60.0), heading=0.5, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
+    m = NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1).draw(np.random.default_rng(2), 3, sc.n_samples + 1, sc.dt)
+    parts, scale = m.unit_evaluation(sc.n_samples, 0.02)
+    assert not parts[0].flags.writeable and np.array_equal(scale, m.unit[2])  # the kept unit evaluation
+    for a, b in zip(m.evaluate(sc.n_samples, 0.02), parts):
+        assert np.array_equal(a, scale * b)
+    W, g, fixed = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude), np.zeros(3)
+    out = [np.zeros((3, sc.n_samples, 3)) for _ in range(4)]
+    k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[0], out[1], scale=scale)
+    k.accumulate_ideal_increments(*(scale * p for p in parts), sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[2], out[3])
+    assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
+    with pytest.raises(ValueError, match="`scale`"):
+        k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[0], out[1], scale=[1.0, 2.0])
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
+def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
+    """No rocking (a still base, or a draw at zero amplitude): one trial computed, the same for all, equal to a computation per trial."""
+    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+    from strapdown.analysis.gyrocompass.imu import ideal_increments
+
+    sc = Scenario(R(60.0), heading=0.5, beta0=0.01, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=5.0)
+    for m in (SineMotion(0.0, 7.0).draw(1, 4, sc.n_samples + 1, sc.dt), sc.motion.draw(1, 4, sc.n_samples + 1, sc.dt)):
+        dtheta, dv = ideal_increments(sc, m, compiled=compiled)
+        assert dtheta.shape == dv.shape == (4, sc.n_samples, 3) and dtheta.flags.writeable
+        for i in range(4):
+            single = ideal_increments(sc, MotionRealisation(m.spectrum, m.coefficients[i : i + 1], m.dt), compiled=compiled)
+            assert np.array_equal(dtheta[i : i + 1], single[0]) and np.array_equal(dv[i : i + 1], single[1])
+    ref = ideal_increments(sc, sc.motion.draw(1, 4, sc.n_samples + 1, sc.dt), compiled=not compiled)
+    np.testing.assert_allclose(dtheta, ref[0], rtol=0, atol=1e-15 * np.max(np.abs(ref[0])))
+    np.testing.assert_allclose(dv, ref[1], rtol=0, atol=1e-15 * np.max(np.abs(ref[1])))
+
+
 def test_increments_reproduce_the_true_attitude_and_velocity():
     """An independent navigator (scipy rotations) integrates the record back to the truth."""
     lat = R(50.0)
@@ -326,6 +364,21 @@ def test_compiled_filter_loop_equals_the_numpy_reference(shaping, lever_arm_know
         x, y = getattr(a, name), getattr(b, name)
         np.testing.assert_allclose(x, y, rtol=0, atol=1e-9 * np.max(np.abs(y)), err_msg=name)
     np.testing.assert_allclose(a.estimate.heading_error, b.estimate.heading_error, rtol=0, atol=1e-11)
+
+
+def test_fine_alignment_with_its_model_given_is_the_same_run():
+    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
+    from strapdown.analysis.gyrocompass.fine_alignment import filter_model, fine_alignment, simulate_epoch_record
+
+    sc = Scenario(R(60.0), heading=R(30.0), sample_rate=10.0, duration=20.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0)
+    tuning = kalman_options(sc, e).tuning
+    model = filter_model(sc, tuning)
+    rec = simulate_epoch_record(sc, e, model.samples_per_epoch, n_trials=3, rng=4)
+    a, b = fine_alignment(rec, tuning, rng=5), fine_alignment(rec, tuning, rng=5, model=model)
+    assert np.array_equal(a.nees, b.nees) and np.array_equal(a.heading_error, b.heading_error)
+    with pytest.raises(TypeError, match="`model` to be a FineAlignmentModel"):
+        fine_alignment(rec, tuning, model=model.F)
 
 
 def test_kalman_bias_response_matches_its_linear_theory():

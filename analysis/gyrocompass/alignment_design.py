@@ -116,18 +116,15 @@ def _motion(rocking: str, amplitude, frequency: float, damping: float):
 
 
 def _trial_errors(scenario, errors, method, options, n_trials, seed):
-    kernel = AlignmentKernel(scenario, errors, method, options, (), _sequence(scenario, method, options))
+    model, sequence = None, None
+    if method == "kalman":
+        from ..core import kalman
+
+        model = filter_model(scenario, options.tuning)
+        sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, scenario.n_samples // model.samples_per_epoch)
+    kernel = AlignmentKernel(scenario, errors, method, options, (), sequence, model=model)
     e, _ = kernel(n_trials, np.random.default_rng(seed))
     return e[:, 0]
-
-
-def _sequence(scenario, method, options):
-    if method != "kalman":
-        return None
-    from ..core import kalman
-
-    m = filter_model(scenario, options.tuning)
-    return kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, scenario.n_samples // m.samples_per_epoch)
 
 
 def _with_motion(scenario, motion, options, method):

@@ -106,13 +106,15 @@ def _jit(fn):
     return _compiled[name]
 
 
-def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
+def _ideal_loop(angles, rates, accels, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
     n, N = angles.shape[0], angles.shape[1]
+    s0, s1, s2 = scale[0], scale[1], scale[2]
     for i in range(n):
         for k in range(N):
-            psi = angles[i, k, 0] + stable[0]
-            beta = angles[i, k, 1] + stable[1]
-            gam = angles[i, k, 2] + stable[2]
+            # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
+            psi = s0 * angles[i, k, 0] + stable[0]
+            beta = s1 * angles[i, k, 1] + stable[1]
+            gam = s2 * angles[i, k, 2] + stable[2]
             cp, sp = math.cos(psi), math.sin(psi)
             cb, sb = math.cos(beta), math.sin(beta)
             cg, sg = math.cos(gam), math.sin(gam)
@@ -130,12 +132,12 @@ def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, le
             fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
             fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
             # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
-            dp, db, dg = rates[i, k, 0], rates[i, k, 1], rates[i, k, 2]
+            dp, db, dg = s0 * rates[i, k, 0], s1 * rates[i, k, 1], s2 * rates[i, k, 2]
             wx = -cg * db - sg * cb * dp
             wy = dg - sb * dp
             wz = -sg * db + cg * cb * dp
             if lever:
-                ddp, ddb, ddg = accels[i, k, 0], accels[i, k, 1], accels[i, k, 2]
+                ddp, ddb, ddg = s0 * accels[i, k, 0], s1 * accels[i, k, 1], s2 * accels[i, k, 2]
                 ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
                 ay = ddg - cb * db * dp - sb * ddp
                 az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
@@ -159,15 +161,16 @@ def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, le
             dv[i, k, 2] += weight * fz
 
 
-def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, dtheta, dv) -> None:
+def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, dtheta, dv, *, scale=None) -> None:
     """Add ``weight`` times the ideal gyro rate and specific force at one quadrature node, in place.
 
     Parameters
     ----------
     angles, rates : ndarray
-        ``(n, N, 3)`` rocking angles (ψ, β, γ) [rad] and their rates [rad/s] at the node.
+        ``(n, N, 3)`` rocking angles (ψ, β, γ) [rad] and their rates [rad/s] at the node
+        (times ``scale``).
     accels : ndarray or None
-        ``(n, N, 3)`` angular accelerations [rad/s²] (needed only with a lever arm).
+        ``(n, N, 3)`` angular accelerations [rad/s²] (needed only with a lever arm; times ``scale``).
     stable : ndarray
         ``(3,)`` stable attitude (ψ0, β0, γ0) added to ``angles`` [rad].
     earth_rate, gravity : ndarray
@@ -182,6 +185,11 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
         Quadrature weight [s].
     dtheta, dv : ndarray
         ``(n, N, 3)`` C-contiguous float arrays, incremented in place [rad, m/s].
+    scale : array_like, optional, keyword-only
+        ``(3,)`` factors of the rocking per axis [1] (default ones): the rocking
+        is ``scale · angles`` and so on, axis by axis, as
+        :meth:`strapdown.analysis.gyrocompass.base_motion.MotionRealisation.unit_evaluation`
+        returns it, so that a shared unit evaluation is not multiplied out first.
 
     Raises
     ------
@@ -198,9 +206,9 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     angles = _shaped(angles, "angles", (None, None, 3))
     n, N = angles.shape[:2]
     rates = _shaped(rates, "rates", (n, N, 3))
-    named = {"stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
+    named = {"scale": np.ones(3) if scale is None else scale, "stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
     vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
-    lever = bool(np.any(vectors[3]))
+    lever = bool(np.any(vectors[4]))
     accels = _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))
     dtheta, dv = _shaped(dtheta, "dtheta", (n, N, 3), output=True), _shaped(dv, "dv", (n, N, 3), output=True)
     _jit(_ideal_loop)(angles, rates, accels, *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)

@@ -157,17 +157,51 @@ class MotionRealisation:
             ``angles, rates, accelerations`` (up to ``derivatives``), each
             ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
         """
+        parts, scale = self.unit_evaluation(n_samples, offset, derivatives=derivatives)
+        if self.unit is None:
+            return parts
+        return tuple(scale * p for p in parts)
+
+    def unit_evaluation(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
+        """:meth:`evaluate` as arrays and a factor per axis: ``evaluate(...) = tuple(scale · p for p in parts)``.
+
+        A scaled draw (:attr:`unit`) returns the kept evaluations of its unit
+        coefficients, shared and read-only, with its amplitudes as ``scale``;
+        any other returns its own evaluation with ``scale`` = 1.  A caller that
+        folds the factor into its own loop saves the product over the record.
+
+        Parameters
+        ----------
+        n_samples : int
+            Time points.
+        offset : float
+            Time of the first point [s], in [0, dt].
+        derivatives : int
+            Highest derivative returned, 0 to 2.
+
+        Returns
+        -------
+        parts : tuple of ndarray
+            Up to three ``(n_trials, n_samples, 3)`` arrays [rad, rad/s, rad/s² per unit of ``scale``].
+        scale : ndarray
+            ``(3,)`` factors per axis (yaw, β, γ) [1].
+
+        Raises
+        ------
+        ValueError
+            For ``derivatives`` outside 0..2 or fewer than one sample.
+        """
         n = as_int(n_samples, "n_samples", minimum=1)
         k = as_int(derivatives, "derivatives", minimum=0)
         if k > 2:
             raise ValueError(f"Expected `derivatives` in 0..2, got {k}")
         shape = (self.n_trials, n, 3)
         if self.coefficients.shape[-1] == 0:
-            return tuple(np.zeros(shape) for _ in range(k + 1))
+            return tuple(np.zeros(shape) for _ in range(k + 1)), np.ones(3)
         if self.unit is not None:
             key, unit, scale = self.unit
-            return tuple(scale * _SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1))
-        return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1))
+            return tuple(_SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1)), scale
+        return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1)), np.ones(3)
 
     def _series(self, c, n, offset, d):
         """The d-th derivative of ``Re Σ_m c_m e^{iω_m t}`` at ``t_k = offset + k dt``, ``(n_trials, n, 3)``."""

@@ -486,7 +486,9 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
     return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
 
 
-def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, compiled: bool | None = None) -> FineAlignmentResult:
+def fine_alignment(
+    record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, model: FineAlignmentModel | None = None, compiled: bool | None = None
+) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
     Parameters
@@ -504,6 +506,8 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
         Gains and covariances computed before for the same model (saves the filterpy run).
+    model : FineAlignmentModel, optional
+        ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
     compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
         (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
@@ -520,12 +524,17 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     ------
     ValueError
         If the record's truth is not at every epoch, or it is shorter than one epoch.
+    TypeError
+        If ``record`` or ``model`` is of the wrong type.
     """
     from .rocking import as_generator
 
     tuning = FilterTuning() if tuning is None else tuning
     sc = record.scenario
-    model = filter_model(sc, tuning)
+    if model is None:
+        model = filter_model(sc, tuning)
+    elif not isinstance(model, FineAlignmentModel):
+        raise TypeError(f"Expected `model` to be a FineAlignmentModel, got {type(model).__name__}")
     M, D = model.samples_per_epoch, model.epoch
     if isinstance(record, ImuRecord):
         record = epoch_record(record, M)

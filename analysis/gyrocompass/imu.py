@@ -265,17 +265,23 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
         raise TypeError(f"Expected `motion` to be a MotionRealisation (a rocking model's draw), got {type(motion).__name__}")
     N, dt = scenario.n_samples, scenario.dt
     n = motion.n_trials
+    compiled = kernels.use_compiled(compiled, n * N)
+    if n > 1 and not np.any(motion.coefficients):  # no rocking: every trial is the first
+        one = MotionRealisation(motion.spectrum, motion.coefficients[:1], motion.dt)
+        return tuple(np.repeat(x, n, axis=0) for x in ideal_increments(scenario, one, compiled=compiled))
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
-    if kernels.use_compiled(compiled, n * N):
+    if compiled:
         lat = scenario.latitude
         W, g = earth_rate_ned(lat), gravity_ned(lat)
         fixed = attitude_matrix(scenario.stable_angles).T @ W
         for node in _GAUSS:
-            parts = motion.evaluate(N, node * dt, derivatives=order)
+            parts, scale = motion.unit_evaluation(N, node * dt, derivatives=order)
             acc = parts[2] if order == 2 else None
-            kernels.accumulate_ideal_increments(parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv)
+            kernels.accumulate_ideal_increments(
+                parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv, scale=scale
+            )
         return dtheta, dv
     for node in _GAUSS:
         gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
@@ -344,8 +350,8 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:
         idx = np.append(idx, N)
-    ang, rate = motion.evaluate(N + 1, 0.0, derivatives=1)
-    ang, rate = ang[:, idx], rate[:, idx]
+    (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1)
+    ang, rate = scale * ang[:, idx], scale * rate[:, idx]
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)
     velocity = np.einsum("...ij,...j->...i", C, np.cross(body_rate(angles, rate), scenario.lever_arm))
