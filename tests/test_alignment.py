@@ -451,6 +451,60 @@ def test_admissible_rocking_meets_the_budget():
     assert mc.amplitude_ci[0, 0] <= mc.amplitude[0] <= mc.amplitude_ci[0, 1]
 
 
+@pytest.mark.parametrize("sines", [[], [0.7], [1.0, 0.4], [0.5, 0.3, 0.2]], ids=["gaussian", "one-sine", "two-sines", "three-sines"])
+@pytest.mark.parametrize("mean", [0.0, 0.2])
+def test_abs_error_probability_is_the_phase_grid_mean_and_inverts_the_percentile(sines, mean):
+    """The half grid of the phases gives the mean over the whole grid (every sine value twice there); the
+    percentile of abs_error_quantile is where the probability reaches the level."""
+    from scipy.special import ndtr
+
+    from strapdown.analysis.gyrocompass.error_distribution import _phase_values, abs_error_probability, abs_error_quantile
+
+    s, x = 0.3, 0.8
+    m = _phase_values(np.array(sines, dtype=float)) + mean
+    full = float(np.mean(ndtr((x - m) / s) - ndtr((-x - m) / s)))
+    assert abs_error_probability(sines, s, x, mean=mean) == pytest.approx(full, rel=1e-13, abs=1e-15)
+    q = abs_error_quantile(sines, s, 0.95, mean=mean)
+    assert abs_error_probability(sines, s, q.value, mean=mean) == pytest.approx(0.95, abs=1e-8)
+    assert abs_error_probability(sines, s, 0.0, mean=mean) == 0.0
+
+
+def test_abs_error_probability_refuses_bad_input():
+    from strapdown.analysis.gyrocompass.error_distribution import abs_error_probability
+
+    with pytest.raises(ValueError, match="`gaussian_sigma`"):
+        abs_error_probability([1.0], 0.0, 1.0)
+    with pytest.raises(ValueError, match="`x`"):
+        abs_error_probability([1.0], 0.1, -1.0)
+    with pytest.raises(ValueError, match="at most 3 sinusoidal residues"):
+        abs_error_probability([1.0, 1.0, 1.0, 1.0], 0.1, 1.0)
+
+
+@pytest.mark.parametrize("rocking", ["sine", "narrowband"])
+def test_analytic_percentile_amplitude_puts_the_percentile_on_the_budget(rocking):
+    """The admissible amplitude by the percentile (analytic method, a root search on the probability) against the
+    percentile of abs_error_quantile at that amplitude, and the search on the percentile itself."""
+    from dataclasses import replace
+
+    from scipy.optimize import brentq
+
+    from strapdown.analysis.gyrocompass.alignment_design import _analytic_percentile, _motion
+    from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE
+    from strapdown.analysis.gyrocompass.error_distribution import abs_error_quantile
+
+    budget, cap = R(0.3), R(20.0)
+    th = analytic_theory(replace(DESIGN_SCENARIO, motion=_motion(rocking, np.array([0.0, 1.0, 1.0]), 0.1, 0.1)), NAVIGATION_GRADE, envelope=rocking == "sine")
+    sines = th.rocking_sine_amplitudes if rocking == "sine" else np.zeros(0)
+
+    def q(a):
+        s = th.sensor_sigma if rocking == "sine" else math.hypot(th.sensor_sigma, a * th.rocking)
+        return abs_error_quantile(a * sines, s, 0.95, mean=th.mean).value - budget
+
+    a = _analytic_percentile(th, budget, 0.95, cap, rocking)
+    assert 0.0 < a < cap and abs(q(a)) < 1e-7 * budget
+    assert a == pytest.approx(brentq(q, 0.0, cap, xtol=1e-12 * cap, rtol=1e-10), rel=1e-7)
+
+
 def test_compiled_loops_refuse_wrong_shapes_and_outputs():
     """The loops index without bounds checks: every shape is checked first, with the argument named."""
     from strapdown.analysis.gyrocompass import alignment_kernels as k

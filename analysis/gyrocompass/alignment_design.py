@@ -46,7 +46,7 @@ from ..core.validation import as_array, as_int, in_open_interval, positive
 from .alignment_monte_carlo import METHODS, AlignmentKernel, AlignmentOptions, alignment_monte_carlo
 from .alignment_theory import analytic_theory
 from .base_motion import NarrowbandMotion, SineMotion
-from .error_distribution import abs_error_quantile
+from .error_distribution import abs_error_probability, abs_error_quantile
 from .fine_alignment import assumed_disturbance, filter_model
 from .imu import Scenario, SensorErrors
 
@@ -371,24 +371,38 @@ def _amplitude_interval(errors_at, a, lo, hi, budget, cap):
 
 
 def _analytic_percentile(th, budget, level, cap, rocking):
-    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a)."""
+    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a).
+
+    With a Gaussian part the percentile reaches the budget where
+    ``P(|e| ≤ budget)`` falls to the level: one probability per step of the
+    root search in a (:func:`.error_distribution.abs_error_probability`), not a
+    percentile (itself a root search); without one, the percentile of the
+    phase grid.
+    """
     from scipy.optimize import brentq
 
-    if rocking == "sine" and th.rocking_sine_amplitudes.size:
+    sines = rocking == "sine" and th.rocking_sine_amplitudes.size
+    if th.sensor_sigma > 0.0:
         unit_sines, gauss = th.rocking_sine_amplitudes, th.sensor_sigma
 
         def q(a):
-            return abs_error_quantile(a * unit_sines, gauss, level, mean=th.mean).value - budget
+            if sines:
+                return level - abs_error_probability(a * unit_sines, gauss, budget, mean=th.mean)
+            return level - abs_error_probability([], math.hypot(gauss, a * th.rocking), budget, mean=th.mean)
+    elif sines:
+
+        def q(a):
+            return abs_error_quantile(a * th.rocking_sine_amplitudes, 0.0, level, mean=th.mean).value - budget
     else:
 
         def q(a):
-            return abs_error_quantile([], math.hypot(th.sensor_sigma, a * th.rocking), level, mean=th.mean).value - budget
+            return abs_error_quantile([], a * th.rocking, level, mean=th.mean).value - budget
 
     if q(0.0) >= 0:
         return 0.0
     if q(cap) <= 0:
         return cap
-    return brentq(q, 0.0, cap, xtol=1e-6 * cap)
+    return brentq(q, 0.0, cap, xtol=1e-12 * cap, rtol=1e-10)
 
 
 @dataclass(frozen=True)
