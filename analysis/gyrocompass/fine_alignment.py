@@ -21,8 +21,9 @@ error dynamics are
 
 discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r' + v``.
 
-The model does not depend on the trial, so filterpy computes the gains and
-covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
+The model does not depend on the trial, so the gains and covariances are
+computed once (filterpy's recursion,
+:func:`strapdown.analysis.core.kalman.filter_sequence`) and
 they are applied to every trial at once; the navigator integrates the epoch
 increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
 step per epoch vectorised over trials.  After every update the attitude and
@@ -505,7 +506,7 @@ def fine_alignment(
         True standard deviation of the zero-velocity reference [m/s] (default:
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
-        Gains and covariances computed before for the same model (saves the filterpy run).
+        Gains and covariances computed before for the same model (saves the covariance recursion).
     model : FineAlignmentModel, optional
         ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
     compiled : bool or None, keyword-only
