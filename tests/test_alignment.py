@@ -421,6 +421,26 @@ def test_amplitude_search_brackets_the_root_in_few_evaluations(power, root):
     assert b == a and not set(again) - set(calls)  # the known points suffice: nothing new to simulate
 
 
+@pytest.mark.parametrize("power", [1.0, 2.0, 3.5, 6.0])
+@pytest.mark.parametrize("ratio", [0.7, 1.4])
+def test_amplitude_search_from_the_previous_root_closes_in_three_runs(power, ratio):
+    """Started near the root with the slope of the curve (the previous frequency's root and slope), the search
+    needs the start and two more runs: one past the estimated root, one a bracket width from it."""
+    from strapdown.analysis.gyrocompass.alignment_design import _search
+
+    budget, floor, rtol, cap, root = 1.0, 0.45, 0.1, R(20.0), R(3.0)
+    u = math.sqrt(budget**2 - floor**2) ** (2.0 / power) / root
+    calls = []
+
+    def fn(a):
+        calls.append(a)
+        return math.sqrt(floor**2 + (u * a) ** power)
+
+    a, (lo, hi) = _search(fn, budget, ratio * root, cap, rtol, exponent=power)
+    assert lo <= root * (1.0 + 1e-12) and root <= hi * (1.0 + 1e-12) and hi <= lo * (1.0 + rtol)
+    assert len(set(calls) - {0.0}) <= 3, calls
+
+
 def test_amplitude_search_ends():
     from strapdown.analysis.gyrocompass.alignment_design import _search
 

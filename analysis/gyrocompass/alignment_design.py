@@ -24,8 +24,10 @@ sensor errors, ``e(a) = e_0 + a u``:
     itself: the rms (and the percentile) of the azimuth error of the same
     trials — common random numbers: the same rocking phases or amplitudes,
     biases, noise and initial errors at every amplitude — started at
-    ``reference_amplitude`` and narrowed by a secant search in log a (the
-    model ``rms² = floor² + (u a)²`` until the root is bracketed) to a bracket
+    ``reference_amplitude`` at the first frequency and at the previous
+    frequency's root after it, and narrowed by a secant search in log a (from
+    one point, the model ``rms² = floor² + (u a)^p`` with p = 2 at the first
+    frequency and the previous frequency's local slope after it) to a bracket
     of relative width ``rtol``; the percentile search starts from every
     amplitude the rms search simulated.  The
     filter knows the rocking (its model is rebuilt at each amplitude).  The
@@ -184,7 +186,8 @@ def admissible_rocking(
     n_trials : int
         Monte Carlo trials per frequency (inertial, Kalman).
     reference_amplitude : float
-        First amplitude of the root search [rad].
+        First amplitude of the root search at the first frequency [rad] (the
+        next frequencies start at the root of the previous one).
     max_amplitude : float
         Cap of the reported amplitude [rad].
     rtol : float
@@ -241,6 +244,7 @@ def admissible_rocking(
     root = montecarlo.root_seed_sequence(rng)
     a_ref = positive(reference_amplitude, "reference_amplitude")
     floors = []
+    hint = (a_ref, 2.0)  # where the rms search starts, and the exponent of its one-point model: from the previous frequency
     for i, fi in enumerate(f):
         seed = montecarlo.block_seed(root, i)
         cache = {}
@@ -260,7 +264,8 @@ def admissible_rocking(
 
         e0 = errors_at(0.0)
         floors.append(float(np.mean(e0 * e0)))
-        amp[i], (lo, hi) = _search(rms, budget, a_ref, cap, rtol)
+        amp[i], (lo, hi) = _search(rms, budget, hint[0], cap, rtol, exponent=hint[1])
+        hint = _next_hint(rms, hint, floors[-1], amp[i], (lo, hi), cap)
         amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, budget, cap)
@@ -268,16 +273,33 @@ def admissible_rocking(
     return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, False, n_trials, cap)
 
 
-def _search(fn, budget, start, cap, rtol, known=()):
+def _next_hint(fn, hint, floor_sq, a, bracket, cap):
+    """Start and exponent for the search at the next frequency: this root, and the slope of log(fn² − fn(0)²) across its bracket."""
+    lo, hi = bracket
+    if not 0.0 < lo < hi < cap:
+        return hint if not 0.0 < a < cap else (a, hint[1])
+    y_lo, y_hi = fn(lo) ** 2 - floor_sq, fn(hi) ** 2 - floor_sq
+    if y_lo <= 0.0 or y_hi <= y_lo:
+        return a, hint[1]
+    p = math.log(y_hi / y_lo) / math.log(hi / lo)
+    return a, min(max(p, 0.5), 8.0)
+
+
+def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0):
     """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: interpolation in log–log with a bracket.
 
     ``known`` lists amplitudes whose ``fn`` is cheap (already simulated: the
-    percentile search starts from every point of the rms search).  The next
+    percentile search starts from every point of the rms search); ``start``
+    is the first amplitude when none is known.  The next
     amplitude is the root of the curve through the (up to) three points
-    nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line,
-    ``fn² = fn(0)² + (u a)^p``, through two, a parabola through three — moved
+    nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line
+    of slope ``exponent`` through one, ``fn² = fn(0)² + (u a)^p``,
+    a straight line through two, a parabola through three — moved
     half the final width past the root (toward the nearer end of a bracket), so
-    that two evaluations close a bracket around a good estimate.  Until the
+    that two evaluations close a bracket around a good estimate; where the
+    root is estimated within the final width of a known point, the next one
+    goes a final width from it, where it closes the bracket if it lands on the
+    other side of the root.  Until the
     root is bracketed a step is at most ×16 (×4 where the curve gives no
     root); inside a bracket ``[lo, hi]`` a step shrinks it to at most
     ``(hi/lo)^0.9``, and to ``√(hi/lo)`` once ``hi/lo ≤ (1 + rtol)²``.  The
@@ -299,6 +321,7 @@ def _search(fn, budget, start, cap, rtol, known=()):
     if f0 > budget:
         return 0.0, (0.0, 0.0)
     half = 0.5 * math.log(1.0 + rtol)
+    close = 0.999 * math.log(1.0 + rtol)  # a step that closes the bracket
     if not any(a > 0.0 for a in values):
         f(min(start, cap))
     while True:
@@ -309,22 +332,27 @@ def _search(fn, budget, start, cap, rtol, known=()):
             return (lo, (lo, hi)) if lo > 0.0 else (0.0, (0.0, 0.0))
         if hi is None and lo >= cap:
             return cap, (cap, cap)
-        c = _log_root(values, f0, budget)
+        c = _log_root(values, f0, budget, exponent)
         if hi is None:
-            nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(half))))
+            nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(close))))
         elif lo == 0.0:
-            nxt = hi / 4.0 if c is None else max(hi / 16.0, min(math.exp(c - half), hi * math.exp(-half)))
+            nxt = hi / 4.0 if c is None else max(hi / 16.0, min(math.exp(c - half), hi * math.exp(-close)))
         elif hi <= lo * math.exp(4.0 * half):
             nxt = math.sqrt(lo * hi)
         else:
             x0, x1 = math.log(lo), math.log(hi)
-            c = 0.5 * (x0 + x1) if c is None else c + (-half if c - x0 > x1 - c else half)
+            if c is None:
+                c = 0.5 * (x0 + x1)
+            elif c - x0 > x1 - c:
+                c = max(c - half, x1 - close) if c > x1 - close else c - half
+            else:
+                c = min(c + half, x0 + close) if c < x0 + close else c + half
             margin = 0.1 * (x1 - x0)
             nxt = math.exp(min(max(c, x0 + margin), x1 - margin))
         f(nxt)
 
 
-def _log_root(values, floor, budget):
+def _log_root(values, floor, budget, exponent=2.0):
     """Root in log a of the curve through the points nearest the budget in (log a, log(fn² − floor²)); None if there is none."""
     target = budget * budget - floor * floor
     pts = sorted((abs(math.log(v * v - floor * floor) - math.log(target)), math.log(a), math.log(v * v - floor * floor)) for a, v in values.items() if a > 0.0 and v * v > floor * floor)
@@ -332,8 +360,8 @@ def _log_root(values, floor, budget):
     y_t = math.log(target) if target > 0.0 else None
     if y_t is None or len(pts) < 1:
         return None
-    if len(pts) == 1:  # the linear model through the floor: fn² − floor² ∝ a²
-        return pts[0][0] + 0.5 * (y_t - pts[0][1])
+    if len(pts) == 1:  # the power law through the floor: fn² − floor² ∝ a^exponent
+        return pts[0][0] + (y_t - pts[0][1]) / exponent
     if len(pts) == 3:
         (xa, ya), (xb, yb), (xc, yc) = pts
         # the parabola y(x) through the three points, solved for y = y_t on the branch where it rises
