@@ -109,13 +109,16 @@ def _jit(fn):
 def _ideal_loop(angles, rates, accels, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
     n, N = angles.shape[0], angles.shape[1]
     s0, s1, s2 = scale[0], scale[1], scale[2]
+    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp, sp = math.cos(stable[0]), math.sin(stable[0])
     for i in range(n):
         for k in range(N):
             # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
-            psi = s0 * angles[i, k, 0] + stable[0]
             beta = s1 * angles[i, k, 1] + stable[1]
             gam = s2 * angles[i, k, 2] + stable[2]
-            cp, sp = math.cos(psi), math.sin(psi)
+            if yaw:
+                psi = s0 * angles[i, k, 0] + stable[0]
+                cp, sp = math.cos(psi), math.sin(psi)
             cb, sb = math.cos(beta), math.sin(beta)
             cg, sg = math.cos(gam), math.sin(gam)
             # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED

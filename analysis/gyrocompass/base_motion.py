@@ -49,6 +49,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..core import repeated_draws
 from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, as_int, positive
 from .rocking import as_generator
@@ -122,7 +123,8 @@ class MotionRealisation:
     unit : tuple or None
         ``(key, coefficients, scale)`` of a model whose axes are one shape
         scaled by their amplitudes (sine, narrow-band, white): ``coefficients = unit · scale`` per
-        axis, with ``key`` a digest of the random draw and of the unit model.
+        axis, with ``key`` a digest of the random draw (the generator's state
+        before it and its shape) and of the unit model.
         The evaluations of the unit coefficients are kept (a few, least
         recently used first out), so that the same draw at another amplitude —
         the common random numbers of a root search over the amplitude — costs
@@ -268,8 +270,9 @@ class _Model:
         s = self.spectrum(as_int(n_samples, "n_samples", minimum=1), dt)
         g = as_generator(rng)
         m = s.omega.size
+        state = repr(g.bit_generator.state)  # with the shape, it fixes the draw
         if s.gaussian:
-            z = g.standard_normal((n_trials, 3, m, 2))
+            z = repeated_draws.standard_normal(g, (n_trials, 3, m, 2))  # the same draw again at another amplitude: from memory
             draw = z[..., 0] + 1j * z[..., 1]
             factor = np.sqrt  # E|c|² = 2P
         else:
@@ -279,7 +282,7 @@ class _Model:
         if "amplitude" in getattr(self, "__dataclass_fields__", {}):  # power = amplitude² · (the unit model's power)
             unit_model = replace(self, amplitude=np.ones(3))
             u = draw * factor(unit_model.spectrum(n_samples, dt).power)
-            key = hashlib.blake2b(z.tobytes() + repr((unit_model, n_samples, dt)).encode(), digest_size=16).digest()
+            key = hashlib.blake2b(repr((state, z.shape, unit_model, n_samples, dt)).encode(), digest_size=16).digest()
             return MotionRealisation(s, u * self.amplitude[:, None], dt, (key, u, self.amplitude.copy()))
         return MotionRealisation(s, draw * factor(s.power), dt)
 
