@@ -176,6 +176,30 @@ def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
     np.testing.assert_allclose(dv, ref[1], rtol=0, atol=1e-15 * np.max(np.abs(ref[1])))
 
 
+@pytest.mark.parametrize(
+    "model",
+    [NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.3, 2.0, 1.0])), 7.0)],
+    ids=["narrowband", "white", "sine"],
+)
+def test_rocking_at_a_few_instants_is_the_record_there(model):
+    """The direct sum at a few sample instants against the evaluation of the whole record: the same sums for
+    sinusoids, round-off of the FFT for the Gaussian models."""
+    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+
+    r = model.draw(np.random.default_rng(5), 3, 301, 0.1)
+    idx = np.array([0, 7, 300])
+    for realisation in (r, MotionRealisation(r.spectrum, r.coefficients, r.dt)):  # scaled unit draw, and plain
+        for whole, points in zip(realisation.evaluate(301, 0.0), realisation.evaluate_points(idx)):
+            if model.name == "sine":
+                assert np.array_equal(whole[:, idx], points)
+            else:
+                np.testing.assert_allclose(points, whole[:, idx], rtol=0, atol=1e-13 * np.max(np.abs(whole)))
+    with pytest.raises(ValueError, match="`indices`"):
+        r.evaluate_points([0.5, 1.0])
+    with pytest.raises(ValueError, match="`derivatives` in 0..2"):
+        r.evaluate_points([0], derivatives=3)
+
+
 def test_increments_reproduce_the_true_attitude_and_velocity():
     """An independent navigator (scipy rotations) integrates the record back to the truth."""
     lat = R(50.0)

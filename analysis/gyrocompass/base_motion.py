@@ -205,14 +205,67 @@ class MotionRealisation:
             return tuple(_SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1)), scale
         return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1)), np.ones(3)
 
+    def evaluate_points(self, indices, *, derivatives: int = 2):
+        """:meth:`evaluate` at the sample instants ``t_k = k dt`` of a few indices k, by the sum over frequencies.
+
+        The Gaussian models evaluate a whole record by one inverse FFT of
+        their grid, many times longer than the record; at a few instants (the
+        truth at the start and the end of an alignment) the direct sum is
+        cheaper.  For sinusoids it is :meth:`evaluate`'s own sum at those
+        instants, value for value; for the Gaussian models it equals the FFT
+        evaluation to round-off.
+
+        Parameters
+        ----------
+        indices : array_like
+            ``(K,)`` sample indices k ≥ 0 [count].
+        derivatives : int
+            Highest derivative returned, 0 to 2.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``angles, rates, accelerations`` (up to ``derivatives``), each
+            ``(n_trials, K, 3)`` [rad, rad/s, rad/s²].
+
+        Raises
+        ------
+        ValueError
+            For a negative or non-integer index, or ``derivatives`` outside 0..2.
+        """
+        k = np.asarray(indices)
+        if k.ndim != 1 or not (np.issubdtype(k.dtype, np.integer) and np.all(k >= 0)):
+            raise ValueError(f"Expected `indices` as a 1-D array of sample indices >= 0, got {np.asarray(indices).tolist()!r}")
+        d_max = as_int(derivatives, "derivatives", minimum=0)
+        if d_max > 2:
+            raise ValueError(f"Expected `derivatives` in 0..2, got {d_max}")
+        if self.coefficients.shape[-1] == 0:
+            return tuple(np.zeros((self.n_trials, k.size, 3)) for _ in range(d_max + 1))
+        c, scale = (self.unit[1], self.unit[2]) if self.unit is not None else (self.coefficients, None)
+        t = k * self.dt
+        w = self.spectrum.omega
+        out = []
+        for d in range(d_max + 1):
+            cd = c * ((1j * w) ** d * np.exp(1j * w * 0.0))
+            if self.spectrum.n_fft is not None:
+                x = np.real(np.einsum("nam,km->nka", cd, np.exp(1j * np.outer(t, w))))
+            else:
+                x = self._sinusoids(cd, t)
+            out.append(x if scale is None else scale * x)
+        return tuple(out)
+
     def _series(self, c, n, offset, d):
         """The d-th derivative of ``Re Σ_m c_m e^{iω_m t}`` at ``t_k = offset + k dt``, ``(n_trials, n, 3)``."""
         w = self.spectrum.omega
         c = c * ((1j * w) ** d * np.exp(1j * w * offset))
         if self.spectrum.n_fft is not None:
             return self._fft(c, n)
-        t = np.arange(n) * self.dt
-        out = np.zeros((self.n_trials, n, 3))
+        return self._sinusoids(c, np.arange(n) * self.dt)
+
+    def _sinusoids(self, c, t):
+        """``Re Σ_m c_m e^{iω_m t}`` at the times t, ``(n_trials, len(t), 3)``, one sinusoid at a time."""
+        w = self.spectrum.omega
+        out = np.zeros((self.n_trials, t.size, 3))
         for m in range(w.size):  # a few sinusoids: Re[c e^{iωt}] = Re c cos ωt − Im c sin ωt
             cos, sin = np.cos(w[m] * t)[:, None], np.sin(w[m] * t)[:, None]
             out += c[:, :, m].real[:, None, :] * cos - c[:, :, m].imag[:, None, :] * sin

@@ -45,6 +45,9 @@ __all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu", "ideal_incre
 
 _GAUSS = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))
 
+#: Truth instants up to which the rocking is summed at those instants instead of evaluated over the record.
+_FEW_POINTS = 8
+
 
 def _vec3(value, name):
     return as_array(value, name, last=3).reshape(3)
@@ -350,8 +353,11 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:
         idx = np.append(idx, N)
-    (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1)
-    ang, rate = scale * ang[:, idx], scale * rate[:, idx]
+    if idx.size <= _FEW_POINTS:  # the start and the end: the sum over frequencies, not the whole record
+        ang, rate = motion.evaluate_points(idx, derivatives=1)
+    else:
+        (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1)
+        ang, rate = scale * ang[:, idx], scale * rate[:, idx]
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)
     velocity = np.einsum("...ij,...j->...i", C, np.cross(body_rate(angles, rate), scenario.lever_arm))
