@@ -465,6 +465,31 @@ def test_amplitude_search_from_the_previous_root_closes_in_three_runs(power, rat
     assert len(set(calls) - {0.0}) <= 3, calls
 
 
+@pytest.mark.parametrize("q", [1.0, 2.5])
+def test_percentile_search_places_its_runs_by_the_trials_errors(q):
+    """Trials whose rocking part grows as a power of the amplitude: the percentile where each trial's error,
+    interpolated between the amplitudes simulated, crosses the budget is the root, and two runs close the bracket."""
+    from strapdown.analysis.gyrocompass.alignment_design import _search, _trial_root
+
+    rng = np.random.default_rng(3)
+    e0, u = 0.3 * rng.standard_normal(200), rng.standard_normal(200)
+    budget, level, rtol, cap = 1.0, 0.95, 0.1, 100.0
+    cache = {}
+
+    def pct(a):
+        if a not in cache:
+            cache[a] = e0 + u * a**q
+        return float(np.quantile(np.abs(cache[a]), level))
+
+    for a in (0.0, 4.0, 5.0, 6.5):  # the rms search's runs, all above the percentile's root
+        pct(a)
+    known = set(cache)
+    a, (lo, hi) = _search(pct, budget, 1.0, cap, rtol, known=tuple(cache), estimate=lambda lo, hi: _trial_root(cache, level, budget, lo, hi))
+    assert pct(lo) <= budget < pct(hi) and hi <= lo * (1.0 + rtol)
+    assert len(set(cache) - known) <= 2, sorted(set(cache) - known)
+    assert _trial_root({0.0: e0, 4.0: e0 + 4.0 * u}, level, budget, 0.0, 4.0) is None  # two amplitudes: no exponent
+
+
 def test_amplitude_search_ends():
     from strapdown.analysis.gyrocompass.alignment_design import _search
 

@@ -29,7 +29,9 @@ sensor errors, ``e(a) = e_0 + a u``:
     one point, the model ``rms² = floor² + (u a)^p`` with p = 2 at the first
     frequency and the previous frequency's local slope after it) to a bracket
     of relative width ``rtol``; the percentile search starts from every
-    amplitude the rms search simulated.  The
+    amplitude the rms search simulated, and places its runs where the
+    percentile of the trials' errors, each interpolated between the amplitudes
+    simulated, crosses the budget.  The
     filter knows the rocking (its model is rebuilt at each amplitude).  The
     interval of the amplitude maps the 95 % interval of the rms at the root
     through the local slope of log rms against log a, and
@@ -266,7 +268,7 @@ def admissible_rocking(
         floors.append(float(np.mean(e0 * e0)))
         amp[i], (lo, hi) = _search(rms, budget, hint[0], cap, rtol, exponent=hint[1])
         hint = _next_hint(rms, hint, floors[-1], amp[i], (lo, hi), cap)
-        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache))
+        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache), estimate=lambda lo, hi, cache=cache: _trial_root(cache, level, budget, lo, hi))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, budget, cap)
     floor = math.sqrt(float(np.mean(floors)))
@@ -285,12 +287,49 @@ def _next_hint(fn, hint, floor_sq, a, bracket, cap):
     return a, min(max(p, 0.5), 8.0)
 
 
-def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0):
+def _trial_root(errors, level, budget, lo, hi):
+    """Log of the amplitude where the ``level`` percentile of |error| reaches the budget, each trial's error
+    interpolated linearly in a between the amplitudes simulated (``errors``: amplitude → per-trial errors),
+    searched in ``(lo, hi)`` (below ``hi`` and above ``hi``/64 without a lower end; up to four times the
+    largest amplitude simulated, extrapolated, without an upper end); None if the percentile does not cross
+    the budget there."""
+    A = np.array(sorted(errors))
+    if A.size < 3 or A[0] != 0.0:
+        return None
+    E = np.array([errors[a] for a in A])
+    # the exponent q of the rocking's part, rms² − rms(0)² ∝ a^(2q), from the two smallest amplitudes
+    m = np.mean(E * E, axis=1) - np.mean(E[0] * E[0])
+    q = math.log(m[2] / m[1]) / (2.0 * math.log(A[2] / A[1])) if m[1] > 0.0 and m[2] > m[1] else 1.0
+    S = A ** min(max(q, 0.5), 4.0)
+
+    def pct(a):
+        s = a ** min(max(q, 0.5), 4.0)
+        j = min(max(int(np.searchsorted(S, s)), 1), A.size - 1)  # within [A[j-1], A[j]], or beyond the last
+        w = (s - S[j - 1]) / (S[j] - S[j - 1])
+        return float(np.quantile(np.abs((1.0 - w) * E[j - 1] + w * E[j]), level))
+
+    top = A[-1] * 4.0 if hi is None else hi
+    x0, x1 = math.log(lo if lo > 0.0 else top / 64.0), math.log(top)
+    if not x0 < x1 or pct(math.exp(x0)) > budget or pct(math.exp(x1)) <= budget:
+        return None
+    for _ in range(30):  # bisection on the interpolated percentile, to 1e-9 of the bracket in log a
+        xm = 0.5 * (x0 + x1)
+        if pct(math.exp(xm)) <= budget:
+            x0 = xm
+        else:
+            x1 = xm
+    return 0.5 * (x0 + x1)
+
+
+def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0, estimate=None):
     """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: interpolation in log–log with a bracket.
 
     ``known`` lists amplitudes whose ``fn`` is cheap (already simulated: the
     percentile search starts from every point of the rms search); ``start``
-    is the first amplitude when none is known.  The next
+    is the first amplitude when none is known; ``estimate(lo, hi)``, if given,
+    estimates the root in log a from what has been simulated (the percentile
+    search: from each trial's error, :func:`_trial_root`), falling back to the
+    curve below when it returns None.  The next
     amplitude is the root of the curve through the (up to) three points
     nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line
     of slope ``exponent`` through one, ``fn² = fn(0)² + (u a)^p``,
@@ -302,7 +341,8 @@ def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0):
     other side of the root.  Until the
     root is bracketed a step is at most ×16 (×4 where the curve gives no
     root); inside a bracket ``[lo, hi]`` a step shrinks it to at most
-    ``(hi/lo)^0.9``, and to ``√(hi/lo)`` once ``hi/lo ≤ (1 + rtol)²``.  The
+    ``(hi/lo)^0.9`` or by the factor ``1 + rtol``, and to ``√(hi/lo)`` once
+    ``hi/lo ≤ (1 + rtol)²``.  The
     search ends when ``hi/lo ≤ 1 + rtol``.
 
     Returns the root ``lo`` and its bracket ``(lo, hi)``; (0, 0) or (cap, cap) at the ends.
@@ -332,7 +372,9 @@ def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0):
             return (lo, (lo, hi)) if lo > 0.0 else (0.0, (0.0, 0.0))
         if hi is None and lo >= cap:
             return cap, (cap, cap)
-        c = _log_root(values, f0, budget, exponent)
+        c = None if estimate is None else estimate(lo, hi)
+        if c is None:
+            c = _log_root(values, f0, budget, exponent)
         if hi is None:
             nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(close))))
         elif lo == 0.0:
@@ -341,14 +383,16 @@ def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0):
             nxt = math.sqrt(lo * hi)
         else:
             x0, x1 = math.log(lo), math.log(hi)
+            lo_x, hi_x = x0 + 0.1 * (x1 - x0), x1 - 0.1 * (x1 - x0)  # a step shrinks the bracket by a tenth at least
             if c is None:
-                c = 0.5 * (x0 + x1)
-            elif c - x0 > x1 - c:
-                c = max(c - half, x1 - close) if c > x1 - close else c - half
+                x = 0.5 * (x0 + x1)
             else:
-                c = min(c + half, x0 + close) if c < x0 + close else c + half
-            margin = 0.1 * (x1 - x0)
-            nxt = math.exp(min(max(c, x0 + margin), x1 - margin))
+                c = min(max(c, x0), x1)
+                if c - x0 > x1 - c:  # toward hi: a point within the final width of hi closes the bracket if below the root
+                    x = max(c - half, x1 - close) if c > x1 - close else min(max(c - half, lo_x), hi_x)
+                else:
+                    x = min(c + half, x0 + close) if c < x0 + close else min(max(c + half, lo_x), hi_x)
+            nxt = math.exp(x)
         f(nxt)
 
 
