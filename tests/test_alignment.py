@@ -405,6 +405,28 @@ def test_fine_alignment_with_its_model_given_is_the_same_run():
         fine_alignment(rec, tuning, model=model.F)
 
 
+def test_epoch_records_of_the_same_trials_come_from_memory_with_the_generator_where_a_simulation_leaves_it():
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass import fine_alignment as fa
+
+    sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 1.0, 1.0])), 8.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, gyro_noise=R(0.002) / 60.0)
+    g1, g2 = np.random.default_rng(8), np.random.default_rng(8)
+    a = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g1, chunk=2)
+    b = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g2, chunk=2)
+    assert b.increments.velocity is a.increments.velocity and not b.truth_angles.flags.writeable  # served, read-only
+    assert g1.random() == g2.random()  # both generators where the simulation left them
+    fa._RECORDS._items.clear()
+    fa._RECORDS._bytes = 0
+    c = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)  # made again
+    for name in ("rotation", "velocity", "moment"):
+        assert np.array_equal(getattr(c.increments, name), getattr(a.increments, name))
+    assert np.array_equal(c.truth_velocity, a.truth_velocity) and c.increments.epoch == a.increments.epoch == 0.5
+    d = fa.simulate_epoch_record(sc, replace(e, gyro_noise=2.0 * e.gyro_noise), 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)
+    assert not np.array_equal(d.increments.rotation, a.increments.rotation)  # other inputs: simulated
+
+
 def test_kalman_bias_response_matches_its_linear_theory():
     b = B_001
     sc = Scenario(R(60.0), duration=60.0, sample_rate=10.0)
@@ -488,6 +510,17 @@ def test_percentile_search_places_its_runs_by_the_trials_errors(q):
     assert pct(lo) <= budget < pct(hi) and hi <= lo * (1.0 + rtol)
     assert len(set(cache) - known) <= 2, sorted(set(cache) - known)
     assert _trial_root({0.0: e0, 4.0: e0 + 4.0 * u}, level, budget, 0.0, 4.0) is None  # two amplitudes: no exponent
+
+
+@pytest.mark.parametrize("n_steps", [2, 3, 300])
+def test_coverage_study_samples_xi_as_the_model_does(n_steps):
+    """The coverage study filters only ξ's rows of the narrow-band model's draws: the model's own ξ, to the bit."""
+    from strapdown.analysis.gyrocompass.alignment_studies import _xi_sample
+    from strapdown.analysis.gyrocompass.rocking import NarrowbandRocking
+
+    m = NarrowbandRocking(0.02, 0.01, 8.0, 0.1)
+    xi, _ = m.sample(np.random.default_rng(5), 40, n_steps, 0.1)
+    assert np.array_equal(_xi_sample(m, np.random.default_rng(5), 40, n_steps, 0.1), xi)
 
 
 def test_amplitude_search_ends():
@@ -611,3 +644,13 @@ def test_repeated_draws_and_memo_refuse_bad_input():
         repeated_draws.standard_normal(np.random.default_rng(1), (3, -1))
     with pytest.raises(ValueError, match="`max_bytes` >= 0"):
         BoundedMemo(-1)
+
+
+def test_memo_counts_and_freezes_every_array_of_a_tuple():
+    from strapdown.analysis.core.memo import BoundedMemo
+
+    memo = BoundedMemo(100)
+    v = memo.get("a", lambda: (np.zeros(5), np.ones(5), "state"))
+    assert memo._bytes == 80 and not v[0].flags.writeable and not v[1].flags.writeable
+    memo.get("b", lambda: np.zeros(4))  # 112 bytes > 100: "a" is dropped
+    assert list(memo._items) == ["b"] and memo._bytes == 32

@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import kalman
+from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, nonnegative, positive
 from . import alignment_kernels as kernels
 from .alignment_estimate import AlignmentEstimate
@@ -451,8 +452,17 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
     return EpochRecord(sc, ep, record.truth_angles[:, : E + 1], record.truth_velocity[:, : E + 1], record.truth_rates[:, : E + 1], rate, record.gyro_bias, record.accel_bias)
 
 
+#: Epoch records simulated recently, by their inputs and the generator's state before them.
+_RECORDS = BoundedMemo(32 * 2**20)
+
+
 def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32) -> EpochRecord:
     """Simulate ``n_trials`` records in chunks and keep only their epoch increments (bounded memory).
+
+    Filters compared on the same trials (common random numbers) ask for the
+    same records from the same generator state again: a record made recently
+    from the same inputs and state is served from memory (read-only arrays),
+    with the generator left in the state the simulation would leave it in.
 
     Parameters
     ----------
@@ -473,18 +483,33 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
     -------
     EpochRecord
     """
+    import hashlib
+    import pickle
+
     from .rocking import as_generator
 
     g = as_generator(rng)
-    parts = []
-    left = int(n_trials)
-    while left > 0:
-        k = min(int(chunk), left)
-        parts.append(epoch_record(simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=samples_per_epoch), samples_per_epoch))
-        left -= k
-    cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
-    inc = EpochIncrements(*(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment")), parts[0].increments.epoch, samples_per_epoch)
-    return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
+    M, n, chunk = int(samples_per_epoch), int(n_trials), int(chunk)
+    bits = g.bit_generator
+    inputs = hashlib.blake2b(pickle.dumps((scenario, errors, M, n, chunk), protocol=5), digest_size=16).digest()
+
+    def simulate():
+        parts = []
+        left = n
+        while left > 0:
+            k = min(chunk, left)
+            parts.append(epoch_record(simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=M), M))
+            left -= k
+        cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+        inc = tuple(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment"))
+        return (*inc, *(cat(f) for f in _RECORD_FIELDS), parts[0].increments.epoch, bits.state)
+
+    *arrays, epoch, after = _RECORDS.get((inputs, type(bits).__name__, repr(bits.state)), simulate)
+    bits.state = after  # served from memory: the state a simulation would leave
+    return EpochRecord(scenario, EpochIncrements(*arrays[:3], epoch, M), *arrays[3:])
+
+
+_RECORD_FIELDS = ("truth_angles", "truth_velocity", "truth_rates", "end_rate", "gyro_bias", "accel_bias")
 
 
 def fine_alignment(
