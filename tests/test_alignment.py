@@ -427,6 +427,27 @@ def test_epoch_records_of_the_same_trials_come_from_memory_with_the_generator_wh
     assert not np.array_equal(d.increments.rotation, a.increments.rotation)  # other inputs: simulated
 
 
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
+def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled):
+    from strapdown.analysis.gyrocompass import alignment_kernels as k
+    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
+    from strapdown.analysis.gyrocompass.fine_alignment import fine_alignment, simulate_epoch_record
+
+    sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 2.0, 2.0])), 10.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=20.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
+    tuning = kalman_options(sc, e).tuning
+    rec = simulate_epoch_record(sc, e, 5, n_trials=4, rng=4)
+    a, b = fine_alignment(rec, tuning, rng=5, compiled=compiled), fine_alignment(rec, tuning, rng=5, score=False, compiled=compiled)
+    assert np.array_equal(a.heading_error, b.heading_error) and np.array_equal(a.estimate.heading_error, b.estimate.heading_error)
+    assert np.all(np.isfinite(a.nees)) and np.all(np.isnan(b.nees)) and np.all(np.isnan(b.nis))
+    with pytest.raises(ValueError, match="both given"):
+        z = np.zeros
+        k.fine_alignment_loop(
+            z((2, 3, 3)), z((2, 3)), z((2, 4, 3, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 5, 3, 3)), z((2, 5, 3)), z((2, 5, 3)),
+            z((2, 5, 3)), z((2, 5, 0)), np.eye(3), z((3, 3)), z(3), 0.5, z(3), False, z((0, 0)), z((3, 12)), z((4, 12, 3)), z((4, 12, 12)), None,
+        )  # fmt: skip
+
+
 def test_kalman_bias_response_matches_its_linear_theory():
     b = B_001
     sc = Scenario(R(60.0), duration=60.0, sample_rate=10.0)

@@ -126,7 +126,7 @@ def _trial_errors(scenario, errors, method, options, n_trials, seed):
 
         model = filter_model(scenario, options.tuning)
         sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, scenario.n_samples // model.samples_per_epoch)
-    kernel = AlignmentKernel(scenario, errors, method, options, (), sequence, model=model)
+    kernel = AlignmentKernel(scenario, errors, method, options, (), sequence, model=model, score=False)
     e, _ = kernel(n_trials, np.random.default_rng(seed))
     return e[:, 0]
 

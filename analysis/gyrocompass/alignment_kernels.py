@@ -387,7 +387,7 @@ def _rodrigues3(p0, p1, p2, out):
     out[2, 1] = a * p0 + b * p1 * p2
 
 
-def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever, shaping, Fdd, H, K, Pinv, Sinv, C_out, nees, nis, heading):
+def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever, shaping, Fdd, H, K, score, Pinv, Sinv, C_out, nees, nis, heading):
     n, E = dR.shape[0], dR.shape[1]
     dim = H.shape[1]
     nd = Fdd.shape[0]
@@ -495,6 +495,9 @@ def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, 
             sn = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
             sc = math.asin(min(sn, 1.0)) / sn if sn > 1e-15 else 1.0
             err[0], err[1], err[2] = -s0 * sc, -s1 * sc, -s2 * sc
+            heading[i, j] = -err[2]
+            if not score:
+                continue
             for a in range(3):
                 err[3 + a] = v[a] - v_true[i, j + 1, a]
                 err[6 + a] = eps_true[i, j + 1, a] - eps[a]
@@ -513,7 +516,6 @@ def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, 
             for a in range(3):
                 total += (y[0] * Sinv[j, 0, a] + y[1] * Sinv[j, 1, a] + y[2] * Sinv[j, 2, a]) * y[a]
             nis[i, j] = total
-            heading[i, j] = -err[2]
         for a in range(3):
             for b in range(3):
                 C_out[i, a, b] = C[a, b]
@@ -561,8 +563,9 @@ def fine_alignment_loop(
         ``(3, dim)`` measurement matrix.
     gains : ndarray
         ``(E, dim, 3)`` Kalman gains.
-    posterior_inv, innovation_inv : ndarray
-        ``(E, dim, dim)`` and ``(E, 3, 3)`` inverse posterior and innovation covariances.
+    posterior_inv, innovation_inv : ndarray or None
+        ``(E, dim, dim)`` and ``(E, 3, 3)`` inverse posterior and innovation
+        covariances; None (both): the filter is not scored, NEES and NIS are NaN.
 
     Returns
     -------
@@ -580,11 +583,16 @@ def fine_alignment_loop(
     F_rocking = _shaped(F_rocking, "F_rocking", (None, None))
     d = F_rocking.shape[0]
     dim = 12 + d  # attitude, velocity, gyro and accelerometer biases, then the rocking states
+    if (posterior_inv is None) != (innovation_inv is None):
+        raise ValueError("Expected `posterior_inv` and `innovation_inv` both given (a scored filter) or both None")
+    score = posterior_inv is not None
+    if not score:  # placeholders the loop does not read
+        posterior_inv, innovation_inv = np.zeros((0, 0, 0)), np.zeros((0, 0, 0))
     shapes = {
         "C0": (n, 3, 3), "v0": (n, 3), "velocity": (n, E, 3), "moment": (n, E, 3), "noise": (n, E, 3), "end_rate": (n, E, 3),
         "C_true": (n, E + 1, 3, 3), "v_true": (n, E + 1, 3), "eps_true": (n, E + 1, 3), "acc_true": (n, E + 1, 3), "rock_true": (n, E + 1, d),
         "earth_turn": (3, 3), "earth_rate_skew": (3, 3), "gravity": (3,), "lever_arm": (3,), "H": (3, dim), "gains": (E, dim, 3),
-        "posterior_inv": (E, dim, dim), "innovation_inv": (E, 3, 3),
+        "posterior_inv": (E, dim, dim) if score else (0, 0, 0), "innovation_inv": (E, 3, 3) if score else (0, 0, 0),
     }  # fmt: skip
     given = dict(
         C0=C0, v0=v0, velocity=velocity, moment=moment, noise=noise, end_rate=end_rate, C_true=C_true, v_true=v_true, eps_true=eps_true, acc_true=acc_true,
@@ -594,10 +602,11 @@ def fine_alignment_loop(
     a = {name: _shaped(given[name], name, shape) for name, shape in shapes.items()}
     if F_rocking.shape != (d, d):
         raise ValueError(f"Expected `F_rocking` square, got shape {F_rocking.shape}")
-    C_out, nees, nis, heading = np.empty((n, 3, 3)), np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    C_out, heading = np.empty((n, 3, 3)), np.empty((n, E))
+    nees, nis = (np.empty((n, E)), np.empty((n, E))) if score else (np.full((n, E), np.nan), np.full((n, E), np.nan))
     _jit(_fine_loop)(
         a["C0"], a["v0"], dR, a["velocity"], a["moment"], a["noise"], a["end_rate"], a["C_true"], a["v_true"], a["eps_true"], a["acc_true"], a["rock_true"],
         a["earth_turn"], a["earth_rate_skew"], a["gravity"], float(epoch), a["lever_arm"], bool(lever_arm_known), d > 0, F_rocking,
-        a["H"], a["gains"], a["posterior_inv"], a["innovation_inv"], C_out, nees, nis, heading,
+        a["H"], a["gains"], score, a["posterior_inv"], a["innovation_inv"], C_out, nees, nis, heading,
     )  # fmt: skip
     return C_out, nees, nis, heading

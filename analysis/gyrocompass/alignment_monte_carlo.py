@@ -91,12 +91,14 @@ class AlignmentKernel:
         Trials simulated at once (memory).
     model : FineAlignmentModel or None
         Kalman: ``filter_model(scenario, options.tuning)``, computed once (None: at each call).
+    score : bool
+        Kalman: score the filter (NEES, NIS); False: those columns of ``aux`` are NaN.
 
     Notes
     -----
     Returns ``(errors, aux)``: the azimuth error ``(n, 1)`` [rad] and per trial
     the squared tilt errors, then (Kalman) the NEES and NIS at ``check_epochs``
-    and the NIS averaged over all epochs.
+    and the NIS averaged over all epochs (NaN without ``score``).
     """
 
     scenario: Scenario
@@ -107,12 +109,13 @@ class AlignmentKernel:
     sequence: object = None
     chunk: int = 32
     model: object = None
+    score: bool = True
 
     def __call__(self, n_trials: int, rng):
         if self.method == "kalman":
             model = filter_model(self.scenario, self.options.tuning) if self.model is None else self.model
             rec = simulate_epoch_record(self.scenario, self.errors, model.samples_per_epoch, n_trials=n_trials, rng=rng, chunk=self.chunk)
-            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model)
+            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model, score=self.score)
             est = res.estimate
             idx = list(self.check_epochs)
             aux = [est.tilt_error**2, res.nees[:, idx], res.nis[:, idx], res.nis.mean(axis=1, keepdims=True)]

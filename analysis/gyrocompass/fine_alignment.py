@@ -513,7 +513,15 @@ _RECORD_FIELDS = ("truth_angles", "truth_velocity", "truth_rates", "end_rate", "
 
 
 def fine_alignment(
-    record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, model: FineAlignmentModel | None = None, compiled: bool | None = None
+    record,
+    tuning: FilterTuning | None = None,
+    *,
+    rng=None,
+    velocity_noise: float | None = None,
+    sequence=None,
+    model: FineAlignmentModel | None = None,
+    score: bool = True,
+    compiled: bool | None = None,
 ) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
@@ -534,6 +542,10 @@ def fine_alignment(
         Gains and covariances computed before for the same model (saves the covariance recursion).
     model : FineAlignmentModel, optional
         ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
+    score : bool
+        Score the filter against the truth at every epoch (NEES, NIS); False:
+        only the azimuth errors, NEES and NIS NaN (a search that needs the
+        errors alone).
     compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
         (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
@@ -594,8 +606,7 @@ def fine_alignment(
     rock_true = np.empty((n, E + 1, 2 * len(ax)))
     rock_true[:, :, 0::2] = (record.truth_angles - sc.stable_angles)[:, :, ax]
     rock_true[:, :, 1::2] = record.truth_rates[:, :, ax]
-    Sinv = np.linalg.inv(seq.innovation)
-    Pinv = np.linalg.inv(seq.posterior)
+    Sinv, Pinv = (np.linalg.inv(seq.innovation), np.linalg.inv(seq.posterior)) if score else (None, None)
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
     loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) else _epoch_loop
     C, nees, nis, heading_error = loop(
@@ -614,7 +625,8 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
     dim, shaping = H.shape[1], Fdd.shape[0] > 0
     eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
     xd = np.zeros((n, Fdd.shape[0]))
-    nees, nis, heading_error = np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    score = Pinv is not None
+    nees, nis, heading_error = np.full((n, E), np.nan), np.full((n, E), np.nan), np.empty((n, E))
     KT = np.swapaxes(gains, 1, 2)
     HT = H.T
     err = np.empty((n, dim))
@@ -640,6 +652,9 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
             xd = x[:, 12:]
         # consistency against the truth of the simulation
         err[:, 0:3] = _small_rotation(np.einsum("nij,nkj->nik", C, C_true[:, j + 1]))
+        heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
+        if not score:
+            continue
         err[:, 3:6] = v - v_true[:, j + 1]
         err[:, 6:9] = eps_true[:, j + 1] - eps
         err[:, 9:12] = acc_true[:, j + 1] - acc
@@ -647,7 +662,6 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
             err[:, 12:] = rock_true[:, j + 1] - xd
         nees[:, j] = np.sum((err @ Pinv[j]) * err, axis=1)
         nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
-        heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
     return C, nees, nis, heading_error
 
 
