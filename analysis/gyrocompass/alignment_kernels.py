@@ -61,6 +61,13 @@ def _shaped(x, name: str, shape: tuple, *, output: bool = False) -> np.ndarray:
     return a
 
 
+def _read_only(x: np.ndarray) -> np.ndarray:
+    """A read-only view of ``x`` (no copy; ``x`` itself unchanged)."""
+    view = x.view()
+    view.setflags(write=False)
+    return view
+
+
 def use_compiled(compiled: bool | None, work: int) -> bool:
     """Whether a caller runs its compiled loop: ``compiled`` if given, else whether the loop pays off.
 
@@ -214,7 +221,8 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     lever = bool(np.any(vectors[4]))
     accels = _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))
     dtheta, dv = _shaped(dtheta, "dtheta", (n, N, 3), output=True), _shaped(dv, "dv", (n, N, 3), output=True)
-    _jit(_ideal_loop)(angles, rates, accels, *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
+    # read-only views, whether or not the arrays are (the kept unit evaluations are): one compiled signature
+    _jit(_ideal_loop)(*(_read_only(x) for x in (angles, rates, accels)), *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
 
 
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
