@@ -667,6 +667,19 @@ def test_repeated_draws_and_memo_refuse_bad_input():
         BoundedMemo(-1)
 
 
+def test_scaled_repeated_draws_are_the_scaled_draw_and_advance_the_stream_alike():
+    from strapdown.analysis.core import repeated_draws
+
+    a, b, c = np.random.default_rng(9), np.random.default_rng(9), np.random.default_rng(9)
+    z = b.standard_normal((4, 5))
+    x = repeated_draws.standard_normal(a, (4, 5), scale=0.25)
+    assert np.array_equal(x, 0.25 * z) and not x.flags.writeable
+    y = repeated_draws.standard_normal(c, (4, 5), scale=0.25)  # served: the same product, the same state after
+    assert y is x and a.random() == b.random() == c.random()
+    with pytest.raises(ValueError, match="`scale`"):
+        repeated_draws.standard_normal(a, (2,), scale=math.inf)
+
+
 def test_memo_counts_and_freezes_every_array_of_a_tuple():
     from strapdown.analysis.core.memo import BoundedMemo
 

@@ -372,9 +372,9 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     dtheta += gb[:, None, :] * dt
     dv += ab[:, None, :] * dt
     if e.gyro_noise:  # the same trials again (common random numbers): the draw from memory, bit for bit
-        dtheta += (e.gyro_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dtheta.shape)
+        dtheta += repeated_draws.standard_normal(g, dtheta.shape, scale=e.gyro_noise * math.sqrt(dt))
     if e.accel_noise:
-        dv += (e.accel_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dv.shape)
+        dv += repeated_draws.standard_normal(g, dv.shape, scale=e.accel_noise * math.sqrt(dt))
     dtheta = _quantise(dtheta, e.gyro_quantum, g)
     dv = _quantise(dv, e.accel_quantum, g)
     return ImuRecord(scenario, errors, dtheta, dv, idx * dt, angles, velocity, rate, np.ascontiguousarray(gb), np.ascontiguousarray(ab))
