@@ -437,9 +437,26 @@ def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled)
     e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
     tuning = kalman_options(sc, e).tuning
     rec = simulate_epoch_record(sc, e, 5, n_trials=4, rng=4)
-    a, b = fine_alignment(rec, tuning, rng=5, compiled=compiled), fine_alignment(rec, tuning, rng=5, score=False, compiled=compiled)
-    assert np.array_equal(a.heading_error, b.heading_error) and np.array_equal(a.estimate.heading_error, b.estimate.heading_error)
-    assert np.all(np.isfinite(a.nees)) and np.all(np.isnan(b.nees)) and np.all(np.isnan(b.nis))
+    ends = simulate_epoch_record(sc, e, 5, n_trials=4, rng=4, truth="ends")  # the same trials, the truth at the ends only
+    assert np.isnan(ends.truth_angles[:, 1:-1]).all() and np.array_equal(ends.increments.velocity, rec.increments.velocity)
+    np.testing.assert_allclose(ends.truth_angles[:, [0, -1]], rec.truth_angles[:, [0, -1]], rtol=0, atol=1e-15)  # summed, not by FFT
+    a = fine_alignment(rec, tuning, rng=5, compiled=compiled)
+    for r in (rec, ends):
+        b = fine_alignment(r, tuning, rng=5, score=False, compiled=compiled)
+        np.testing.assert_allclose(b.estimate.heading_error, a.estimate.heading_error, rtol=0, atol=1e-14)
+        np.testing.assert_allclose(b.heading_error[:, -1], a.heading_error[:, -1], rtol=0, atol=1e-14)
+        assert np.all(np.isnan(b.heading_error[:, :-1])) and np.all(np.isnan(b.nees)) and np.all(np.isnan(b.nis))
+    assert np.all(np.isfinite(a.nees))
+    with pytest.raises(ValueError, match="truth at every epoch to score"):
+        fine_alignment(ends, tuning, rng=5)
+    with pytest.raises(ValueError, match="`truth` in"):
+        simulate_epoch_record(sc, e, 5, n_trials=4, rng=4, truth="start")
+    from strapdown.analysis.gyrocompass.fine_alignment import epoch_record
+
+    with pytest.raises(ValueError, match="truth at its start and at the end of its last epoch"):
+        epoch_record(simulate_imu(sc, e, n_trials=2, rng=1, truth_stride=5), 5, truth="ends")
+    with pytest.raises(ValueError, match="truth every 5 samples"):
+        epoch_record(simulate_imu(sc, e, n_trials=2, rng=1), 5)
     with pytest.raises(ValueError, match="both given"):
         z = np.zeros
         k.fine_alignment_loop(

@@ -92,7 +92,8 @@ class AlignmentKernel:
     model : FineAlignmentModel or None
         Kalman: ``filter_model(scenario, options.tuning)``, computed once (None: at each call).
     score : bool
-        Kalman: score the filter (NEES, NIS); False: those columns of ``aux`` are NaN.
+        Kalman: score the filter (NEES, NIS); False: those columns of ``aux``
+        are NaN, and the records carry their truth at the start and the end only.
 
     Notes
     -----
@@ -114,7 +115,8 @@ class AlignmentKernel:
     def __call__(self, n_trials: int, rng):
         if self.method == "kalman":
             model = filter_model(self.scenario, self.options.tuning) if self.model is None else self.model
-            rec = simulate_epoch_record(self.scenario, self.errors, model.samples_per_epoch, n_trials=n_trials, rng=rng, chunk=self.chunk)
+            truth = "epochs" if self.score else "ends"  # unscored: the truth at the start and the end suffices
+            rec = simulate_epoch_record(self.scenario, self.errors, model.samples_per_epoch, n_trials=n_trials, rng=rng, chunk=self.chunk, truth=truth)
             res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model, score=self.score)
             est = res.estimate
             idx = list(self.check_epochs)

@@ -72,6 +72,7 @@ __all__ = [
     "assumed_disturbance",
     "DISTURBANCE_KINDS",
     "MIN_DAMPING",
+    "TRUTHS",
 ]
 
 DISTURBANCE_KINDS = ("none", "white", "shaping")
@@ -423,15 +424,24 @@ class EpochRecord:
         return self.truth_angles.shape[0]
 
 
-def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
+#: Where an epoch record carries the truth: at every epoch boundary, or at the start and the end.
+TRUTHS = ("epochs", "ends")
+
+
+def epoch_record(record: ImuRecord, samples_per_epoch: int, *, truth: str = "epochs") -> EpochRecord:
     """Condense a sample record (with its truth every ``samples_per_epoch`` samples) into epochs.
 
     Parameters
     ----------
     record : ImuRecord
-        Increments with ``truth_stride = samples_per_epoch``.
+        Increments with ``truth_stride = samples_per_epoch`` (``truth="ends"``:
+        with the truth at its start and end, ``truth_stride=None``).
     samples_per_epoch : int
         M.
+    truth : str, keyword-only
+        ``"epochs"``: the truth at every epoch boundary; ``"ends"``: at the
+        start and the end only (the boundaries between are NaN), all that
+        :func:`fine_alignment` needs when it does not score the filter.
 
     Returns
     -------
@@ -440,23 +450,38 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
     Raises
     ------
     ValueError
-        If the truth is not at every epoch boundary.
+        If the truth is not where ``truth`` asks (for ``"ends"``, the record
+        must end with its last whole epoch), or for an unknown ``truth``.
     """
+    if truth not in TRUTHS:
+        raise ValueError(f"Expected `truth` in {TRUTHS}, got {truth!r}")
     M = int(samples_per_epoch)
     sc = record.scenario
     ep = preintegrate(record.dtheta, record.dv, sc.dt, M)
     E = ep.n_epochs
+    rate = np.concatenate([record.dtheta[:, :1], record.dtheta[:, M - 1 :: M][:, :E]], axis=1) / sc.dt
+    fields = (record.truth_angles, record.truth_velocity, record.truth_rates)
+    if truth == "ends":
+        if record.truth_angles.shape[1] != 2 or not np.allclose(record.truth_times, [0.0, M * sc.dt * E]):
+            raise ValueError(f"Expected the record's truth at its start and at the end of its last epoch, {M * sc.dt * E:g} s (simulate_imu(..., truth_stride=None))")
+        ends = []
+        for x in fields:
+            y = np.full((x.shape[0], E + 1, 3), np.nan)
+            y[:, [0, E]] = x
+            ends.append(y)
+        return EpochRecord(sc, ep, *ends, rate, record.gyro_bias, record.accel_bias)
     if record.truth_angles.shape[1] < E + 1 or not np.allclose(record.truth_times[: E + 1], M * sc.dt * np.arange(E + 1)):
         raise ValueError(f"Expected the record's truth every {M} samples (simulate_imu(..., truth_stride={M}))")
-    rate = np.concatenate([record.dtheta[:, :1], record.dtheta[:, M - 1 :: M][:, :E]], axis=1) / sc.dt
-    return EpochRecord(sc, ep, record.truth_angles[:, : E + 1], record.truth_velocity[:, : E + 1], record.truth_rates[:, : E + 1], rate, record.gyro_bias, record.accel_bias)
+    return EpochRecord(sc, ep, *(x[:, : E + 1] for x in fields), rate, record.gyro_bias, record.accel_bias)
 
 
 #: Epoch records simulated recently, by their inputs and the generator's state before them.
 _RECORDS = BoundedMemo(32 * 2**20)
 
 
-def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32) -> EpochRecord:
+def simulate_epoch_record(
+    scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32, truth: str = "epochs"
+) -> EpochRecord:
     """Simulate ``n_trials`` records in chunks and keep only their epoch increments (bounded memory).
 
     Filters compared on the same trials (common random numbers) ask for the
@@ -478,6 +503,8 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
         Random stream (consumed chunk after chunk).
     chunk : int
         Trials simulated at once.
+    truth : str
+        ``"epochs"`` or ``"ends"`` (:func:`epoch_record`).
 
     Returns
     -------
@@ -491,14 +518,17 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
     g = as_generator(rng)
     M, n, chunk = int(samples_per_epoch), int(n_trials), int(chunk)
     bits = g.bit_generator
-    inputs = hashlib.blake2b(pickle.dumps((scenario, errors, M, n, chunk), protocol=5), digest_size=16).digest()
+    if truth not in TRUTHS:
+        raise ValueError(f"Expected `truth` in {TRUTHS}, got {truth!r}")
+    inputs = hashlib.blake2b(pickle.dumps((scenario, errors, M, n, chunk, truth), protocol=5), digest_size=16).digest()
 
     def simulate():
         parts = []
         left = n
         while left > 0:
             k = min(chunk, left)
-            parts.append(epoch_record(simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=M), M))
+            rec = simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=M if truth == "epochs" else None)
+            parts.append(epoch_record(rec, M, truth=truth))
             left -= k
         cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
         inc = tuple(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment"))
@@ -543,9 +573,11 @@ def fine_alignment(
     model : FineAlignmentModel, optional
         ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
     score : bool
-        Score the filter against the truth at every epoch (NEES, NIS); False:
-        only the azimuth errors, NEES and NIS NaN (a search that needs the
-        errors alone).
+        Score the filter against the truth at every epoch (NEES, NIS, the
+        azimuth error at every epoch); False: the azimuth error at the end
+        only (``heading_error`` NaN before the last epoch, NEES and NIS NaN),
+        from the truth at the start and the end of the record, which is then
+        all it needs (``epoch_record(..., truth="ends")``).
     compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
         (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
@@ -590,10 +622,22 @@ def fine_alignment(
     E_earth = _rodrigues(-W * D)
     # everything that does not depend on the filter, for all epochs at once
     dR = _quat_to_matrix(ep.rotation)  # (n, E, 3, 3)
-    C_true = attitude_matrix(record.truth_angles[:, : E + 1])
-    v_true = record.truth_velocity[:, : E + 1]
-    eps_true = np.einsum("nkij,nj->nki", C_true, record.gyro_bias)
-    acc_true = np.einsum("nkij,nj->nki", C_true, record.accel_bias)
+    ax = list(model.rocking_axes)
+    if score:
+        if np.isnan(record.truth_angles[:, : E + 1]).any():
+            raise ValueError("Expected the record's truth at every epoch to score the filter (epoch_record(..., truth='epochs')), got NaN")
+        C_true = attitude_matrix(record.truth_angles[:, : E + 1])
+        v_true = record.truth_velocity[:, : E + 1]
+        eps_true = np.einsum("nkij,nj->nki", C_true, record.gyro_bias)
+        acc_true = np.einsum("nkij,nj->nki", C_true, record.accel_bias)
+        rock_true = np.empty((n, E + 1, 2 * len(ax)))
+        rock_true[:, :, 0::2] = (record.truth_angles[:, : E + 1] - sc.stable_angles)[:, :, ax]
+        rock_true[:, :, 1::2] = record.truth_rates[:, : E + 1][:, :, ax]
+    else:  # the azimuth error at the end: the truth at the start and the end
+        C_true = np.full((n, E + 1, 3, 3), np.nan)
+        C_true[:, [0, E]] = attitude_matrix(record.truth_angles[:, [0, E]])
+        v_true, eps_true, acc_true = np.zeros((n, E + 1, 3)), np.zeros((n, E + 1, 3)), np.zeros((n, E + 1, 3))
+        rock_true = np.zeros((n, E + 1, 2 * len(ax)))
     r = sc.lever_arm
     w_end = record.end_rate[:, 1:]  # gyro rate at each epoch end
     phi0 = g.standard_normal((n, 3)) * np.sqrt(np.diag(model.P0)[0:3])
@@ -602,10 +646,6 @@ def fine_alignment(
     v = tuning.prior_velocity * g.standard_normal((n, 3))  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
-    ax = list(model.rocking_axes)
-    rock_true = np.empty((n, E + 1, 2 * len(ax)))
-    rock_true[:, :, 0::2] = (record.truth_angles - sc.stable_angles)[:, :, ax]
-    rock_true[:, :, 1::2] = record.truth_rates[:, :, ax]
     Sinv, Pinv = (np.linalg.inv(seq.innovation), np.linalg.inv(seq.posterior)) if score else (None, None)
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
     loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) else _epoch_loop
