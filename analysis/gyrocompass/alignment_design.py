@@ -289,10 +289,11 @@ def _next_hint(fn, hint, floor_sq, a, bracket, cap):
 
 def _trial_root(errors, level, budget, lo, hi):
     """Log of the amplitude where the ``level`` percentile of |error| reaches the budget, each trial's error
-    interpolated linearly in a between the amplitudes simulated (``errors``: amplitude → per-trial errors),
-    searched in ``(lo, hi)`` (below ``hi`` and above ``hi``/64 without a lower end; up to four times the
+    interpolated linearly in ``a^q`` between the amplitudes simulated (``errors``: amplitude → per-trial
+    errors, 0 among them; q the exponent of the rocking's part of the rms, from the two smallest nonzero
+    amplitudes), searched in ``(lo, hi)`` (above ``hi``/64 without a lower end; up to four times the
     largest amplitude simulated, extrapolated, without an upper end); None if the percentile does not cross
-    the budget there."""
+    the budget there, or fewer than three amplitudes are known."""
     A = np.array(sorted(errors))
     if A.size < 3 or A[0] != 0.0:
         return None
