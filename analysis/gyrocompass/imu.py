@@ -260,7 +260,7 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     TypeError
         If ``scenario`` is not a Scenario or ``motion`` not a MotionRealisation.
     """
-    from .base_motion import MotionRealisation
+    from .base_motion import MotionRealisation, Spectrum
 
     if not isinstance(scenario, Scenario):
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
@@ -269,9 +269,9 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     N, dt = scenario.n_samples, scenario.dt
     n = motion.n_trials
     compiled = kernels.use_compiled(compiled, n * N)
-    if n > 1 and not np.any(motion.coefficients):  # no rocking: every trial is the first
-        one = MotionRealisation(motion.spectrum, motion.coefficients[:1], motion.dt)
-        return tuple(np.repeat(x, n, axis=0) for x in ideal_increments(scenario, one, compiled=compiled))
+    if not np.any(motion.coefficients) and (n > 1 or motion.coefficients.shape[-1]):  # no rocking: every trial is the first, at rest
+        still = MotionRealisation(Spectrum(np.zeros(0), np.zeros((3, 0)), False), np.zeros((1, 3, 0)), motion.dt)
+        return tuple(np.repeat(x, n, axis=0) for x in ideal_increments(scenario, still, compiled=compiled))
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
