@@ -138,6 +138,68 @@ def test_scaled_draws_share_their_evaluations_and_equal_the_direct_sum(model):
         np.testing.assert_allclose(r.evaluate(300, 0.03, derivatives=0)[0] * (3.0 / scale), direct, rtol=0, atol=1e-13 * np.max(np.abs(direct)))
 
 
+def test_unit_evaluation_times_its_scale_is_the_evaluation_and_the_compiled_loop_applies_it():
+    """A scaled draw hands its shared unit arrays and amplitudes to the compiled loop, which scales them itself:
+    the same increments as the loop on the multiplied-out rocking (the same products), to the last bit."""
+    from strapdown.analysis.gyrocompass import alignment_kernels as k
+
+    sc = Scenario(R(60.0), heading=0.5, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
+    m = NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1).draw(np.random.default_rng(2), 3, sc.n_samples + 1, sc.dt)
+    parts, scale = m.unit_evaluation(sc.n_samples, 0.02)
+    assert not parts[0].flags.writeable and np.array_equal(scale, m.unit[2])  # the kept unit evaluation
+    for a, b in zip(m.evaluate(sc.n_samples, 0.02), parts):
+        assert np.array_equal(a, scale * b)
+    W, g, fixed = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude), np.zeros(3)
+    out = [np.zeros((3, sc.n_samples, 3)) for _ in range(4)]
+    k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[0], out[1], scale=scale)
+    k.accumulate_ideal_increments(*(scale * p for p in parts), sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[2], out[3])
+    assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
+    with pytest.raises(ValueError, match="`scale`"):
+        k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[0], out[1], scale=[1.0, 2.0])
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
+def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
+    """No rocking (a still base, or a draw at zero amplitude): one trial computed, the same for all, equal to a computation per trial."""
+    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+    from strapdown.analysis.gyrocompass.imu import ideal_increments
+
+    sc = Scenario(R(60.0), heading=0.5, beta0=0.01, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=5.0)
+    for m in (SineMotion(0.0, 7.0).draw(1, 4, sc.n_samples + 1, sc.dt), sc.motion.draw(1, 4, sc.n_samples + 1, sc.dt)):
+        dtheta, dv = ideal_increments(sc, m, compiled=compiled)
+        assert dtheta.shape == dv.shape == (4, sc.n_samples, 3) and dtheta.flags.writeable
+        for i in range(4):
+            single = ideal_increments(sc, MotionRealisation(m.spectrum, m.coefficients[i : i + 1], m.dt), compiled=compiled)
+            assert np.array_equal(dtheta[i : i + 1], single[0]) and np.array_equal(dv[i : i + 1], single[1])
+    ref = ideal_increments(sc, sc.motion.draw(1, 4, sc.n_samples + 1, sc.dt), compiled=not compiled)
+    np.testing.assert_allclose(dtheta, ref[0], rtol=0, atol=1e-15 * np.max(np.abs(ref[0])))
+    np.testing.assert_allclose(dv, ref[1], rtol=0, atol=1e-15 * np.max(np.abs(ref[1])))
+
+
+@pytest.mark.parametrize(
+    "model",
+    [NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.3, 2.0, 1.0])), 7.0)],
+    ids=["narrowband", "white", "sine"],
+)
+def test_rocking_at_a_few_instants_is_the_record_there(model):
+    """The direct sum at a few sample instants against the evaluation of the whole record: the same sums for
+    sinusoids, round-off of the FFT for the Gaussian models."""
+    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+
+    r = model.draw(np.random.default_rng(5), 3, 301, 0.1)
+    idx = np.array([0, 7, 300])
+    for realisation in (r, MotionRealisation(r.spectrum, r.coefficients, r.dt)):  # scaled unit draw, and plain
+        for whole, points in zip(realisation.evaluate(301, 0.0), realisation.evaluate_points(idx)):
+            if model.name == "sine":
+                assert np.array_equal(whole[:, idx], points)
+            else:
+                np.testing.assert_allclose(points, whole[:, idx], rtol=0, atol=1e-13 * np.max(np.abs(whole)))
+    with pytest.raises(ValueError, match="`indices`"):
+        r.evaluate_points([0.5, 1.0])
+    with pytest.raises(ValueError, match="`derivatives` in 0..2"):
+        r.evaluate_points([0], derivatives=3)
+
+
 def test_increments_reproduce_the_true_attitude_and_velocity():
     """An independent navigator (scipy rotations) integrates the record back to the truth."""
     lat = R(50.0)
@@ -328,6 +390,81 @@ def test_compiled_filter_loop_equals_the_numpy_reference(shaping, lever_arm_know
     np.testing.assert_allclose(a.estimate.heading_error, b.estimate.heading_error, rtol=0, atol=1e-11)
 
 
+def test_fine_alignment_with_its_model_given_is_the_same_run():
+    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
+    from strapdown.analysis.gyrocompass.fine_alignment import filter_model, fine_alignment, simulate_epoch_record
+
+    sc = Scenario(R(60.0), heading=R(30.0), sample_rate=10.0, duration=20.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0)
+    tuning = kalman_options(sc, e).tuning
+    model = filter_model(sc, tuning)
+    rec = simulate_epoch_record(sc, e, model.samples_per_epoch, n_trials=3, rng=4)
+    a, b = fine_alignment(rec, tuning, rng=5), fine_alignment(rec, tuning, rng=5, model=model)
+    assert np.array_equal(a.nees, b.nees) and np.array_equal(a.heading_error, b.heading_error)
+    with pytest.raises(TypeError, match="`model` to be a FineAlignmentModel"):
+        fine_alignment(rec, tuning, model=model.F)
+
+
+def test_epoch_records_of_the_same_trials_come_from_memory_with_the_generator_where_a_simulation_leaves_it():
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass import fine_alignment as fa
+
+    sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 1.0, 1.0])), 8.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, gyro_noise=R(0.002) / 60.0)
+    g1, g2 = np.random.default_rng(8), np.random.default_rng(8)
+    a = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g1, chunk=2)
+    b = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g2, chunk=2)
+    assert b.increments.velocity is a.increments.velocity and not b.truth_angles.flags.writeable  # served, read-only
+    assert g1.random() == g2.random()  # both generators where the simulation left them
+    fa._RECORDS._items.clear()
+    fa._RECORDS._bytes = 0
+    c = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)  # made again
+    for name in ("rotation", "velocity", "moment"):
+        assert np.array_equal(getattr(c.increments, name), getattr(a.increments, name))
+    assert np.array_equal(c.truth_velocity, a.truth_velocity) and c.increments.epoch == a.increments.epoch == 0.5
+    d = fa.simulate_epoch_record(sc, replace(e, gyro_noise=2.0 * e.gyro_noise), 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)
+    assert not np.array_equal(d.increments.rotation, a.increments.rotation)  # other inputs: simulated
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
+def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled):
+    from strapdown.analysis.gyrocompass import alignment_kernels as k
+    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
+    from strapdown.analysis.gyrocompass.fine_alignment import fine_alignment, simulate_epoch_record
+
+    sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 2.0, 2.0])), 10.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=20.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
+    tuning = kalman_options(sc, e).tuning
+    rec = simulate_epoch_record(sc, e, 5, n_trials=4, rng=4)
+    ends = simulate_epoch_record(sc, e, 5, n_trials=4, rng=4, truth="ends")  # the same trials, the truth at the ends only
+    assert np.isnan(ends.truth_angles[:, 1:-1]).all() and np.array_equal(ends.increments.velocity, rec.increments.velocity)
+    np.testing.assert_allclose(ends.truth_angles[:, [0, -1]], rec.truth_angles[:, [0, -1]], rtol=0, atol=1e-15)  # summed, not by FFT
+    a = fine_alignment(rec, tuning, rng=5, compiled=compiled)
+    for r in (rec, ends):
+        b = fine_alignment(r, tuning, rng=5, score=False, compiled=compiled)
+        np.testing.assert_allclose(b.estimate.heading_error, a.estimate.heading_error, rtol=0, atol=1e-14)
+        np.testing.assert_allclose(b.heading_error[:, -1], a.heading_error[:, -1], rtol=0, atol=1e-14)
+        assert np.all(np.isnan(b.heading_error[:, :-1])) and np.all(np.isnan(b.nees)) and np.all(np.isnan(b.nis))
+    assert np.all(np.isfinite(a.nees))
+    with pytest.raises(ValueError, match="truth at every epoch to score"):
+        fine_alignment(ends, tuning, rng=5)
+    with pytest.raises(ValueError, match="`truth` in"):
+        simulate_epoch_record(sc, e, 5, n_trials=4, rng=4, truth="start")
+    from strapdown.analysis.gyrocompass.fine_alignment import epoch_record
+
+    with pytest.raises(ValueError, match="truth at its start and at the end of its last epoch"):
+        epoch_record(simulate_imu(sc, e, n_trials=2, rng=1, truth_stride=5), 5, truth="ends")
+    with pytest.raises(ValueError, match="truth every 5 samples"):
+        epoch_record(simulate_imu(sc, e, n_trials=2, rng=1), 5)
+    with pytest.raises(ValueError, match="both given"):
+        z = np.zeros
+        k.fine_alignment_loop(
+            z((2, 3, 3)), z((2, 3)), z((2, 4, 3, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 4, 3)), z((2, 5, 3, 3)), z((2, 5, 3)), z((2, 5, 3)),
+            z((2, 5, 3)), z((2, 5, 0)), np.eye(3), z((3, 3)), z(3), 0.5, z(3), False, z((0, 0)), z((3, 12)), z((4, 12, 3)), z((4, 12, 12)), None,
+        )  # fmt: skip
+
+
 def test_kalman_bias_response_matches_its_linear_theory():
     b = B_001
     sc = Scenario(R(60.0), duration=60.0, sample_rate=10.0)
@@ -368,6 +505,62 @@ def test_amplitude_search_brackets_the_root_in_few_evaluations(power, root):
     assert b == a and not set(again) - set(calls)  # the known points suffice: nothing new to simulate
 
 
+@pytest.mark.parametrize("power", [1.0, 2.0, 3.5, 6.0])
+@pytest.mark.parametrize("ratio", [0.7, 1.4])
+def test_amplitude_search_from_the_previous_root_closes_in_three_runs(power, ratio):
+    """Started near the root with the slope of the curve (the previous frequency's root and slope), the search
+    needs the start and two more runs: one past the estimated root, one a bracket width from it."""
+    from strapdown.analysis.gyrocompass.alignment_design import _search
+
+    budget, floor, rtol, cap, root = 1.0, 0.45, 0.1, R(20.0), R(3.0)
+    u = math.sqrt(budget**2 - floor**2) ** (2.0 / power) / root
+    calls = []
+
+    def fn(a):
+        calls.append(a)
+        return math.sqrt(floor**2 + (u * a) ** power)
+
+    a, (lo, hi) = _search(fn, budget, ratio * root, cap, rtol, exponent=power)
+    assert lo <= root * (1.0 + 1e-12) and root <= hi * (1.0 + 1e-12) and hi <= lo * (1.0 + rtol)
+    assert len(set(calls) - {0.0}) <= 3, calls
+
+
+@pytest.mark.parametrize("q", [1.0, 2.5])
+def test_percentile_search_places_its_runs_by_the_trials_errors(q):
+    """Trials whose rocking part grows as a power of the amplitude: the percentile where each trial's error,
+    interpolated between the amplitudes simulated, crosses the budget is the root, and two runs close the bracket."""
+    from strapdown.analysis.gyrocompass.alignment_design import _search, _trial_root
+
+    rng = np.random.default_rng(3)
+    e0, u = 0.3 * rng.standard_normal(200), rng.standard_normal(200)
+    budget, level, rtol, cap = 1.0, 0.95, 0.1, 100.0
+    cache = {}
+
+    def pct(a):
+        if a not in cache:
+            cache[a] = e0 + u * a**q
+        return float(np.quantile(np.abs(cache[a]), level))
+
+    for a in (0.0, 4.0, 5.0, 6.5):  # the rms search's runs, all above the percentile's root
+        pct(a)
+    known = set(cache)
+    a, (lo, hi) = _search(pct, budget, 1.0, cap, rtol, known=tuple(cache), estimate=lambda lo, hi: _trial_root(cache, level, budget, lo, hi))
+    assert pct(lo) <= budget < pct(hi) and hi <= lo * (1.0 + rtol)
+    assert len(set(cache) - known) <= 2, sorted(set(cache) - known)
+    assert _trial_root({0.0: e0, 4.0: e0 + 4.0 * u}, level, budget, 0.0, 4.0) is None  # two amplitudes: no exponent
+
+
+@pytest.mark.parametrize("n_steps", [2, 3, 300])
+def test_coverage_study_samples_xi_as_the_model_does(n_steps):
+    """The coverage study filters only ξ's rows of the narrow-band model's draws: the model's own ξ, to the bit."""
+    from strapdown.analysis.gyrocompass.alignment_studies import _xi_sample
+    from strapdown.analysis.gyrocompass.rocking import NarrowbandRocking
+
+    m = NarrowbandRocking(0.02, 0.01, 8.0, 0.1)
+    xi, _ = m.sample(np.random.default_rng(5), 40, n_steps, 0.1)
+    assert np.array_equal(_xi_sample(m, np.random.default_rng(5), 40, n_steps, 0.1), xi)
+
+
 def test_amplitude_search_ends():
     from strapdown.analysis.gyrocompass.alignment_design import _search
 
@@ -396,6 +589,60 @@ def test_admissible_rocking_meets_the_budget():
     mc = admissible_rocking("inertial", budget, sc, [0.1], e, rocking="sine", n_trials=16, rtol=0.2, rng=5)
     assert 0.0 < mc.amplitude[0] < mc.max_amplitude
     assert mc.amplitude_ci[0, 0] <= mc.amplitude[0] <= mc.amplitude_ci[0, 1]
+
+
+@pytest.mark.parametrize("sines", [[], [0.7], [1.0, 0.4], [0.5, 0.3, 0.2]], ids=["gaussian", "one-sine", "two-sines", "three-sines"])
+@pytest.mark.parametrize("mean", [0.0, 0.2])
+def test_abs_error_probability_is_the_phase_grid_mean_and_inverts_the_percentile(sines, mean):
+    """The half grid of the phases gives the mean over the whole grid (every sine value twice there); the
+    percentile of abs_error_quantile is where the probability reaches the level."""
+    from scipy.special import ndtr
+
+    from strapdown.analysis.gyrocompass.error_distribution import _phase_values, abs_error_probability, abs_error_quantile
+
+    s, x = 0.3, 0.8
+    m = _phase_values(np.array(sines, dtype=float)) + mean
+    full = float(np.mean(ndtr((x - m) / s) - ndtr((-x - m) / s)))
+    assert abs_error_probability(sines, s, x, mean=mean) == pytest.approx(full, rel=1e-13, abs=1e-15)
+    q = abs_error_quantile(sines, s, 0.95, mean=mean)
+    assert abs_error_probability(sines, s, q.value, mean=mean) == pytest.approx(0.95, abs=1e-8)
+    assert abs_error_probability(sines, s, 0.0, mean=mean) == 0.0
+
+
+def test_abs_error_probability_refuses_bad_input():
+    from strapdown.analysis.gyrocompass.error_distribution import abs_error_probability
+
+    with pytest.raises(ValueError, match="`gaussian_sigma`"):
+        abs_error_probability([1.0], 0.0, 1.0)
+    with pytest.raises(ValueError, match="`x`"):
+        abs_error_probability([1.0], 0.1, -1.0)
+    with pytest.raises(ValueError, match="at most 3 sinusoidal residues"):
+        abs_error_probability([1.0, 1.0, 1.0, 1.0], 0.1, 1.0)
+
+
+@pytest.mark.parametrize("rocking", ["sine", "narrowband"])
+def test_analytic_percentile_amplitude_puts_the_percentile_on_the_budget(rocking):
+    """The admissible amplitude by the percentile (analytic method, a root search on the probability) against the
+    percentile of abs_error_quantile at that amplitude, and the search on the percentile itself."""
+    from dataclasses import replace
+
+    from scipy.optimize import brentq
+
+    from strapdown.analysis.gyrocompass.alignment_design import _analytic_percentile, _motion
+    from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE
+    from strapdown.analysis.gyrocompass.error_distribution import abs_error_quantile
+
+    budget, cap = R(0.3), R(20.0)
+    th = analytic_theory(replace(DESIGN_SCENARIO, motion=_motion(rocking, np.array([0.0, 1.0, 1.0]), 0.1, 0.1)), NAVIGATION_GRADE, envelope=rocking == "sine")
+    sines = th.rocking_sine_amplitudes if rocking == "sine" else np.zeros(0)
+
+    def q(a):
+        s = th.sensor_sigma if rocking == "sine" else math.hypot(th.sensor_sigma, a * th.rocking)
+        return abs_error_quantile(a * sines, s, 0.95, mean=th.mean).value - budget
+
+    a = _analytic_percentile(th, budget, 0.95, cap, rocking)
+    assert 0.0 < a < cap and abs(q(a)) < 1e-7 * budget
+    assert a == pytest.approx(brentq(q, 0.0, cap, xtol=1e-12 * cap, rtol=1e-10), rel=1e-7)
 
 
 def test_compiled_loops_refuse_wrong_shapes_and_outputs():
@@ -435,3 +682,26 @@ def test_repeated_draws_and_memo_refuse_bad_input():
         repeated_draws.standard_normal(np.random.default_rng(1), (3, -1))
     with pytest.raises(ValueError, match="`max_bytes` >= 0"):
         BoundedMemo(-1)
+
+
+def test_scaled_repeated_draws_are_the_scaled_draw_and_advance_the_stream_alike():
+    from strapdown.analysis.core import repeated_draws
+
+    a, b, c = np.random.default_rng(9), np.random.default_rng(9), np.random.default_rng(9)
+    z = b.standard_normal((4, 5))
+    x = repeated_draws.standard_normal(a, (4, 5), scale=0.25)
+    assert np.array_equal(x, 0.25 * z) and not x.flags.writeable
+    y = repeated_draws.standard_normal(c, (4, 5), scale=0.25)  # served: the same product, the same state after
+    assert y is x and a.random() == b.random() == c.random()
+    with pytest.raises(ValueError, match="`scale`"):
+        repeated_draws.standard_normal(a, (2,), scale=math.inf)
+
+
+def test_memo_counts_and_freezes_every_array_of_a_tuple():
+    from strapdown.analysis.core.memo import BoundedMemo
+
+    memo = BoundedMemo(100)
+    v = memo.get("a", lambda: (np.zeros(5), np.ones(5), "state"))
+    assert memo._bytes == 80 and not v[0].flags.writeable and not v[1].flags.writeable
+    memo.get("b", lambda: np.zeros(4))  # 112 bytes > 100: "a" is dropped
+    assert list(memo._items) == ["b"] and memo._bytes == 32

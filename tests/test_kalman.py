@@ -50,3 +50,30 @@ def test_comparison_kalman_consistent_and_better_under_sine_rocking():
     lo, hi = c.nees_band
     # 3 checks at 95 % each; the band is exact for a consistent linear-Gaussian prior, widen by 15 %
     assert np.all((c.nees_mean > 0.85 * lo) & (c.nees_mean < 1.15 * hi))
+
+
+@pytest.mark.parametrize("shaping", [True, False], ids=["rocking-states", "no-rocking-states"])
+def test_filter_sequence_is_filterpys_recursion_to_the_bit(shaping):
+    """The written-out recursion against KalmanFilter.predict/update on zero measurements: the same operations, the same numbers."""
+    from dataclasses import replace
+
+    from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE, kalman_options
+    from strapdown.analysis.gyrocompass.base_motion import NarrowbandMotion
+    from strapdown.analysis.gyrocompass.fine_alignment import filter_model
+
+    sc = replace(DESIGN_SCENARIO, motion=NarrowbandMotion(np.radians([0.0, 3.0, 3.0]), 8.0, 0.1)) if shaping else DESIGN_SCENARIO
+    m = filter_model(sc, kalman_options(sc, NAVIGATION_GRADE).tuning)
+    assert m.has_rocking_states == shaping
+    fast, ref = kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, 240), kalman.filterpy_sequence(m.F, m.Q, m.H, m.R, m.P0, 240)
+    for name in kalman.FilterSequence._fields:
+        np.testing.assert_array_equal(getattr(fast, name), getattr(ref, name), err_msg=name)
+    t = tilt_filter_model(NarrowbandRocking(0.01, 0.01, 8.0, 0.1), 0.1, prior_sigma=0.03, noise_sigma=1e-4)
+    for a, b in zip(kalman.filter_sequence(t.F, t.Q, t.H, t.R, t.P0, 50), kalman.filterpy_sequence(t.F, t.Q, t.H, t.R, t.P0, 50)):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_filter_sequence_refuses_shapes_that_do_not_fit():
+    with pytest.raises(ValueError, match=r"`H` with shape \(1, 2\)"):
+        kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 3)), np.eye(1), np.eye(2), 3)
+    with pytest.raises(ValueError, match="`n_steps` >= 0"):
+        kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 2)), np.eye(1), np.eye(2), -1)

@@ -1,11 +1,12 @@
 """A bounded memo of arrays: the most recently used values kept, the oldest dropped past a memory bound.
 
 The common random numbers of a parameter search make the same deterministic
-work recur (the same draw evaluated again, the same noise drawn again); the
-modules that serve it from memory (:mod:`.repeated_draws`,
-:mod:`strapdown.analysis.gyrocompass.base_motion`) keep it here.  A value is a
-read-only array, or a tuple whose first item is one; only that array counts
-against the bound.
+work recur (the same draw evaluated again, the same noise drawn again, the
+same records filtered by another filter); the modules that serve it from
+memory (:mod:`.repeated_draws`, :mod:`strapdown.analysis.gyrocompass.base_motion`,
+:mod:`strapdown.analysis.gyrocompass.fine_alignment`) keep it here.  A value
+is an array, or a tuple of arrays and other items; its arrays are made
+read-only and count against the bound.
 """
 
 from __future__ import annotations
@@ -13,6 +14,8 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 from collections.abc import Callable, Hashable
+
+import numpy as np
 
 from .validation import as_int
 
@@ -51,8 +54,9 @@ class BoundedMemo:
         self._lock = threading.Lock()
 
     @staticmethod
-    def _array(value):
-        return value[0] if isinstance(value, tuple) else value
+    def _arrays(value):
+        items = value if isinstance(value, tuple) else (value,)
+        return [x for x in items if isinstance(x, np.ndarray)]
 
     def get(self, key: Hashable, build: Callable[[], object]):
         """The value of ``key``: from memory, or ``build()`` (its array made read-only) and kept.
@@ -74,12 +78,13 @@ class BoundedMemo:
                 self._items.move_to_end(key)
                 return self._items[key]
         value = build()
-        self._array(value).setflags(write=False)
+        for a in self._arrays(value):
+            a.setflags(write=False)
         with self._lock:
             if key not in self._items:
                 self._items[key] = value
-                self._bytes += self._array(value).nbytes
+                self._bytes += sum(a.nbytes for a in self._arrays(value))
                 while self._bytes > self.max_bytes and len(self._items) > 1:
                     _, old = self._items.popitem(last=False)
-                    self._bytes -= self._array(old).nbytes
+                    self._bytes -= sum(a.nbytes for a in self._arrays(old))
         return value

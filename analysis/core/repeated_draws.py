@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .memo import BoundedMemo
-from .validation import as_int
+from .validation import as_float, as_int
 
 __all__ = ["standard_normal", "MAX_BYTES"]
 
@@ -26,7 +26,7 @@ MAX_BYTES = 32 * 2**20
 _draws = BoundedMemo(MAX_BYTES)
 
 
-def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
+def standard_normal(rng: np.random.Generator, shape, *, scale: float | None = None) -> np.ndarray:
     """``rng.standard_normal(shape)``, from memory when the same state drew the same shape before.
 
     Parameters
@@ -35,11 +35,16 @@ def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
         The stream; it is advanced exactly as by ``rng.standard_normal(shape)``.
     shape : tuple of int
         Shape of the draw.
+    scale : float, optional, keyword-only
+        Return ``scale * rng.standard_normal(shape)`` (the product kept as
+        well, so that a repeated draw costs no pass over it) [units of the
+        result].
 
     Returns
     -------
     ndarray
-        Standard normal numbers (a read-only array; new arrays result from arithmetic on it).
+        Standard normal numbers, times ``scale`` if given (a read-only array;
+        new arrays result from arithmetic on it).
 
     Raises
     ------
@@ -59,12 +64,13 @@ def standard_normal(rng: np.random.Generator, shape) -> np.ndarray:
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}")
     shape = tuple(as_int(s, "shape", minimum=0) for s in np.atleast_1d(shape).tolist())
+    factor = None if scale is None else as_float(scale, "scale")
     bits = rng.bit_generator
 
     def draw():
         values = rng.standard_normal(shape)
-        return values, bits.state
+        return (values if factor is None else factor * values), bits.state
 
-    values, after = _draws.get((type(bits).__name__, repr(bits.state), shape), draw)
+    values, after = _draws.get((type(bits).__name__, repr(bits.state), shape, None if factor is None else factor.hex()), draw)
     bits.state = after  # a served draw: the state a fresh one would leave
     return values

@@ -24,10 +24,14 @@ sensor errors, ``e(a) = e_0 + a u``:
     itself: the rms (and the percentile) of the azimuth error of the same
     trials — common random numbers: the same rocking phases or amplitudes,
     biases, noise and initial errors at every amplitude — started at
-    ``reference_amplitude`` and narrowed by a secant search in log a (the
-    model ``rms² = floor² + (u a)²`` until the root is bracketed) to a bracket
+    ``reference_amplitude`` at the first frequency and at the previous
+    frequency's root after it, and narrowed by a secant search in log a (from
+    one point, the model ``rms² = floor² + (u a)^p`` with p = 2 at the first
+    frequency and the previous frequency's local slope after it) to a bracket
     of relative width ``rtol``; the percentile search starts from every
-    amplitude the rms search simulated.  The
+    amplitude the rms search simulated, and places its runs where the
+    percentile of the trials' errors, each interpolated between the amplitudes
+    simulated, crosses the budget.  The
     filter knows the rocking (its model is rebuilt at each amplitude).  The
     interval of the amplitude maps the 95 % interval of the rms at the root
     through the local slope of log rms against log a, and
@@ -46,7 +50,7 @@ from ..core.validation import as_array, as_int, in_open_interval, positive
 from .alignment_monte_carlo import METHODS, AlignmentKernel, AlignmentOptions, alignment_monte_carlo
 from .alignment_theory import analytic_theory
 from .base_motion import NarrowbandMotion, SineMotion
-from .error_distribution import abs_error_quantile
+from .error_distribution import abs_error_probability, abs_error_quantile
 from .fine_alignment import assumed_disturbance, filter_model
 from .imu import Scenario, SensorErrors
 
@@ -116,18 +120,15 @@ def _motion(rocking: str, amplitude, frequency: float, damping: float):
 
 
 def _trial_errors(scenario, errors, method, options, n_trials, seed):
-    kernel = AlignmentKernel(scenario, errors, method, options, (), _sequence(scenario, method, options))
+    model, sequence = None, None
+    if method == "kalman":
+        from ..core import kalman
+
+        model = filter_model(scenario, options.tuning)
+        sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, scenario.n_samples // model.samples_per_epoch)
+    kernel = AlignmentKernel(scenario, errors, method, options, (), sequence, model=model, score=False)
     e, _ = kernel(n_trials, np.random.default_rng(seed))
     return e[:, 0]
-
-
-def _sequence(scenario, method, options):
-    if method != "kalman":
-        return None
-    from ..core import kalman
-
-    m = filter_model(scenario, options.tuning)
-    return kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, scenario.n_samples // m.samples_per_epoch)
 
 
 def _with_motion(scenario, motion, options, method):
@@ -187,7 +188,8 @@ def admissible_rocking(
     n_trials : int
         Monte Carlo trials per frequency (inertial, Kalman).
     reference_amplitude : float
-        First amplitude of the root search [rad].
+        First amplitude of the root search at the first frequency [rad] (the
+        next frequencies start at the root of the previous one).
     max_amplitude : float
         Cap of the reported amplitude [rad].
     rtol : float
@@ -244,6 +246,7 @@ def admissible_rocking(
     root = montecarlo.root_seed_sequence(rng)
     a_ref = positive(reference_amplitude, "reference_amplitude")
     floors = []
+    hint = (a_ref, 2.0)  # where the rms search starts, and the exponent of its one-point model: from the previous frequency
     for i, fi in enumerate(f):
         seed = montecarlo.block_seed(root, i)
         cache = {}
@@ -263,27 +266,84 @@ def admissible_rocking(
 
         e0 = errors_at(0.0)
         floors.append(float(np.mean(e0 * e0)))
-        amp[i], (lo, hi) = _search(rms, budget, a_ref, cap, rtol)
-        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache))
+        amp[i], (lo, hi) = _search(rms, budget, hint[0], cap, rtol, exponent=hint[1])
+        hint = _next_hint(rms, hint, floors[-1], amp[i], (lo, hi), cap)
+        amp_p[i], _ = _search(pct, budget, a_ref, cap, rtol, known=tuple(cache), estimate=lambda lo, hi, cache=cache: _trial_root(cache, level, budget, lo, hi))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, budget, cap)
     floor = math.sqrt(float(np.mean(floors)))
     return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, False, n_trials, cap)
 
 
-def _search(fn, budget, start, cap, rtol, known=()):
+def _next_hint(fn, hint, floor_sq, a, bracket, cap):
+    """Start and exponent for the search at the next frequency: this root, and the slope of log(fn² − fn(0)²) across its bracket."""
+    lo, hi = bracket
+    if not 0.0 < lo < hi < cap:
+        return hint if not 0.0 < a < cap else (a, hint[1])
+    y_lo, y_hi = fn(lo) ** 2 - floor_sq, fn(hi) ** 2 - floor_sq
+    if y_lo <= 0.0 or y_hi <= y_lo:
+        return a, hint[1]
+    p = math.log(y_hi / y_lo) / math.log(hi / lo)
+    return a, min(max(p, 0.5), 8.0)
+
+
+def _trial_root(errors, level, budget, lo, hi):
+    """Log of the amplitude where the ``level`` percentile of |error| reaches the budget, each trial's error
+    interpolated linearly in ``a^q`` between the amplitudes simulated (``errors``: amplitude → per-trial
+    errors, 0 among them; q the exponent of the rocking's part of the rms, from the two smallest nonzero
+    amplitudes), searched in ``(lo, hi)`` (above ``hi``/64 without a lower end; up to four times the
+    largest amplitude simulated, extrapolated, without an upper end); None if the percentile does not cross
+    the budget there, or fewer than three amplitudes are known."""
+    A = np.array(sorted(errors))
+    if A.size < 3 or A[0] != 0.0:
+        return None
+    E = np.array([errors[a] for a in A])
+    # the exponent q of the rocking's part, rms² − rms(0)² ∝ a^(2q), from the two smallest amplitudes
+    m = np.mean(E * E, axis=1) - np.mean(E[0] * E[0])
+    q = math.log(m[2] / m[1]) / (2.0 * math.log(A[2] / A[1])) if m[1] > 0.0 and m[2] > m[1] else 1.0
+    S = A ** min(max(q, 0.5), 4.0)
+
+    def pct(a):
+        s = a ** min(max(q, 0.5), 4.0)
+        j = min(max(int(np.searchsorted(S, s)), 1), A.size - 1)  # within [A[j-1], A[j]], or beyond the last
+        w = (s - S[j - 1]) / (S[j] - S[j - 1])
+        return float(np.quantile(np.abs((1.0 - w) * E[j - 1] + w * E[j]), level))
+
+    top = A[-1] * 4.0 if hi is None else hi
+    x0, x1 = math.log(lo if lo > 0.0 else top / 64.0), math.log(top)
+    if not x0 < x1 or pct(math.exp(x0)) > budget or pct(math.exp(x1)) <= budget:
+        return None
+    for _ in range(30):  # bisection on the interpolated percentile, to 1e-9 of the bracket in log a
+        xm = 0.5 * (x0 + x1)
+        if pct(math.exp(xm)) <= budget:
+            x0 = xm
+        else:
+            x1 = xm
+    return 0.5 * (x0 + x1)
+
+
+def _search(fn, budget, start, cap, rtol, known=(), exponent=2.0, estimate=None):
     """Largest a in (0, cap] with fn(a) ≤ budget, fn increasing: interpolation in log–log with a bracket.
 
     ``known`` lists amplitudes whose ``fn`` is cheap (already simulated: the
-    percentile search starts from every point of the rms search).  The next
+    percentile search starts from every point of the rms search); ``start``
+    is the first amplitude when none is known; ``estimate(lo, hi)``, if given,
+    estimates the root in log a from what has been simulated (the percentile
+    search: from each trial's error, :func:`_trial_root`), falling back to the
+    curve below when it returns None.  The next
     amplitude is the root of the curve through the (up to) three points
-    nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line,
-    ``fn² = fn(0)² + (u a)^p``, through two, a parabola through three — moved
+    nearest the budget in ``(log a, log(fn(a)² − fn(0)²))`` — a straight line
+    of slope ``exponent`` through one, ``fn² = fn(0)² + (u a)^p``,
+    a straight line through two, a parabola through three — moved
     half the final width past the root (toward the nearer end of a bracket), so
-    that two evaluations close a bracket around a good estimate.  Until the
+    that two evaluations close a bracket around a good estimate; where the
+    root is estimated within the final width of a known point, the next one
+    goes a final width from it, where it closes the bracket if it lands on the
+    other side of the root.  Until the
     root is bracketed a step is at most ×16 (×4 where the curve gives no
     root); inside a bracket ``[lo, hi]`` a step shrinks it to at most
-    ``(hi/lo)^0.9``, and to ``√(hi/lo)`` once ``hi/lo ≤ (1 + rtol)²``.  The
+    ``(hi/lo)^0.9`` or by the factor ``1 + rtol``, and to ``√(hi/lo)`` once
+    ``hi/lo ≤ (1 + rtol)²``.  The
     search ends when ``hi/lo ≤ 1 + rtol``.
 
     Returns the root ``lo`` and its bracket ``(lo, hi)``; (0, 0) or (cap, cap) at the ends.
@@ -302,6 +362,7 @@ def _search(fn, budget, start, cap, rtol, known=()):
     if f0 > budget:
         return 0.0, (0.0, 0.0)
     half = 0.5 * math.log(1.0 + rtol)
+    close = 0.999 * math.log(1.0 + rtol)  # a step that closes the bracket
     if not any(a > 0.0 for a in values):
         f(min(start, cap))
     while True:
@@ -312,22 +373,31 @@ def _search(fn, budget, start, cap, rtol, known=()):
             return (lo, (lo, hi)) if lo > 0.0 else (0.0, (0.0, 0.0))
         if hi is None and lo >= cap:
             return cap, (cap, cap)
-        c = _log_root(values, f0, budget)
+        c = None if estimate is None else estimate(lo, hi)
+        if c is None:
+            c = _log_root(values, f0, budget, exponent)
         if hi is None:
-            nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(half))))
+            nxt = min(cap, 4.0 * lo if c is None else min(16.0 * lo, max(math.exp(c + half), lo * math.exp(close))))
         elif lo == 0.0:
-            nxt = hi / 4.0 if c is None else max(hi / 16.0, min(math.exp(c - half), hi * math.exp(-half)))
+            nxt = hi / 4.0 if c is None else max(hi / 16.0, min(math.exp(c - half), hi * math.exp(-close)))
         elif hi <= lo * math.exp(4.0 * half):
             nxt = math.sqrt(lo * hi)
         else:
             x0, x1 = math.log(lo), math.log(hi)
-            c = 0.5 * (x0 + x1) if c is None else c + (-half if c - x0 > x1 - c else half)
-            margin = 0.1 * (x1 - x0)
-            nxt = math.exp(min(max(c, x0 + margin), x1 - margin))
+            lo_x, hi_x = x0 + 0.1 * (x1 - x0), x1 - 0.1 * (x1 - x0)  # a step shrinks the bracket by a tenth at least
+            if c is None:
+                x = 0.5 * (x0 + x1)
+            else:
+                c = min(max(c, x0), x1)
+                if c - x0 > x1 - c:  # toward hi: a point within the final width of hi closes the bracket if below the root
+                    x = max(c - half, x1 - close) if c > x1 - close else min(max(c - half, lo_x), hi_x)
+                else:
+                    x = min(c + half, x0 + close) if c < x0 + close else min(max(c + half, lo_x), hi_x)
+            nxt = math.exp(x)
         f(nxt)
 
 
-def _log_root(values, floor, budget):
+def _log_root(values, floor, budget, exponent=2.0):
     """Root in log a of the curve through the points nearest the budget in (log a, log(fn² − floor²)); None if there is none."""
     target = budget * budget - floor * floor
     pts = sorted((abs(math.log(v * v - floor * floor) - math.log(target)), math.log(a), math.log(v * v - floor * floor)) for a, v in values.items() if a > 0.0 and v * v > floor * floor)
@@ -335,8 +405,8 @@ def _log_root(values, floor, budget):
     y_t = math.log(target) if target > 0.0 else None
     if y_t is None or len(pts) < 1:
         return None
-    if len(pts) == 1:  # the linear model through the floor: fn² − floor² ∝ a²
-        return pts[0][0] + 0.5 * (y_t - pts[0][1])
+    if len(pts) == 1:  # the power law through the floor: fn² − floor² ∝ a^exponent
+        return pts[0][0] + (y_t - pts[0][1]) / exponent
     if len(pts) == 3:
         (xa, ya), (xb, yb), (xc, yc) = pts
         # the parabola y(x) through the three points, solved for y = y_t on the branch where it rises
@@ -374,24 +444,38 @@ def _amplitude_interval(errors_at, a, lo, hi, budget, cap):
 
 
 def _analytic_percentile(th, budget, level, cap, rocking):
-    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a)."""
+    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a).
+
+    With a Gaussian part the percentile reaches the budget where
+    ``P(|e| ≤ budget)`` falls to the level: one probability per step of the
+    root search in a (:func:`.error_distribution.abs_error_probability`), not a
+    percentile (itself a root search); without one, the percentile of the
+    phase grid.
+    """
     from scipy.optimize import brentq
 
-    if rocking == "sine" and th.rocking_sine_amplitudes.size:
+    sines = rocking == "sine" and th.rocking_sine_amplitudes.size
+    if th.sensor_sigma > 0.0:
         unit_sines, gauss = th.rocking_sine_amplitudes, th.sensor_sigma
 
         def q(a):
-            return abs_error_quantile(a * unit_sines, gauss, level, mean=th.mean).value - budget
+            if sines:
+                return level - abs_error_probability(a * unit_sines, gauss, budget, mean=th.mean)
+            return level - abs_error_probability([], math.hypot(gauss, a * th.rocking), budget, mean=th.mean)
+    elif sines:
+
+        def q(a):
+            return abs_error_quantile(a * th.rocking_sine_amplitudes, 0.0, level, mean=th.mean).value - budget
     else:
 
         def q(a):
-            return abs_error_quantile([], math.hypot(th.sensor_sigma, a * th.rocking), level, mean=th.mean).value - budget
+            return abs_error_quantile([], a * th.rocking, level, mean=th.mean).value - budget
 
     if q(0.0) >= 0:
         return 0.0
     if q(cap) <= 0:
         return cap
-    return brentq(q, 0.0, cap, xtol=1e-6 * cap)
+    return brentq(q, 0.0, cap, xtol=1e-12 * cap, rtol=1e-10)
 
 
 @dataclass(frozen=True)

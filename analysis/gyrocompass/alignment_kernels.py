@@ -12,7 +12,7 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   :func:`chain_loop` chains the epoch rotations into attitudes;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
   :mod:`.fine_alignment` over the epochs of every trial, with gains computed
-  before (by filterpy), and scores it against the truth (NEES, NIS).
+  before (filterpy's recursion), and scores it against the truth (NEES, NIS).
 
 They are compiled with numba on first use (the machine code is cached on disk,
 so the compile cost is paid once per installation).  Loading numba and the
@@ -61,6 +61,13 @@ def _shaped(x, name: str, shape: tuple, *, output: bool = False) -> np.ndarray:
     return a
 
 
+def _read_only(x: np.ndarray) -> np.ndarray:
+    """A read-only view of ``x`` (no copy; ``x`` itself unchanged)."""
+    view = x.view()
+    view.setflags(write=False)
+    return view
+
+
 def use_compiled(compiled: bool | None, work: int) -> bool:
     """Whether a caller runs its compiled loop: ``compiled`` if given, else whether the loop pays off.
 
@@ -106,14 +113,19 @@ def _jit(fn):
     return _compiled[name]
 
 
-def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
+def _ideal_loop(angles, rates, accels, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
     n, N = angles.shape[0], angles.shape[1]
+    s0, s1, s2 = scale[0], scale[1], scale[2]
+    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp, sp = math.cos(stable[0]), math.sin(stable[0])
     for i in range(n):
         for k in range(N):
-            psi = angles[i, k, 0] + stable[0]
-            beta = angles[i, k, 1] + stable[1]
-            gam = angles[i, k, 2] + stable[2]
-            cp, sp = math.cos(psi), math.sin(psi)
+            # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
+            beta = s1 * angles[i, k, 1] + stable[1]
+            gam = s2 * angles[i, k, 2] + stable[2]
+            if yaw:
+                psi = s0 * angles[i, k, 0] + stable[0]
+                cp, sp = math.cos(psi), math.sin(psi)
             cb, sb = math.cos(beta), math.sin(beta)
             cg, sg = math.cos(gam), math.sin(gam)
             # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
@@ -130,12 +142,12 @@ def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, le
             fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
             fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
             # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
-            dp, db, dg = rates[i, k, 0], rates[i, k, 1], rates[i, k, 2]
+            dp, db, dg = s0 * rates[i, k, 0], s1 * rates[i, k, 1], s2 * rates[i, k, 2]
             wx = -cg * db - sg * cb * dp
             wy = dg - sb * dp
             wz = -sg * db + cg * cb * dp
             if lever:
-                ddp, ddb, ddg = accels[i, k, 0], accels[i, k, 1], accels[i, k, 2]
+                ddp, ddb, ddg = s0 * accels[i, k, 0], s1 * accels[i, k, 1], s2 * accels[i, k, 2]
                 ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
                 ay = ddg - cb * db * dp - sb * ddp
                 az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
@@ -159,15 +171,16 @@ def _ideal_loop(angles, rates, accels, stable, W, g, r, fixed_gyro, in_gyros, le
             dv[i, k, 2] += weight * fz
 
 
-def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, dtheta, dv) -> None:
+def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, dtheta, dv, *, scale=None) -> None:
     """Add ``weight`` times the ideal gyro rate and specific force at one quadrature node, in place.
 
     Parameters
     ----------
     angles, rates : ndarray
-        ``(n, N, 3)`` rocking angles (ψ, β, γ) [rad] and their rates [rad/s] at the node.
+        ``(n, N, 3)`` rocking angles (ψ, β, γ) [rad] and their rates [rad/s] at the node
+        (times ``scale``).
     accels : ndarray or None
-        ``(n, N, 3)`` angular accelerations [rad/s²] (needed only with a lever arm).
+        ``(n, N, 3)`` angular accelerations [rad/s²] (needed only with a lever arm; times ``scale``).
     stable : ndarray
         ``(3,)`` stable attitude (ψ0, β0, γ0) added to ``angles`` [rad].
     earth_rate, gravity : ndarray
@@ -182,6 +195,11 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
         Quadrature weight [s].
     dtheta, dv : ndarray
         ``(n, N, 3)`` C-contiguous float arrays, incremented in place [rad, m/s].
+    scale : array_like, optional, keyword-only
+        ``(3,)`` factors of the rocking per axis [1] (default ones): the rocking
+        is ``scale · angles`` and so on, axis by axis, as
+        :meth:`strapdown.analysis.gyrocompass.base_motion.MotionRealisation.unit_evaluation`
+        returns it, so that a shared unit evaluation is not multiplied out first.
 
     Raises
     ------
@@ -198,12 +216,13 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     angles = _shaped(angles, "angles", (None, None, 3))
     n, N = angles.shape[:2]
     rates = _shaped(rates, "rates", (n, N, 3))
-    named = {"stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
+    named = {"scale": np.ones(3) if scale is None else scale, "stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
     vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
-    lever = bool(np.any(vectors[3]))
+    lever = bool(np.any(vectors[4]))
     accels = _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))
     dtheta, dv = _shaped(dtheta, "dtheta", (n, N, 3), output=True), _shaped(dv, "dv", (n, N, 3), output=True)
-    _jit(_ideal_loop)(angles, rates, accels, *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
+    # read-only views, whether or not the arrays are (the kept unit evaluations are): one compiled signature
+    _jit(_ideal_loop)(*(_read_only(x) for x in (angles, rates, accels)), *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
 
 
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
@@ -376,7 +395,7 @@ def _rodrigues3(p0, p1, p2, out):
     out[2, 1] = a * p0 + b * p1 * p2
 
 
-def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever, shaping, Fdd, H, K, Pinv, Sinv, C_out, nees, nis, heading):
+def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever, shaping, Fdd, H, K, score, Pinv, Sinv, C_out, nees, nis, heading):
     n, E = dR.shape[0], dR.shape[1]
     dim = H.shape[1]
     nd = Fdd.shape[0]
@@ -484,6 +503,9 @@ def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, 
             sn = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
             sc = math.asin(min(sn, 1.0)) / sn if sn > 1e-15 else 1.0
             err[0], err[1], err[2] = -s0 * sc, -s1 * sc, -s2 * sc
+            heading[i, j] = -err[2]
+            if not score:
+                continue
             for a in range(3):
                 err[3 + a] = v[a] - v_true[i, j + 1, a]
                 err[6 + a] = eps_true[i, j + 1, a] - eps[a]
@@ -502,7 +524,6 @@ def _fine_loop(C0, v0, dR, vel, moment, noise, w_end, C_true, v_true, eps_true, 
             for a in range(3):
                 total += (y[0] * Sinv[j, 0, a] + y[1] * Sinv[j, 1, a] + y[2] * Sinv[j, 2, a]) * y[a]
             nis[i, j] = total
-            heading[i, j] = -err[2]
         for a in range(3):
             for b in range(3):
                 C_out[i, a, b] = C[a, b]
@@ -550,8 +571,9 @@ def fine_alignment_loop(
         ``(3, dim)`` measurement matrix.
     gains : ndarray
         ``(E, dim, 3)`` Kalman gains.
-    posterior_inv, innovation_inv : ndarray
-        ``(E, dim, dim)`` and ``(E, 3, 3)`` inverse posterior and innovation covariances.
+    posterior_inv, innovation_inv : ndarray or None
+        ``(E, dim, dim)`` and ``(E, 3, 3)`` inverse posterior and innovation
+        covariances; None (both): the filter is not scored, NEES and NIS are NaN.
 
     Returns
     -------
@@ -569,11 +591,16 @@ def fine_alignment_loop(
     F_rocking = _shaped(F_rocking, "F_rocking", (None, None))
     d = F_rocking.shape[0]
     dim = 12 + d  # attitude, velocity, gyro and accelerometer biases, then the rocking states
+    if (posterior_inv is None) != (innovation_inv is None):
+        raise ValueError("Expected `posterior_inv` and `innovation_inv` both given (a scored filter) or both None")
+    score = posterior_inv is not None
+    if not score:  # placeholders the loop does not read
+        posterior_inv, innovation_inv = np.zeros((0, 0, 0)), np.zeros((0, 0, 0))
     shapes = {
         "C0": (n, 3, 3), "v0": (n, 3), "velocity": (n, E, 3), "moment": (n, E, 3), "noise": (n, E, 3), "end_rate": (n, E, 3),
         "C_true": (n, E + 1, 3, 3), "v_true": (n, E + 1, 3), "eps_true": (n, E + 1, 3), "acc_true": (n, E + 1, 3), "rock_true": (n, E + 1, d),
         "earth_turn": (3, 3), "earth_rate_skew": (3, 3), "gravity": (3,), "lever_arm": (3,), "H": (3, dim), "gains": (E, dim, 3),
-        "posterior_inv": (E, dim, dim), "innovation_inv": (E, 3, 3),
+        "posterior_inv": (E, dim, dim) if score else (0, 0, 0), "innovation_inv": (E, 3, 3) if score else (0, 0, 0),
     }  # fmt: skip
     given = dict(
         C0=C0, v0=v0, velocity=velocity, moment=moment, noise=noise, end_rate=end_rate, C_true=C_true, v_true=v_true, eps_true=eps_true, acc_true=acc_true,
@@ -583,10 +610,11 @@ def fine_alignment_loop(
     a = {name: _shaped(given[name], name, shape) for name, shape in shapes.items()}
     if F_rocking.shape != (d, d):
         raise ValueError(f"Expected `F_rocking` square, got shape {F_rocking.shape}")
-    C_out, nees, nis, heading = np.empty((n, 3, 3)), np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    C_out, heading = np.empty((n, 3, 3)), np.empty((n, E))
+    nees, nis = (np.empty((n, E)), np.empty((n, E))) if score else (np.full((n, E), np.nan), np.full((n, E), np.nan))
     _jit(_fine_loop)(
         a["C0"], a["v0"], dR, a["velocity"], a["moment"], a["noise"], a["end_rate"], a["C_true"], a["v_true"], a["eps_true"], a["acc_true"], a["rock_true"],
         a["earth_turn"], a["earth_rate_skew"], a["gravity"], float(epoch), a["lever_arm"], bool(lever_arm_known), d > 0, F_rocking,
-        a["H"], a["gains"], a["posterior_inv"], a["innovation_inv"], C_out, nees, nis, heading,
+        a["H"], a["gains"], score, a["posterior_inv"], a["innovation_inv"], C_out, nees, nis, heading,
     )  # fmt: skip
     return C_out, nees, nis, heading

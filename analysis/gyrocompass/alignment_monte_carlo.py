@@ -7,7 +7,7 @@ attitude error drawn from the filter's prior).  Trials run in blocks through
 child of the root SeedSequence, so the statistics are bit-identical for any
 chunking, number of workers or executor.  Within a block every method is
 vectorised over trials; the Kalman filter loops over epochs only, with gains
-computed once by filterpy.
+computed once (filterpy's recursion).
 
 The result carries the theory that applies to the method:
 
@@ -89,12 +89,17 @@ class AlignmentKernel:
         Kalman: the filter's gains and covariances (computed once).
     chunk : int
         Trials simulated at once (memory).
+    model : FineAlignmentModel or None
+        Kalman: ``filter_model(scenario, options.tuning)``, computed once (None: at each call).
+    score : bool
+        Kalman: score the filter (NEES, NIS); False: those columns of ``aux``
+        are NaN, and the records carry their truth at the start and the end only.
 
     Notes
     -----
     Returns ``(errors, aux)``: the azimuth error ``(n, 1)`` [rad] and per trial
     the squared tilt errors, then (Kalman) the NEES and NIS at ``check_epochs``
-    and the NIS averaged over all epochs.
+    and the NIS averaged over all epochs (NaN without ``score``).
     """
 
     scenario: Scenario
@@ -104,12 +109,15 @@ class AlignmentKernel:
     check_epochs: tuple = ()
     sequence: object = None
     chunk: int = 32
+    model: object = None
+    score: bool = True
 
     def __call__(self, n_trials: int, rng):
         if self.method == "kalman":
-            M = filter_model(self.scenario, self.options.tuning).samples_per_epoch
-            rec = simulate_epoch_record(self.scenario, self.errors, M, n_trials=n_trials, rng=rng, chunk=self.chunk)
-            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence)
+            model = filter_model(self.scenario, self.options.tuning) if self.model is None else self.model
+            truth = "epochs" if self.score else "ends"  # unscored: the truth at the start and the end suffices
+            rec = simulate_epoch_record(self.scenario, self.errors, model.samples_per_epoch, n_trials=n_trials, rng=rng, chunk=self.chunk, truth=truth)
+            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model, score=self.score)
             est = res.estimate
             idx = list(self.check_epochs)
             aux = [est.tilt_error**2, res.nees[:, idx], res.nis[:, idx], res.nis.mean(axis=1, keepdims=True)]
@@ -291,7 +299,7 @@ def alignment_monte_carlo(
             raise ValueError(f"Expected `duration` of at least one filter epoch ({model.epoch:g} s), got {scenario.duration:g}")
         sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, n_epochs)
         checks = _check_epochs(n_epochs)
-    kernel = AlignmentKernel(scenario, errors, method, options, checks, sequence)
+    kernel = AlignmentKernel(scenario, errors, method, options, checks, sequence, model=model)
     per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else (128 if method == "kalman" else 32)
     per_block = min(per_block, n_trials)
     # histogram scale from a pilot block on its own stream (not one of the run's blocks)

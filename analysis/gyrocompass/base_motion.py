@@ -49,6 +49,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..core import repeated_draws
 from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, as_int, positive
 from .rocking import as_generator
@@ -122,7 +123,8 @@ class MotionRealisation:
     unit : tuple or None
         ``(key, coefficients, scale)`` of a model whose axes are one shape
         scaled by their amplitudes (sine, narrow-band, white): ``coefficients = unit · scale`` per
-        axis, with ``key`` a digest of the random draw and of the unit model.
+        axis, with ``key`` a digest of the random draw (the generator's state
+        before it and its shape) and of the unit model.
         The evaluations of the unit coefficients are kept (a few, least
         recently used first out), so that the same draw at another amplitude —
         the common random numbers of a root search over the amplitude — costs
@@ -157,17 +159,100 @@ class MotionRealisation:
             ``angles, rates, accelerations`` (up to ``derivatives``), each
             ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
         """
+        parts, scale = self.unit_evaluation(n_samples, offset, derivatives=derivatives)
+        if self.unit is None:
+            return parts
+        return tuple(scale * p for p in parts)
+
+    def unit_evaluation(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
+        """:meth:`evaluate` as arrays and a factor per axis: ``evaluate(...) = tuple(scale · p for p in parts)``.
+
+        A scaled draw (:attr:`unit`) returns the kept evaluations of its unit
+        coefficients, shared and read-only, with its amplitudes as ``scale``;
+        any other returns its own evaluation with ``scale`` = 1.  A caller that
+        folds the factor into its own loop saves the product over the record.
+
+        Parameters
+        ----------
+        n_samples : int
+            Time points.
+        offset : float
+            Time of the first point [s], in [0, dt].
+        derivatives : int
+            Highest derivative returned, 0 to 2.
+
+        Returns
+        -------
+        parts : tuple of ndarray
+            Up to three ``(n_trials, n_samples, 3)`` arrays [rad, rad/s, rad/s² per unit of ``scale``].
+        scale : ndarray
+            ``(3,)`` factors per axis (yaw, β, γ) [1].
+
+        Raises
+        ------
+        ValueError
+            For ``derivatives`` outside 0..2 or fewer than one sample.
+        """
         n = as_int(n_samples, "n_samples", minimum=1)
         k = as_int(derivatives, "derivatives", minimum=0)
         if k > 2:
             raise ValueError(f"Expected `derivatives` in 0..2, got {k}")
         shape = (self.n_trials, n, 3)
         if self.coefficients.shape[-1] == 0:
-            return tuple(np.zeros(shape) for _ in range(k + 1))
+            return tuple(np.zeros(shape) for _ in range(k + 1)), np.ones(3)
         if self.unit is not None:
             key, unit, scale = self.unit
-            return tuple(scale * _SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1))
-        return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1))
+            return tuple(_SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1)), scale
+        return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1)), np.ones(3)
+
+    def evaluate_points(self, indices, *, derivatives: int = 2):
+        """:meth:`evaluate` at the sample instants ``t_k = k dt`` of a few indices k, by the sum over frequencies.
+
+        The Gaussian models evaluate a whole record by one inverse FFT of
+        their grid, many times longer than the record; at a few instants (the
+        truth at the start and the end of an alignment) the direct sum is
+        cheaper.  For sinusoids it is :meth:`evaluate`'s own sum at those
+        instants, value for value; for the Gaussian models it equals the FFT
+        evaluation to round-off.
+
+        Parameters
+        ----------
+        indices : array_like
+            ``(K,)`` sample indices k ≥ 0 [count].
+        derivatives : int
+            Highest derivative returned, 0 to 2.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``angles, rates, accelerations`` (up to ``derivatives``), each
+            ``(n_trials, K, 3)`` [rad, rad/s, rad/s²].
+
+        Raises
+        ------
+        ValueError
+            For a negative or non-integer index, or ``derivatives`` outside 0..2.
+        """
+        k = np.asarray(indices)
+        if k.ndim != 1 or not (np.issubdtype(k.dtype, np.integer) and np.all(k >= 0)):
+            raise ValueError(f"Expected `indices` as a 1-D array of sample indices >= 0, got {np.asarray(indices).tolist()!r}")
+        d_max = as_int(derivatives, "derivatives", minimum=0)
+        if d_max > 2:
+            raise ValueError(f"Expected `derivatives` in 0..2, got {d_max}")
+        if self.coefficients.shape[-1] == 0:
+            return tuple(np.zeros((self.n_trials, k.size, 3)) for _ in range(d_max + 1))
+        c, scale = (self.unit[1], self.unit[2]) if self.unit is not None else (self.coefficients, None)
+        t = k * self.dt
+        w = self.spectrum.omega
+        out = []
+        for d in range(d_max + 1):
+            cd = c * ((1j * w) ** d * np.exp(1j * w * 0.0))
+            if self.spectrum.n_fft is not None:
+                x = np.real(np.einsum("nam,km->nka", cd, np.exp(1j * np.outer(t, w))))
+            else:
+                x = self._sinusoids(cd, t)
+            out.append(x if scale is None else scale * x)
+        return tuple(out)
 
     def _series(self, c, n, offset, d):
         """The d-th derivative of ``Re Σ_m c_m e^{iω_m t}`` at ``t_k = offset + k dt``, ``(n_trials, n, 3)``."""
@@ -175,8 +260,12 @@ class MotionRealisation:
         c = c * ((1j * w) ** d * np.exp(1j * w * offset))
         if self.spectrum.n_fft is not None:
             return self._fft(c, n)
-        t = np.arange(n) * self.dt
-        out = np.zeros((self.n_trials, n, 3))
+        return self._sinusoids(c, np.arange(n) * self.dt)
+
+    def _sinusoids(self, c, t):
+        """``Re Σ_m c_m e^{iω_m t}`` at the times t, ``(n_trials, len(t), 3)``, one sinusoid at a time."""
+        w = self.spectrum.omega
+        out = np.zeros((self.n_trials, t.size, 3))
         for m in range(w.size):  # a few sinusoids: Re[c e^{iωt}] = Re c cos ωt − Im c sin ωt
             cos, sin = np.cos(w[m] * t)[:, None], np.sin(w[m] * t)[:, None]
             out += c[:, :, m].real[:, None, :] * cos - c[:, :, m].imag[:, None, :] * sin
@@ -234,8 +323,9 @@ class _Model:
         s = self.spectrum(as_int(n_samples, "n_samples", minimum=1), dt)
         g = as_generator(rng)
         m = s.omega.size
+        state = repr(g.bit_generator.state)  # with the shape, it fixes the draw
         if s.gaussian:
-            z = g.standard_normal((n_trials, 3, m, 2))
+            z = repeated_draws.standard_normal(g, (n_trials, 3, m, 2))  # the same draw again at another amplitude: from memory
             draw = z[..., 0] + 1j * z[..., 1]
             factor = np.sqrt  # E|c|² = 2P
         else:
@@ -245,7 +335,7 @@ class _Model:
         if "amplitude" in getattr(self, "__dataclass_fields__", {}):  # power = amplitude² · (the unit model's power)
             unit_model = replace(self, amplitude=np.ones(3))
             u = draw * factor(unit_model.spectrum(n_samples, dt).power)
-            key = hashlib.blake2b(z.tobytes() + repr((unit_model, n_samples, dt)).encode(), digest_size=16).digest()
+            key = hashlib.blake2b(repr((state, z.shape, unit_model, n_samples, dt)).encode(), digest_size=16).digest()
             return MotionRealisation(s, u * self.amplitude[:, None], dt, (key, u, self.amplitude.copy()))
         return MotionRealisation(s, draw * factor(s.power), dt)
 

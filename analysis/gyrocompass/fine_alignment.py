@@ -21,8 +21,9 @@ error dynamics are
 
 discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r' + v``.
 
-The model does not depend on the trial, so filterpy computes the gains and
-covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
+The model does not depend on the trial, so the gains and covariances are
+computed once (filterpy's recursion,
+:func:`strapdown.analysis.core.kalman.filter_sequence`) and
 they are applied to every trial at once; the navigator integrates the epoch
 increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
 step per epoch vectorised over trials.  After every update the attitude and
@@ -47,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import kalman
+from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, nonnegative, positive
 from . import alignment_kernels as kernels
 from .alignment_estimate import AlignmentEstimate
@@ -70,6 +72,7 @@ __all__ = [
     "assumed_disturbance",
     "DISTURBANCE_KINDS",
     "MIN_DAMPING",
+    "TRUTHS",
 ]
 
 DISTURBANCE_KINDS = ("none", "white", "shaping")
@@ -421,15 +424,24 @@ class EpochRecord:
         return self.truth_angles.shape[0]
 
 
-def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
+#: Where an epoch record carries the truth: at every epoch boundary, or at the start and the end.
+TRUTHS = ("epochs", "ends")
+
+
+def epoch_record(record: ImuRecord, samples_per_epoch: int, *, truth: str = "epochs") -> EpochRecord:
     """Condense a sample record (with its truth every ``samples_per_epoch`` samples) into epochs.
 
     Parameters
     ----------
     record : ImuRecord
-        Increments with ``truth_stride = samples_per_epoch``.
+        Increments with ``truth_stride = samples_per_epoch`` (``truth="ends"``:
+        with the truth at its start and end, ``truth_stride=None``).
     samples_per_epoch : int
         M.
+    truth : str, keyword-only
+        ``"epochs"``: the truth at every epoch boundary; ``"ends"``: at the
+        start and the end only (the boundaries between are NaN), all that
+        :func:`fine_alignment` needs when it does not score the filter.
 
     Returns
     -------
@@ -438,20 +450,44 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int) -> EpochRecord:
     Raises
     ------
     ValueError
-        If the truth is not at every epoch boundary.
+        If the truth is not where ``truth`` asks (for ``"ends"``, the record
+        must end with its last whole epoch), or for an unknown ``truth``.
     """
+    if truth not in TRUTHS:
+        raise ValueError(f"Expected `truth` in {TRUTHS}, got {truth!r}")
     M = int(samples_per_epoch)
     sc = record.scenario
     ep = preintegrate(record.dtheta, record.dv, sc.dt, M)
     E = ep.n_epochs
+    rate = np.concatenate([record.dtheta[:, :1], record.dtheta[:, M - 1 :: M][:, :E]], axis=1) / sc.dt
+    fields = (record.truth_angles, record.truth_velocity, record.truth_rates)
+    if truth == "ends":
+        if record.truth_angles.shape[1] != 2 or not np.allclose(record.truth_times, [0.0, M * sc.dt * E]):
+            raise ValueError(f"Expected the record's truth at its start and at the end of its last epoch, {M * sc.dt * E:g} s (simulate_imu(..., truth_stride=None))")
+        ends = []
+        for x in fields:
+            y = np.full((x.shape[0], E + 1, 3), np.nan)
+            y[:, [0, E]] = x
+            ends.append(y)
+        return EpochRecord(sc, ep, *ends, rate, record.gyro_bias, record.accel_bias)
     if record.truth_angles.shape[1] < E + 1 or not np.allclose(record.truth_times[: E + 1], M * sc.dt * np.arange(E + 1)):
         raise ValueError(f"Expected the record's truth every {M} samples (simulate_imu(..., truth_stride={M}))")
-    rate = np.concatenate([record.dtheta[:, :1], record.dtheta[:, M - 1 :: M][:, :E]], axis=1) / sc.dt
-    return EpochRecord(sc, ep, record.truth_angles[:, : E + 1], record.truth_velocity[:, : E + 1], record.truth_rates[:, : E + 1], rate, record.gyro_bias, record.accel_bias)
+    return EpochRecord(sc, ep, *(x[:, : E + 1] for x in fields), rate, record.gyro_bias, record.accel_bias)
 
 
-def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32) -> EpochRecord:
+#: Epoch records simulated recently, by their inputs and the generator's state before them.
+_RECORDS = BoundedMemo(32 * 2**20)
+
+
+def simulate_epoch_record(
+    scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32, truth: str = "epochs"
+) -> EpochRecord:
     """Simulate ``n_trials`` records in chunks and keep only their epoch increments (bounded memory).
+
+    Filters compared on the same trials (common random numbers) ask for the
+    same records from the same generator state again: a record made recently
+    from the same inputs and state is served from memory (read-only arrays),
+    with the generator left in the state the simulation would leave it in.
 
     Parameters
     ----------
@@ -467,26 +503,56 @@ def simulate_epoch_record(scenario: Scenario, errors: SensorErrors | None, sampl
         Random stream (consumed chunk after chunk).
     chunk : int
         Trials simulated at once.
+    truth : str
+        ``"epochs"`` or ``"ends"`` (:func:`epoch_record`).
 
     Returns
     -------
     EpochRecord
     """
+    import hashlib
+    import pickle
+
     from .rocking import as_generator
 
     g = as_generator(rng)
-    parts = []
-    left = int(n_trials)
-    while left > 0:
-        k = min(int(chunk), left)
-        parts.append(epoch_record(simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=samples_per_epoch), samples_per_epoch))
-        left -= k
-    cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
-    inc = EpochIncrements(*(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment")), parts[0].increments.epoch, samples_per_epoch)
-    return EpochRecord(scenario, inc, cat("truth_angles"), cat("truth_velocity"), cat("truth_rates"), cat("end_rate"), cat("gyro_bias"), cat("accel_bias"))
+    M, n, chunk = int(samples_per_epoch), int(n_trials), int(chunk)
+    bits = g.bit_generator
+    if truth not in TRUTHS:
+        raise ValueError(f"Expected `truth` in {TRUTHS}, got {truth!r}")
+    inputs = hashlib.blake2b(pickle.dumps((scenario, errors, M, n, chunk, truth), protocol=5), digest_size=16).digest()
+
+    def simulate():
+        parts = []
+        left = n
+        while left > 0:
+            k = min(chunk, left)
+            rec = simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=M if truth == "epochs" else None)
+            parts.append(epoch_record(rec, M, truth=truth))
+            left -= k
+        cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+        inc = tuple(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment"))
+        return (*inc, *(cat(f) for f in _RECORD_FIELDS), parts[0].increments.epoch, bits.state)
+
+    *arrays, epoch, after = _RECORDS.get((inputs, type(bits).__name__, repr(bits.state)), simulate)
+    bits.state = after  # served from memory: the state a simulation would leave
+    return EpochRecord(scenario, EpochIncrements(*arrays[:3], epoch, M), *arrays[3:])
 
 
-def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velocity_noise: float | None = None, sequence=None, compiled: bool | None = None) -> FineAlignmentResult:
+_RECORD_FIELDS = ("truth_angles", "truth_velocity", "truth_rates", "end_rate", "gyro_bias", "accel_bias")
+
+
+def fine_alignment(
+    record,
+    tuning: FilterTuning | None = None,
+    *,
+    rng=None,
+    velocity_noise: float | None = None,
+    sequence=None,
+    model: FineAlignmentModel | None = None,
+    score: bool = True,
+    compiled: bool | None = None,
+) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
     Parameters
@@ -503,7 +569,15 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
         True standard deviation of the zero-velocity reference [m/s] (default:
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
-        Gains and covariances computed before for the same model (saves the filterpy run).
+        Gains and covariances computed before for the same model (saves the covariance recursion).
+    model : FineAlignmentModel, optional
+        ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
+    score : bool
+        Score the filter against the truth at every epoch (NEES, NIS, the
+        azimuth error at every epoch); False: the azimuth error at the end
+        only (``heading_error`` NaN before the last epoch, NEES and NIS NaN),
+        from the truth at the start and the end of the record, which is then
+        all it needs (``epoch_record(..., truth="ends")``).
     compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
         (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
@@ -520,12 +594,17 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     ------
     ValueError
         If the record's truth is not at every epoch, or it is shorter than one epoch.
+    TypeError
+        If ``record`` or ``model`` is of the wrong type.
     """
     from .rocking import as_generator
 
     tuning = FilterTuning() if tuning is None else tuning
     sc = record.scenario
-    model = filter_model(sc, tuning)
+    if model is None:
+        model = filter_model(sc, tuning)
+    elif not isinstance(model, FineAlignmentModel):
+        raise TypeError(f"Expected `model` to be a FineAlignmentModel, got {type(model).__name__}")
     M, D = model.samples_per_epoch, model.epoch
     if isinstance(record, ImuRecord):
         record = epoch_record(record, M)
@@ -543,10 +622,22 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     E_earth = _rodrigues(-W * D)
     # everything that does not depend on the filter, for all epochs at once
     dR = _quat_to_matrix(ep.rotation)  # (n, E, 3, 3)
-    C_true = attitude_matrix(record.truth_angles[:, : E + 1])
-    v_true = record.truth_velocity[:, : E + 1]
-    eps_true = np.einsum("nkij,nj->nki", C_true, record.gyro_bias)
-    acc_true = np.einsum("nkij,nj->nki", C_true, record.accel_bias)
+    ax = list(model.rocking_axes)
+    if score:
+        if np.isnan(record.truth_angles[:, : E + 1]).any():
+            raise ValueError("Expected the record's truth at every epoch to score the filter (epoch_record(..., truth='epochs')), got NaN")
+        C_true = attitude_matrix(record.truth_angles[:, : E + 1])
+        v_true = record.truth_velocity[:, : E + 1]
+        eps_true = np.einsum("nkij,nj->nki", C_true, record.gyro_bias)
+        acc_true = np.einsum("nkij,nj->nki", C_true, record.accel_bias)
+        rock_true = np.empty((n, E + 1, 2 * len(ax)))
+        rock_true[:, :, 0::2] = (record.truth_angles[:, : E + 1] - sc.stable_angles)[:, :, ax]
+        rock_true[:, :, 1::2] = record.truth_rates[:, : E + 1][:, :, ax]
+    else:  # the azimuth error at the end: the truth at the start and the end
+        C_true = np.full((n, E + 1, 3, 3), np.nan)
+        C_true[:, [0, E]] = attitude_matrix(record.truth_angles[:, [0, E]])
+        v_true, eps_true, acc_true = np.zeros((n, E + 1, 3)), np.zeros((n, E + 1, 3)), np.zeros((n, E + 1, 3))
+        rock_true = np.zeros((n, E + 1, 2 * len(ax)))
     r = sc.lever_arm
     w_end = record.end_rate[:, 1:]  # gyro rate at each epoch end
     phi0 = g.standard_normal((n, 3)) * np.sqrt(np.diag(model.P0)[0:3])
@@ -555,12 +646,7 @@ def fine_alignment(record, tuning: FilterTuning | None = None, *, rng=None, velo
     v = tuning.prior_velocity * g.standard_normal((n, 3))  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
-    ax = list(model.rocking_axes)
-    rock_true = np.empty((n, E + 1, 2 * len(ax)))
-    rock_true[:, :, 0::2] = (record.truth_angles - sc.stable_angles)[:, :, ax]
-    rock_true[:, :, 1::2] = record.truth_rates[:, :, ax]
-    Sinv = np.linalg.inv(seq.innovation)
-    Pinv = np.linalg.inv(seq.posterior)
+    Sinv, Pinv = (np.linalg.inv(seq.innovation), np.linalg.inv(seq.posterior)) if score else (None, None)
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
     loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) else _epoch_loop
     C, nees, nis, heading_error = loop(
@@ -579,7 +665,8 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
     dim, shaping = H.shape[1], Fdd.shape[0] > 0
     eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
     xd = np.zeros((n, Fdd.shape[0]))
-    nees, nis, heading_error = np.empty((n, E)), np.empty((n, E)), np.empty((n, E))
+    score = Pinv is not None
+    nees, nis, heading_error = np.full((n, E), np.nan), np.full((n, E), np.nan), np.empty((n, E))
     KT = np.swapaxes(gains, 1, 2)
     HT = H.T
     err = np.empty((n, dim))
@@ -605,6 +692,9 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
             xd = x[:, 12:]
         # consistency against the truth of the simulation
         err[:, 0:3] = _small_rotation(np.einsum("nij,nkj->nik", C, C_true[:, j + 1]))
+        heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
+        if not score:
+            continue
         err[:, 3:6] = v - v_true[:, j + 1]
         err[:, 6:9] = eps_true[:, j + 1] - eps
         err[:, 9:12] = acc_true[:, j + 1] - acc
@@ -612,7 +702,6 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
             err[:, 12:] = rock_true[:, j + 1] - xd
         nees[:, j] = np.sum((err @ Pinv[j]) * err, axis=1)
         nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
-        heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
     return C, nees, nis, heading_error
 
 

@@ -45,6 +45,9 @@ __all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu", "ideal_incre
 
 _GAUSS = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))
 
+#: Truth instants up to which the rocking is summed at those instants instead of evaluated over the record.
+_FEW_POINTS = 8
+
 
 def _vec3(value, name):
     return as_array(value, name, last=3).reshape(3)
@@ -257,7 +260,7 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     TypeError
         If ``scenario`` is not a Scenario or ``motion`` not a MotionRealisation.
     """
-    from .base_motion import MotionRealisation
+    from .base_motion import MotionRealisation, Spectrum
 
     if not isinstance(scenario, Scenario):
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
@@ -265,17 +268,23 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
         raise TypeError(f"Expected `motion` to be a MotionRealisation (a rocking model's draw), got {type(motion).__name__}")
     N, dt = scenario.n_samples, scenario.dt
     n = motion.n_trials
+    compiled = kernels.use_compiled(compiled, n * N)
+    if not np.any(motion.coefficients) and (n > 1 or motion.coefficients.shape[-1]):  # no rocking: every trial is the first, at rest
+        still = MotionRealisation(Spectrum(np.zeros(0), np.zeros((3, 0)), False), np.zeros((1, 3, 0)), motion.dt)
+        return tuple(np.repeat(x, n, axis=0) for x in ideal_increments(scenario, still, compiled=compiled))
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
-    if kernels.use_compiled(compiled, n * N):
+    if compiled:
         lat = scenario.latitude
         W, g = earth_rate_ned(lat), gravity_ned(lat)
         fixed = attitude_matrix(scenario.stable_angles).T @ W
         for node in _GAUSS:
-            parts = motion.evaluate(N, node * dt, derivatives=order)
+            parts, scale = motion.unit_evaluation(N, node * dt, derivatives=order)
             acc = parts[2] if order == 2 else None
-            kernels.accumulate_ideal_increments(parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv)
+            kernels.accumulate_ideal_increments(
+                parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv, scale=scale
+            )
         return dtheta, dv
     for node in _GAUSS:
         gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
@@ -344,8 +353,11 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:
         idx = np.append(idx, N)
-    ang, rate = motion.evaluate(N + 1, 0.0, derivatives=1)
-    ang, rate = ang[:, idx], rate[:, idx]
+    if idx.size <= _FEW_POINTS:  # the start and the end: the sum over frequencies, not the whole record
+        ang, rate = motion.evaluate_points(idx, derivatives=1)
+    else:
+        (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1)
+        ang, rate = scale * ang[:, idx], scale * rate[:, idx]
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)
     velocity = np.einsum("...ij,...j->...i", C, np.cross(body_rate(angles, rate), scenario.lever_arm))
@@ -360,9 +372,9 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     dtheta += gb[:, None, :] * dt
     dv += ab[:, None, :] * dt
     if e.gyro_noise:  # the same trials again (common random numbers): the draw from memory, bit for bit
-        dtheta += (e.gyro_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dtheta.shape)
+        dtheta += repeated_draws.standard_normal(g, dtheta.shape, scale=e.gyro_noise * math.sqrt(dt))
     if e.accel_noise:
-        dv += (e.accel_noise * math.sqrt(dt)) * repeated_draws.standard_normal(g, dv.shape)
+        dv += repeated_draws.standard_normal(g, dv.shape, scale=e.accel_noise * math.sqrt(dt))
     dtheta = _quantise(dtheta, e.gyro_quantum, g)
     dv = _quantise(dv, e.accel_quantum, g)
     return ImuRecord(scenario, errors, dtheta, dv, idx * dt, angles, velocity, rate, np.ascontiguousarray(gb), np.ascontiguousarray(ab))

@@ -75,7 +75,7 @@ def _model_lines() -> list:
         "  integrated once more, fitted to the gravity turning with the Earth (Wahba's problem, batched SVD) after removing the constant",
         "  and linear parts the lever-arm motion can add. *Kalman*: a closed-loop error-state filter (tilt and azimuth errors, velocity",
         "  error, gyro and accelerometer biases, and optionally the rocking angles and rates of an assumed shaping filter, which the",
-        "  velocity measurement sees through the lever arm), gains computed once by filterpy and applied to all trials. The inertial",
+        "  velocity measurement sees through the lever arm), gains computed once (filterpy's recursion) and applied to all trials. The inertial",
         "  and Kalman methods estimate the attitude at the end of the alignment.",
         "",
     ]
@@ -249,7 +249,7 @@ def _kalman_figure(ctx, cases) -> None:
 
 
 # ---------------------------------------------------------------- 4. design
-def _design_lines(designs, checks, scenario, budget, errors) -> list:
+def _design_lines(designs, checks, scenario, budget, errors, rtol) -> list:
     lines = [
         "## 4. The designer's answer: admissible rocking against frequency",
         "",
@@ -274,8 +274,10 @@ def _design_lines(designs, checks, scenario, budget, errors) -> list:
         "",
         "Admissible amplitude [°] by the rms criterion ('≥ 20' where the cap was reached, 0 where the sensors alone exceed the budget).",
         "",
-        "Independent Monte Carlo at the admissible amplitudes. Where the error grows slowly with the amplitude (the Kalman filter at low",
-        "frequency) the amplitude is loosely determined — its interval from the root search is wide — and a check can fall below the budget.",
+        "Independent Monte Carlo at the admissible amplitudes. A check tends to fall below the budget: the admissible amplitude is the lower",
+        f"end of the search's last bracket (at most {100 * rtol:g} % below the root of the search's own trials, which carry their own sampling error,",
+        "as the interval of the amplitude shows), and the check's interval covers its own trials only. Where the error grows slowly with the",
+        "amplitude (the Kalman filter at low frequency) the amplitude is loosely determined — its interval from the root search is wide.",
         "",
         "| check: method, rocking | f [Hz] | amplitude [°] (95 % interval of the search) | MC rms [°] (95 % CI) | budget inside |",
         "|---|---|---|---|---|",
@@ -434,7 +436,7 @@ def alignment_lines(ctx) -> list:
             checks.append((d, design_check(d, sc, e, indices=(0, -1), options=opts, n_trials=n_d if q else 128, rng=_seed(ctx, 7, k))))
     tilt = {r: admissible_amplitude(budget, sc.latitude, sc.duration, freqs, rocking=r, sample_rate=sc.sample_rate) for r in ("sine", "narrowband")}
     _design_figure(ctx, designs, checks, tilt)
-    lines += _design_lines(designs, checks, sc, budget, e)
+    lines += _design_lines(designs, checks, sc, budget, e, rtol)
     # finite samples
     table = st.sample_statistics_table([10.0, 30.0, 60.0, 120.0])
     coverage = st.coverage_study([10.0, 30.0, 120.0], n_trials=300 if q else 2000, rng=_seed(ctx, 8))
