@@ -52,24 +52,24 @@ def test_comparison_kalman_consistent_and_better_under_sine_rocking():
     assert np.all((c.nees_mean > 0.85 * lo) & (c.nees_mean < 1.15 * hi))
 
 
-@pytest.mark.parametrize("shaping", [True, False], ids=["rocking-states", "no-rocking-states"])
-def test_filter_sequence_is_filterpys_recursion_to_the_bit(shaping):
-    """The written-out recursion against KalmanFilter.predict/update on zero measurements: the same operations, the same numbers."""
-    from dataclasses import replace
+def test_filter_sequence_converges_to_the_riccati_solution():
+    """An oracle independent of filterpy: the prior covariance of a long run solves the discrete algebraic Riccati equation."""
+    from scipy.linalg import solve_discrete_are
 
-    from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE, kalman_options
-    from strapdown.analysis.gyrocompass.base_motion import NarrowbandMotion
-    from strapdown.analysis.gyrocompass.fine_alignment import filter_model
-
-    sc = replace(DESIGN_SCENARIO, motion=NarrowbandMotion(np.radians([0.0, 3.0, 3.0]), 8.0, 0.1)) if shaping else DESIGN_SCENARIO
-    m = filter_model(sc, kalman_options(sc, NAVIGATION_GRADE).tuning)
-    assert m.has_rocking_states == shaping
-    fast, ref = kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, 240), kalman.filterpy_sequence(m.F, m.Q, m.H, m.R, m.P0, 240)
-    for name in kalman.FilterSequence._fields:
-        np.testing.assert_array_equal(getattr(fast, name), getattr(ref, name), err_msg=name)
-    t = tilt_filter_model(NarrowbandRocking(0.01, 0.01, 8.0, 0.1), 0.1, prior_sigma=0.03, noise_sigma=1e-4)
-    for a, b in zip(kalman.filter_sequence(t.F, t.Q, t.H, t.R, t.P0, 50), kalman.filterpy_sequence(t.F, t.Q, t.H, t.R, t.P0, 50)):
-        np.testing.assert_array_equal(a, b)
+    rng = np.random.default_rng(5)
+    F = np.array([[0.99, 0.1, 0.0], [-0.05, 0.97, 0.1], [0.0, 0.0, 0.999]])
+    A = rng.standard_normal((3, 3))
+    Q = 1e-4 * (A @ A.T + np.eye(3))
+    H = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    R = np.diag([1e-2, 4e-2])
+    seq = kalman.filter_sequence(F, Q, H, R, np.eye(3), 2000)
+    P = solve_discrete_are(F.T, H.T, Q, R)
+    np.testing.assert_allclose(seq.prior[-1], P, rtol=1e-9)
+    S = H @ P @ H.T + R
+    np.testing.assert_allclose(seq.innovation[-1], S, rtol=1e-9)
+    np.testing.assert_allclose(seq.gains[-1], P @ H.T @ np.linalg.inv(S), rtol=1e-8)
+    Pp = P - seq.gains[-1] @ S @ seq.gains[-1].T
+    np.testing.assert_allclose(seq.posterior[-1], Pp, rtol=1e-8, atol=1e-14)
 
 
 def test_filter_sequence_refuses_shapes_that_do_not_fit():

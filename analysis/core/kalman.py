@@ -4,13 +4,7 @@ filterpy's maintenance is uncertain, so the package uses a few of its calls
 through this module (``KalmanFilter`` with ``predict``/``update``/
 ``batch_filter``, and ``filterpy.stats.NEES``), and the tests pin them.  The
 filter here is linear with data-independent covariances, so the gains are
-computed once and then applied to many trials at once.  Where a search
-recomputes them for every model it tries, :func:`filter_sequence` writes out
-filterpy's ``predict``/``update`` covariance equations (the Joseph form),
-operation for operation, without the per-step bookkeeping of
-``KalmanFilter`` that costs most of the time for small models;
-:func:`filterpy_sequence` runs ``KalmanFilter`` itself, the reference the
-tests hold it to, to the bit.
+computed once by filterpy and then applied to many trials at once.
 """
 
 from __future__ import annotations
@@ -21,7 +15,7 @@ import numpy as np
 
 from .validation import as_int
 
-__all__ = ["make_filter", "gain_sequence", "apply_gains", "filterpy_batch", "nees", "FilterSequence", "filter_sequence", "filterpy_sequence", "nis", "chi2_band", "discretise"]
+__all__ = ["make_filter", "gain_sequence", "apply_gains", "filterpy_batch", "nees", "FilterSequence", "filter_sequence", "nis", "chi2_band", "discretise"]
 
 
 def make_filter(F, Q, H, R, x0, P0):
@@ -199,15 +193,11 @@ class FilterSequence(NamedTuple):
 
 
 def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
-    """Gains, prior, posterior and innovation covariances of ``n_steps`` predict–update cycles.
+    """Gains, prior, posterior and innovation covariances of ``n_steps`` predict–update cycles of filterpy's ``KalmanFilter``.
 
     The covariances of a linear filter do not depend on the measurements, so
-    one run serves every trial (as :func:`gain_sequence`, with the prior and
-    innovation covariances that NEES and NIS need).  The recursion is
-    filterpy's ``KalmanFilter.predict`` and ``update`` (``P ← F P Fᵀ + Q``;
-    ``S = H P Hᵀ + R``, ``K = P Hᵀ S⁻¹``, ``P ← (I − K H) P (I − K H)ᵀ + K R Kᵀ``)
-    with the same operations in the same order, so the numbers are
-    :func:`filterpy_sequence`'s to the bit, without its bookkeeping per step.
+    one run on zero measurements serves every trial (as :func:`gain_sequence`, with the prior and
+    innovation covariances that NEES and NIS need).
 
     Parameters
     ----------
@@ -239,63 +229,15 @@ def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
     and ``update``; Bucy, R. S., Joseph, P. D., *Filtering for Stochastic Processes with
     Applications to Guidance*, 1968 (the Joseph form).
     """
-    dot = np.dot
     n_steps = as_int(n_steps, "n_steps", minimum=0)
-    F = np.atleast_2d(np.asarray(F, dtype=float)).copy()
-    n = F.shape[0]
-    H = np.atleast_2d(np.asarray(H, dtype=float)).copy()
-    m = H.shape[0]
-    Q = np.atleast_2d(np.asarray(Q, dtype=float)).copy()
-    R = np.atleast_2d(np.asarray(R, dtype=float)).copy()
-    P = np.atleast_2d(np.asarray(P0, dtype=float)).copy()
-    for name, a, shape in (("F", F, (n, n)), ("Q", Q, (n, n)), ("H", H, (m, n)), ("R", R, (m, m)), ("P0", P, (n, n))):
-        if a.shape != shape:
-            raise ValueError(f"Expected `{name}` with shape {shape}, got shape {a.shape}")
-    gains = np.empty((n_steps, n, m))
-    prior = np.empty((n_steps, n, n))
-    post = np.empty((n_steps, n, n))
-    innov = np.empty((n_steps, m, m))
-    eye = np.eye(n)
-    for k in range(n_steps):  # filterpy's predict and update, the covariance part
-        P = 1.0 * dot(dot(F, P), F.T) + Q  # alpha² = 1: no fading memory
-        prior[k] = P
-        PHT = dot(P, H.T)
-        S = dot(H, PHT) + R
-        K = dot(PHT, np.linalg.inv(S))
-        I_KH = eye - dot(K, H)
-        P = dot(dot(I_KH, P), I_KH.T) + dot(dot(K, R), K.T)
-        gains[k] = K
-        post[k] = P
-        innov[k] = S
-    return FilterSequence(gains, prior, post, innov)
-
-
-def filterpy_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
-    """:func:`filter_sequence` by filterpy's ``KalmanFilter``, run once on zero measurements (the reference).
-
-    Parameters
-    ----------
-    F : (n, n) array
-        State transition per step.
-    Q : (n, n) array
-        Process noise covariance per step.
-    H : (m, n) array
-        Measurement matrix.
-    R : (m, m) array
-        Measurement noise covariance.
-    P0 : (n, n) array
-        Prior covariance.
-    n_steps : int
-        Cycles.
-
-    Returns
-    -------
-    FilterSequence
-    """
     F = np.atleast_2d(np.asarray(F, dtype=float))
-    kf = make_filter(F, Q, H, R, np.zeros(F.shape[0]), P0)
-    z = np.zeros((kf.dim_z, 1))
-    n, m = kf.dim_x, kf.dim_z
+    H = np.atleast_2d(np.asarray(H, dtype=float))
+    n, m = F.shape[0], H.shape[0]
+    for name, a, shape in (("F", F, (n, n)), ("Q", Q, (n, n)), ("H", H, (m, n)), ("R", R, (m, m)), ("P0", P0, (n, n))):
+        if np.atleast_2d(np.asarray(a, dtype=float)).shape != shape:
+            raise ValueError(f"Expected `{name}` with shape {shape}, got shape {np.shape(a)}")
+    kf = make_filter(F, Q, H, R, np.zeros(n), P0)
+    z = np.zeros((m, 1))
     gains = np.empty((n_steps, n, m))
     prior = np.empty((n_steps, n, n))
     post = np.empty((n_steps, n, n))

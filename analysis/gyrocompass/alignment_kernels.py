@@ -12,7 +12,7 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   :func:`chain_loop` chains the epoch rotations into attitudes;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
   :mod:`.fine_alignment` over the epochs of every trial, with gains computed
-  before (filterpy's recursion), and scores it against the truth (NEES, NIS).
+  before (by filterpy), and scores it against the truth (NEES, NIS).
 
 They are compiled with numba on first use (the machine code is cached on disk,
 so the compile cost is paid once per installation).  Loading numba and the

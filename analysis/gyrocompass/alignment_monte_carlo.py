@@ -7,7 +7,7 @@ attitude error drawn from the filter's prior).  Trials run in blocks through
 child of the root SeedSequence, so the statistics are bit-identical for any
 chunking, number of workers or executor.  Within a block every method is
 vectorised over trials; the Kalman filter loops over epochs only, with gains
-computed once (filterpy's recursion).
+computed once by filterpy.
 
 The result carries the theory that applies to the method:
 

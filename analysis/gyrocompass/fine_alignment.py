@@ -21,9 +21,8 @@ error dynamics are
 
 discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r' + v``.
 
-The model does not depend on the trial, so the gains and covariances are
-computed once (filterpy's recursion,
-:func:`strapdown.analysis.core.kalman.filter_sequence`) and
+The model does not depend on the trial, so filterpy computes the gains and
+covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
 they are applied to every trial at once; the navigator integrates the epoch
 increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
 step per epoch vectorised over trials.  After every update the attitude and
@@ -569,7 +568,7 @@ def fine_alignment(
         True standard deviation of the zero-velocity reference [m/s] (default:
         the filter's ``measurement_noise``, a filter that knows it).
     sequence : FilterSequence, optional
-        Gains and covariances computed before for the same model (saves the covariance recursion).
+        Gains and covariances computed before for the same model (saves the filterpy run).
     model : FineAlignmentModel, optional
         ``filter_model(record.scenario, tuning)`` computed before (saves its discretisation).
     score : bool

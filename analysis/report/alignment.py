@@ -75,7 +75,7 @@ def _model_lines() -> list:
         "  integrated once more, fitted to the gravity turning with the Earth (Wahba's problem, batched SVD) after removing the constant",
         "  and linear parts the lever-arm motion can add. *Kalman*: a closed-loop error-state filter (tilt and azimuth errors, velocity",
         "  error, gyro and accelerometer biases, and optionally the rocking angles and rates of an assumed shaping filter, which the",
-        "  velocity measurement sees through the lever arm), gains computed once (filterpy's recursion) and applied to all trials. The inertial",
+        "  velocity measurement sees through the lever arm), gains computed once by filterpy and applied to all trials. The inertial",
         "  and Kalman methods estimate the attitude at the end of the alignment.",
         "",
     ]
