@@ -18,7 +18,7 @@ import numpy as np
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import deg_per_h, rad
 from . import Erratum, Section
-from .rendering import at_round_off
+from .rendering import at_round_off, fixed_layout
 
 __all__ = ["SECTION", "build", "errata", "alignment_lines", "alignment_errata", "TITLE"]
 
@@ -156,6 +156,7 @@ def _noise_figure(ctx, rows) -> None:
     ax.set_xlabel("alignment time T [s]")
     ax.set_ylabel("rms azimuth error [deg]")
     ax.legend(fontsize=7)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.15)
     ctx.savefig(fig, "figures/azimuth-alignment-noise.png")
 
 
@@ -245,6 +246,7 @@ def _kalman_figure(ctx, cases) -> None:
     for a in (a1, a2):
         a.set_xlabel("time [s]")
         a.legend(fontsize=7)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.15, wgap=0.75)
     ctx.savefig(fig, "figures/azimuth-alignment-kalman.png")
 
 
@@ -327,6 +329,7 @@ def _design_figure(ctx, designs, checks, tilt) -> None:
     axes[0].set_ylabel("admissible amplitude [deg]")
     axes[0].set_ylim(1e-4, 40.0)
     axes[1].legend(fontsize=6, loc="center right")
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.3, wgap=0.2)
     ctx.savefig(fig, "figures/azimuth-alignment-design.png")
 
 
