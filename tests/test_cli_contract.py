@@ -504,7 +504,7 @@ def test_progress_on_a_terminal_and_nothing_otherwise():
 
 
 def test_activity_display_for_long_commands_without_a_bar():
-    proc, fd = _spawn_on_terminal(["multistage", "--duration", "4000", "--step", "0.01"])  # 4e5 steps: several seconds with the compiled recursion
+    proc, fd = _spawn_on_terminal(["multistage", "--duration", "12000", "--step", "0.01"])  # 1.2e6 steps: several seconds with the compiled cascade
     try:
         seen = _read_until(fd, b"elapsed")
         proc.wait(timeout=300)
