@@ -54,7 +54,8 @@ def main(argv=None) -> int:
         sections = None
         if args.only:
             sections = [m for m in report.discover() if m.SECTION.name in set(args.only) or m.SECTION.gathers]
-        report.generate(out, quick=args.quick, show_progress=False, sections=sections, figure_check=measure)
+        command = "strapdown report" + (" --quick" if args.quick else "")  # the stamp of the same CLI run, so that the two compare equal
+        report.generate(out, quick=args.quick, show_progress=False, sections=sections, command=command, figure_check=measure)
 
     sides = ("left", "bottom", "right", "top")
     clipped = 0
