@@ -103,44 +103,37 @@ def _correction_map(k, l, c, tau):
 
 def _flow(v, y, mask, mp, kinematic, norm_flow, grow, s0, s1, s2, s3, t0, t1, t2, t3, b0, b1, b2, b3):
     """One splitting step of a stage (in place): ``s``/``t`` the reference at the start/end, ``b`` the increment."""
-    e11, e12, e21, e22, f1, f2 = mp[0], mp[1], mp[2], mp[3], mp[4], mp[5]
-    k0, k1, k2, k3 = mask[0], mask[1], mask[2], mask[3]
-    a0, a1, a2, a3 = v[0], v[1], v[2], v[3]
-    y0, y1, y2, y3 = y[0], y[1], y[2], y[3]
-    if k0:
-        a0, y0 = e11 * a0 + e12 * y0 + f1 * s0, e21 * a0 + e22 * y0 + f2 * s0
-    if k1:
-        a1, y1 = e11 * a1 + e12 * y1 + f1 * s1, e21 * a1 + e22 * y1 + f2 * s1
-    if k2:
-        a2, y2 = e11 * a2 + e12 * y2 + f1 * s2, e21 * a2 + e22 * y2 + f2 * s2
-    if k3:
-        a3, y3 = e11 * a3 + e12 * y3 + f1 * s3, e21 * a3 + e22 * y3 + f2 * s3
+    a0, y0 = _correct(mask[0], mp, v[0], y[0], s0)
+    a1, y1 = _correct(mask[1], mp, v[1], y[1], s1)
+    a2, y2 = _correct(mask[2], mp, v[2], y[2], s2)
+    a3, y3 = _correct(mask[3], mp, v[3], y[3], s3)
     if norm_flow:
-        r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
-        f = math.sqrt(grow / (1.0 - r + r * grow))
-        a0, a1, a2, a3 = a0 * f, a1 * f, a2 * f, a3 * f
+        a0, a1, a2, a3 = _renormalise(a0, a1, a2, a3, grow)
     if kinematic:
         a0, a1, a2, a3 = a0 - s0, a1 - s1, a2 - s2, a3 - s3
-    c0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
-    c1 = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2
-    c2 = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1
-    c3 = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0
+    c0, c1, c2, c3 = _qmul(a0, a1, a2, a3, b0, b1, b2, b3)
     if kinematic:
         c0, c1, c2, c3 = c0 + t0, c1 + t1, c2 + t2, c3 + t3
     if norm_flow:
-        r = c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
-        f = math.sqrt(grow / (1.0 - r + r * grow))
-        c0, c1, c2, c3 = c0 * f, c1 * f, c2 * f, c3 * f
-    if k0:
-        c0, y0 = e11 * c0 + e12 * y0 + f1 * t0, e21 * c0 + e22 * y0 + f2 * t0
-    if k1:
-        c1, y1 = e11 * c1 + e12 * y1 + f1 * t1, e21 * c1 + e22 * y1 + f2 * t1
-    if k2:
-        c2, y2 = e11 * c2 + e12 * y2 + f1 * t2, e21 * c2 + e22 * y2 + f2 * t2
-    if k3:
-        c3, y3 = e11 * c3 + e12 * y3 + f1 * t3, e21 * c3 + e22 * y3 + f2 * t3
-    v[0], v[1], v[2], v[3] = c0, c1, c2, c3
-    y[0], y[1], y[2], y[3] = y0, y1, y2, y3
+        c0, c1, c2, c3 = _renormalise(c0, c1, c2, c3, grow)
+    v[0], y[0] = _correct(mask[0], mp, c0, y0, t0)
+    v[1], y[1] = _correct(mask[1], mp, c1, y1, t1)
+    v[2], y[2] = _correct(mask[2], mp, c2, y2, t2)
+    v[3], y[3] = _correct(mask[3], mp, c3, y3, t3)
+
+
+def _correct(on, mp, a, y, s):
+    """Half a step of the correction of one component, ``(a, y) ← E (a, y) + F s`` (:func:`correction_map`), if ``on``."""
+    if on:
+        return mp[0] * a + mp[1] * y + mp[4] * s, mp[2] * a + mp[3] * y + mp[5] * s
+    return a, y
+
+
+def _renormalise(a0, a1, a2, a3, grow):
+    """The norm flow of a step: the squared norm r goes to ``grow r / (1 − r + r grow)``."""
+    r = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3
+    f = math.sqrt(grow / (1.0 - r + r * grow))
+    return a0 * f, a1 * f, a2 * f, a3 * f
 
 
 def _switch(y, v, mask, gains, s, mode, c, m0, m1, m2, m3):
@@ -189,7 +182,7 @@ def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, g
 _compiled: dict = {}
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_flow", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_matrix", "_clip1", "_below", "_wrap", "_record")
+_HELPERS = ("_flow", "_correct", "_renormalise", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_matrix", "_clip1", "_below", "_wrap", "_record")
 
 
 def _jit(fn):
