@@ -103,10 +103,12 @@ def _correction_map(k, l, c, tau):
 
 def _flow(v, y, mask, mp, kinematic, norm_flow, grow, s0, s1, s2, s3, t0, t1, t2, t3, b0, b1, b2, b3):
     """One splitting step of a stage (in place): ``s``/``t`` the reference at the start/end, ``b`` the increment."""
-    a0, y0 = _correct(mask[0], mp, v[0], y[0], s0)
-    a1, y1 = _correct(mask[1], mp, v[1], y[1], s1)
-    a2, y2 = _correct(mask[2], mp, v[2], y[2], s2)
-    a3, y3 = _correct(mask[3], mp, v[3], y[3], s3)
+    e11, e12, e21, e22, f1, f2 = mp[0], mp[1], mp[2], mp[3], mp[4], mp[5]
+    k0, k1, k2, k3 = mask[0], mask[1], mask[2], mask[3]
+    a0, y0 = _correct(k0, e11, e12, e21, e22, f1, f2, v[0], y[0], s0)
+    a1, y1 = _correct(k1, e11, e12, e21, e22, f1, f2, v[1], y[1], s1)
+    a2, y2 = _correct(k2, e11, e12, e21, e22, f1, f2, v[2], y[2], s2)
+    a3, y3 = _correct(k3, e11, e12, e21, e22, f1, f2, v[3], y[3], s3)
     if norm_flow:
         a0, a1, a2, a3 = _renormalise(a0, a1, a2, a3, grow)
     if kinematic:
@@ -116,16 +118,18 @@ def _flow(v, y, mask, mp, kinematic, norm_flow, grow, s0, s1, s2, s3, t0, t1, t2
         c0, c1, c2, c3 = c0 + t0, c1 + t1, c2 + t2, c3 + t3
     if norm_flow:
         c0, c1, c2, c3 = _renormalise(c0, c1, c2, c3, grow)
-    v[0], y[0] = _correct(mask[0], mp, c0, y0, t0)
-    v[1], y[1] = _correct(mask[1], mp, c1, y1, t1)
-    v[2], y[2] = _correct(mask[2], mp, c2, y2, t2)
-    v[3], y[3] = _correct(mask[3], mp, c3, y3, t3)
+    c0, y0 = _correct(k0, e11, e12, e21, e22, f1, f2, c0, y0, t0)
+    c1, y1 = _correct(k1, e11, e12, e21, e22, f1, f2, c1, y1, t1)
+    c2, y2 = _correct(k2, e11, e12, e21, e22, f1, f2, c2, y2, t2)
+    c3, y3 = _correct(k3, e11, e12, e21, e22, f1, f2, c3, y3, t3)
+    v[0], v[1], v[2], v[3] = c0, c1, c2, c3
+    y[0], y[1], y[2], y[3] = y0, y1, y2, y3
 
 
-def _correct(on, mp, a, y, s):
+def _correct(on, e11, e12, e21, e22, f1, f2, a, y, s):
     """Half a step of the correction of one component, ``(a, y) ← E (a, y) + F s`` (:func:`correction_map`), if ``on``."""
     if on:
-        return mp[0] * a + mp[1] * y + mp[4] * s, mp[2] * a + mp[3] * y + mp[5] * s
+        return e11 * a + e12 * y + f1 * s, e21 * a + e22 * y + f2 * s
     return a, y
 
 
