@@ -261,3 +261,10 @@ def test_bad_control_arguments():
         AzimuthErrorKernel(0.5, 0.0, 0.0, GaussianRocking(0.01, 0.01), controls="taylor")
     with pytest.raises(ValueError, match="degree"):
         TaylorControls.for_rocking(GaussianRocking(0.01, 0.01), 0)
+
+
+def test_fit_controls_refuses_non_finite_pilots():
+    with pytest.raises(ValueError, match="`values`"):
+        montecarlo.fit_controls(np.full((20, 1), np.nan), np.ones((20, 2)))
+    with pytest.raises(ValueError, match="`controls`"):
+        montecarlo.fit_controls(np.ones((20, 1)), np.full((20, 2), np.inf))

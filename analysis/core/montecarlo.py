@@ -26,7 +26,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .validation import as_int, positive
+from .validation import as_array, as_int, positive
 
 __all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
 
@@ -499,7 +499,7 @@ def fit_controls(values, controls) -> ControlFit:
     Raises
     ------
     ValueError
-        If the shapes disagree or ``n < 2p + 4``.
+        If the shapes disagree, an entry is not finite or ``n < 2p + 4``.
 
     References
     ----------
@@ -516,8 +516,8 @@ def fit_controls(values, controls) -> ControlFit:
     >>> [round(c, 12) for c in fit.coefficients[0]], round(fit.intercepts[0], 12)
     ([1.0, 1.0], 1.0)
     """
-    y = np.asarray(values, dtype=float)
-    x = np.asarray(controls, dtype=float)
+    y = as_array(values, "values")
+    x = as_array(controls, "controls")
     if y.ndim != 2 or x.ndim != 2 or y.shape[0] != x.shape[0]:
         raise ValueError(f"Expected `values` (n, k) and `controls` (n, p) with the same n, got {y.shape} and {x.shape}")
     n, p = x.shape
