@@ -1,7 +1,7 @@
 """Theory of the self-alignment errors, term by term, to first order.
 
 Analytic method (:func:`analytic_theory`).  With the gains of
-:mod:`strapdown.derivations.gyrocompass.alignment_error` (generated once into
+:mod:`strapdown.derivations.alignment.analytic_gains` (generated once into
 numerical code, :func:`strapdown.analysis.core.cache.compiled`), the azimuth
 error of the analytic alignment over a time T is, to first order,
 
@@ -45,8 +45,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.cache import compiled
+from ..gyrocompass.error_distribution import ErrorQuantile, abs_error_quantile
 from .earth import EARTH_RATE, normal_gravity
-from .error_distribution import ErrorQuantile, abs_error_quantile
 from .imu import Scenario, SensorErrors
 
 __all__ = ["AnalyticGainValues", "analytic_gain_values", "AnalyticTheory", "analytic_theory", "rocking_transfer", "quantisation_variance", "KalmanTheory", "kalman_theory", "bias_floor"]
@@ -90,7 +90,7 @@ class AnalyticGainValues:
 
 def _gain_function(formula: str):
     def build():
-        from ...derivations.gyrocompass.alignment_error import gain_expressions
+        from ...derivations.alignment.analytic_gains import gain_expressions
 
         return gain_expressions(formula)
 
@@ -304,7 +304,7 @@ def analytic_theory(scenario: Scenario, errors: SensorErrors | None = None, *, f
     References
     ----------
     Hrechka & Koroliov, eqs. (2), (16) (the method); the gains are derived in
-    :mod:`strapdown.derivations.gyrocompass.alignment_error`.
+    :mod:`strapdown.derivations.alignment.analytic_gains`.
 
     Examples
     --------

@@ -16,15 +16,15 @@ import numpy as np
 from ..core import montecarlo
 from ..core.units import DEG_PER_RT_H_TO_RAD_PER_RT_S, M_S_PER_RT_H_TO_M_S_PER_RT_S, rad, rad_per_s
 from ..core.validation import as_array, as_int
-from .alignment_monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_monte_carlo
-from .alignment_theory import analytic_theory
-from .azimuth import second_order_theory
+from ..gyrocompass.azimuth import second_order_theory
+from ..gyrocompass.finite_sample import mean_interval, sample_mean_statistics
+from ..gyrocompass.rocking import NarrowbandRocking, SineRocking
 from .base_motion import NarrowbandMotion, SineMotion
 from .earth import EARTH_RATE, normal_gravity
-from .fine_alignment import Disturbance, FilterTuning, assumed_disturbance
-from .finite_sample import mean_interval, sample_mean_statistics
+from .fine import Disturbance, FilterTuning, assumed_disturbance
 from .imu import Scenario, SensorErrors
-from .rocking import NarrowbandRocking, SineRocking
+from .monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_monte_carlo
+from .theory import analytic_theory
 
 __all__ = [
     "NAVIGATION_GRADE",

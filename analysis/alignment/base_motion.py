@@ -1,14 +1,14 @@
 """Rocking of the base in three axes, as smooth random functions of time.
 
 The rocking adds ``θ_r(t) = (ψ_r, β_r, γ_r)(t)`` to the stable attitude
-``(ψ0, β0, γ0)`` of :mod:`strapdown.analysis.gyrocompass.tilt_attitude` (ψ_r is yaw; β_r,
+``(ψ0, β0, γ0)`` of :mod:`strapdown.analysis.alignment.tilt_attitude` (ψ_r is yaw; β_r,
 γ_r are the paper's ξ, η).  Every model is a sum of sinusoids per axis,
 
     θ_a(t) = Σ_m Re[c_am e^{iω_m t}],
 
 so that angles, rates and angular accelerations exist at every instant and a
 kinematically consistent sensor record can be integrated from them
-(:mod:`strapdown.analysis.gyrocompass.imu`).  The axes are independent.
+(:mod:`strapdown.analysis.alignment.imu`).  The axes are independent.
 
 :class:`StillBase`
     no rocking.
@@ -52,7 +52,7 @@ import numpy as np
 from ..core import repeated_draws
 from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, as_int, positive
-from .rocking import as_generator
+from ..gyrocompass.rocking import as_generator
 
 __all__ = ["Spectrum", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS"]
 
