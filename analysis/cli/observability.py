@@ -164,7 +164,12 @@ def register(commands) -> None:
         The registry of :mod:`strapdown.analysis.cli`.
     """
     p = commands.add("observability", _observability, "rank, unobservable directions and degree of observability of the alignment error states")
-    p.add_argument("--model", choices=MODELS, default="stationary", help="stationary (twelve states at rest), rocking (with rocking states seen through the lever arm) or multi-position (default stationary)")
+    p.add_argument(
+        "--model",
+        choices=MODELS,
+        default="stationary",
+        help="stationary (twelve states at rest), rocking (with rocking states seen through the lever arm) or multi-position (default stationary)",
+    )
     p.add_argument("--log", default=None, help="recorded IMU log, .npz or .csv (docs/recorded-logs.md): the positions of its motion instead of --model [path] (default: none)")
     p.add_argument("--lat-deg", type=float, default=45.0, help="latitude φ [deg], |φ| < 90 (default 45)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="initial heading ψ0 [deg] (default 0)")
