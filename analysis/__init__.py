@@ -26,11 +26,14 @@ subpackage         analysis (numerics)                         derivations (SymP
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data
                    statistics, readings of section 5
-``gyrocompass``    tilt channel: rocking models, azimuth       azimuth-error series, bounds
-                   Monte Carlo, bound sweeps, finite-sample    (14)–(15), published formulas
-                   statistics of (16); whole system: rocking
-                   base and IMU model, analytic, inertial and
-                   Kalman alignment, admissible rocking
+``gyrocompass``    the tilt channel of Hrechka & Koroliov:     azimuth-error series, bounds
+                   rocking models, azimuth Monte Carlo, bound  (14)–(15), published formulas
+                   sweeps, finite-sample statistics of (16),
+                   admissible rocking
+``alignment``      self-alignment of the whole system: rocking gains of the linearised analytic
+                   base and IMU model, analytic, inertial and  alignment
+                   Kalman alignment, theory of every error
+                   term, admissible rocking per method
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

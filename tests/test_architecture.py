@@ -7,7 +7,7 @@
   ``--option`` in the text of an exception raised outside the CLI and the
   reports.
 * Radians inside the library: no parameter or attribute named ``*_deg`` or
-  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage,gyrocompass}``
+  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage,gyrocompass,alignment}``
   and ``derivations`` (the printed data of ``published.py`` keep the paper's
   units, with names that say so).
 * No import cycle: the graph of imports between the modules of the package
@@ -139,7 +139,7 @@ def test_the_flag_check_can_fail():
 
 
 # --------------------------------------------------------------------------- units
-UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "analysis/gyrocompass", "derivations")
+UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "analysis/gyrocompass", "analysis/alignment", "derivations")
 DEGREE_NAME = re.compile(r"(^|_)deg(_per_h)?$")
 #: A numpydoc entry "name : type" and its indented description.
 DOC_ENTRY = re.compile(r"^(\s*)([A-Za-z_][\w, ]*) : [^\n]*\n((?:\1\s+[^\n]*\n?)*)", re.M)
