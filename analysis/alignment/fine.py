@@ -303,7 +303,7 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     """Standard deviation of the lever-arm velocity per NED axis [m/s], to first order in the rocking.
 
     ``v = C0 (J0 θ_r' × r)`` with C0 the stable attitude and J0 the Euler-rate
-    matrix there; the rate variances come from the motion's spectrum.
+    matrix there; the rate variances come from the motion's spectral density.
 
     Parameters
     ----------
@@ -317,8 +317,7 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     ndarray
         ``(3,)``.
     """
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    rate_var = np.sum(s.power * s.omega**2, axis=1)
+    rate_var = motion.rate_variance(scenario.dt)
     L = lever_matrix(scenario)
     return np.sqrt((L * L) @ rate_var)
 
@@ -343,9 +342,8 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     """
     if kind == "none" or not np.any(lever_velocity_sigma(motion, scenario)):
         return Disturbance("none")
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    sigma = s.sigma
-    rate = np.sqrt(np.sum(s.power * s.omega**2, axis=1))
+    sigma = motion.sigma
+    rate = np.sqrt(motion.rate_variance(scenario.dt))
     # the period whose oscillator has the rate variance of the rocking
     period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
     damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))

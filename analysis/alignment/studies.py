@@ -19,7 +19,7 @@ from ..core.validation import as_array, as_int
 from ..gyrocompass.azimuth import second_order_theory
 from ..gyrocompass.finite_sample import mean_interval, sample_mean_statistics
 from ..gyrocompass.rocking import NarrowbandRocking, SineRocking
-from .base_motion import NarrowbandMotion, SineMotion
+from .base_motion import NarrowbandMotion, SineMotion, mean_variance
 from .earth import EARTH_RATE, normal_gravity
 from .fine import Disturbance, FilterTuning, assumed_disturbance
 from .imu import Scenario, SensorErrors
@@ -345,9 +345,7 @@ def rocking_channel_study(*, latitude: float = rad(70.0), beta0: float = rad(2.0
             mc = alignment_monte_carlo(sc, method="analytic", n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opts)
             second = math.nan
             if not gyros:
-                s = motion.spectrum(sc.n_samples, sc.dt)
-                T = sc.n_samples * sc.dt
-                sd = np.sqrt(s.covariance((np.exp(1j * s.omega * T) - 1) / (1j * s.omega * T)))
+                sd = np.sqrt(mean_variance(motion, sc.n_samples * sc.dt, sc.dt))
                 second = second_order_theory(latitude, beta0, gamma0, sd[1], sd[2], kappa_xi=motion.kappa, kappa_eta=motion.kappa).rms
             rows.append(RockingRow(label, gyros, rad(amplitude), mc, mc.theory.rocking, second))
     return tuple(rows)
