@@ -249,7 +249,7 @@ class CoarseToFineResult:
     coarse : AlignmentEstimate
         The inertial-frame alignment at T_c.
     coarse_error : ndarray
-        ``(n, 3)`` its attitude error φ [rad].
+        ``(n, 3)`` its attitude error φ [rad] (NaN where the record has no truth).
     fine : FineAlignmentResult
         The filter on the rest of the record (times from T_c).
     """
@@ -298,5 +298,9 @@ def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel,
         raise ValueError(f"Expected `coarse.duration` a whole number of filter epochs ({model.epoch:g} s), got {coarse.duration:g}")
     model = replace(model, P0=coarse_prior(coarse, model.P0, tuning))
     fine = fine_alignment(tail, tuning, rng=rng, model=model, score=score, initial_attitude=C_coarse, velocity_noise=velocity_noise)
-    return CoarseToFineResult(est, attitude_error(C_coarse, C_true), fine)
+    known = ~np.isnan(C_true).any(axis=(1, 2))  # a recorded log may not carry the truth
+    err = np.full((record.n_trials, 3), np.nan)
+    if known.any():
+        err[known] = attitude_error(C_coarse[known], C_true[known])
+    return CoarseToFineResult(est, err, fine)
 
