@@ -6,18 +6,20 @@ prior, the measurement noise and the epoch of the filter that would estimate
 it.  :func:`observability` answers three questions about it:
 
 rank
-    The dimension of the observable subspace.  The unobservable subspace of a
-    time-invariant pair ``(A, H)`` is the largest A-invariant subspace in
-    ``ker H``, computed by the invariant-subspace recursion
-    ``V_0 = ker H``, ``V_{k+1} = {x ∈ V_k : A x ∈ V_k}`` (Wonham 1985,
-    sec. 3.3), one product by A per step (no powers of A, which overflow for
-    stiff models); for a piecewise-constant model the states unobservable over
-    the whole horizon are those unobservable in the first segment whose
-    transition ``Φ_1 x`` is unobservable over the rest, intersected backwards
-    from the last segment (the total observability matrix of Goshen-Meskin &
-    Bar-Itzhack 1992, without forming it).  The computation runs on states
-    scaled to equivalent angles and on a time unit of 1/Ω, where the model's
-    couplings are of order one.
+    The dimension of the observable subspace.  For one segment it is found by
+    the orthogonal staircase reduction of the pair ``(Aᵀ, Hᵀ)`` (Van Dooren
+    1981): each step takes the directions the measurements (or the coupling
+    from the directions found so far) reach, by an SVD with a rank decision at
+    :data:`RTOL` of the (unit) norm, and turns the rest by an orthogonal
+    similarity, so rounding stays at the size of the model's own (no powers
+    of A, no division by small couplings); the directions never reached are
+    the unobservable subspace.  The states are first put in units of their
+    prior standard deviations, where the couplings that decide the rank are of
+    comparable size.  For a piecewise-constant model (a block turned into
+    several positions) a state is unobservable when it is unobservable in the
+    first segment and its transition into every later segment is unobservable
+    there: the null space of the stacked conditions ``(I − N_j N_jᵀ) Φ_{0→j}``
+    (the total observability matrix of Goshen-Meskin & Bar-Itzhack 1992).
 unobservable directions
     A basis of the unobservable subspace in reduced row-echelon form, pivots
     taken in the order attitude, velocity, position, sensor biases, rocking
@@ -30,23 +32,22 @@ unobservable directions
 degree of observability
     the standard deviation of each state after the horizon relative to its
     prior (the Kalman covariance of the problem, computed by filterpy), and the
-    singular values of the observability Gramian ``∫ Φᵀ Hᵀ N⁻¹ H Φ dt`` in
-    equivalent angles (N the measurement noise density).
+    eigenvalues of the Gramian (the information per direction).
 
 References
 ----------
+Van Dooren, P., "The generalized eigenstructure problem in linear system
+theory", *IEEE Trans. Autom. Control* 26(1), 1981, 111–129 (the staircase form).
 Bar-Itzhack, I. Y., Berman, N., "Control theoretic approach to inertial
 navigation systems", *J. Guid. Control Dyn.* 11(3), 1988, 237–245.
 Goshen-Meskin, D., Bar-Itzhack, I. Y., "Observability analysis of piece-wise
 constant systems", *IEEE Trans. Aerosp. Electron. Syst.* 28(4), 1992, 1056–1075.
-Wonham, W. M., *Linear Multivariable Control: a Geometric Approach*, 3rd ed.,
-Springer, 1985, sec. 3.3.
 
 Public API
 ----------
 BodyRotation, ObservabilityProblem, UnobservableDirection, ObservabilityResult,
 stationary_problem, rocking_problem, multi_position_problem, observability,
-unobservable_subspace
+observability_gramian, unobservable_subspace
 """
 
 from __future__ import annotations
@@ -59,7 +60,6 @@ from scipy.linalg import expm
 
 from ..core import kalman
 from ..core.validation import as_array, as_float, positive
-from .earth import EARTH_RATE
 from .error_model import ErrorModel, alignment_error_model, navigation_error_model, state_labels
 from .fine import FilterTuning, assumed_disturbance
 from .imu import Scenario
@@ -74,12 +74,17 @@ __all__ = [
     "rocking_problem",
     "multi_position_problem",
     "observability",
+    "observability_gramian",
     "unobservable_subspace",
     "PIVOT_ORDER",
+    "RTOL",
+    "GRAMIAN_STEP",
 ]
 
-#: Relative tolerance of the rank decisions (singular values on scaled states, time unit 1/Ω).
-RTOL = 1e-9
+#: Rank decisions of the staircase: singular values below RTOL of the (unit) norm count as zero.
+RTOL = 1e-10
+#: Longest sub-interval of the Gramian's sum [s] (Van Loan's formula over a long interval loses damped modes to cancellation).
+GRAMIAN_STEP = 5.0
 #: Pivot order of the unobservable directions: attitude first, then velocity, position, biases, the rest.
 PIVOT_ORDER = ("phi", "dv", "dp", "eps", "acc")
 _AXES = {"x": 0, "y": 1, "z": 2}
@@ -214,9 +219,9 @@ class ObservabilityResult:
     posterior_ratio : ndarray
         ``(n,)`` standard deviation of each state after the horizon over its prior [1].
     gramian_singular_values : ndarray
-        ``(n,)`` singular values of the observability Gramian over the horizon,
-        states in equivalent angles, per unit measurement noise density
-        [1/rad²], largest first.
+        ``(n,)`` eigenvalues of the observability Gramian over the horizon
+        (:func:`observability_gramian`): the information the measurements add
+        along each direction, in units of the prior's [1], largest first.
     duration : float
         Horizon [s].
     latitude : float
@@ -361,27 +366,116 @@ def multi_position_problem(latitude, rotations, duration: float, *, attitude=(0.
     return ObservabilityProblem("multi-position", tuple(models), tuple(np.diff(edges)), P0, tuning.measurement_noise**2 * np.eye(3), tuning.epoch, as_float(latitude, "latitude"))
 
 
+def observability_gramian(problem: ObservabilityProblem) -> np.ndarray:
+    """``W = ∫ Φᵀ Hᵀ N⁻¹ H Φ dt`` over the horizon, states in units of their prior standard deviations.
+
+    Parameters
+    ----------
+    problem : ObservabilityProblem
+        The model, prior and measurement noise.
+
+    Returns
+    -------
+    ndarray
+        ``(n, n)`` symmetric; its eigenvalues are the information the
+        measurements add along their eigenvectors, in units of the prior's.
+
+    References
+    ----------
+    Goshen-Meskin & Bar-Itzhack (1992) (piecewise-constant systems); Van Loan (1978)
+    (each sub-interval, :func:`strapdown.analysis.core.kalman.discretise`).
+    """
+    S = _prior_scales(problem)
+    Ninv = np.linalg.inv(problem.R * problem.epoch)  # measurement noise density [unit² s]
+    n = len(S)
+    W = np.zeros((n, n))
+    Phi0 = np.eye(n)
+    for m, d in zip(problem.models, problem.durations):
+        A = m.A * S[None, :] / S[:, None]
+        Hs = m.H * S[None, :]
+        k = max(1, int(math.ceil(d / GRAMIAN_STEP)))
+        h = d / k
+        _, Wh = kalman.discretise(A.T, Hs.T @ Ninv @ Hs, h)  # ∫_0^h e^{Aᵀs} Hᵀ N⁻¹ H e^{As} ds
+        Fh = expm(A * h)
+        for _ in range(k):
+            W += Phi0.T @ Wh @ Phi0
+            Phi0 = Fh @ Phi0
+    return 0.5 * (W + W.T)
+
+
 def _null(X: np.ndarray, tol: float) -> np.ndarray:
-    """Orthonormal basis of the null space of ``X`` (columns), singular values below ``tol`` counted as zero."""
+    """Orthonormal basis of the null space of ``X`` (columns); singular values at most ``tol`` count as zero."""
     k = X.shape[1]
-    if X.shape[0] == 0:
+    if X.shape[0] == 0 or k == 0:
         return np.eye(k)
     _, s, vh = np.linalg.svd(X, full_matrices=True)
-    r = int(np.sum(s > tol))
-    return vh[r:].T.conj().real
+    return vh[int(np.sum(s > tol)) :].T
+
+
+def _staircase(A: np.ndarray, H: np.ndarray, tol: float) -> np.ndarray:
+    """Unobservable subspace of one block by the orthogonal staircase of ``(Aᵀ, Hᵀ)``."""
+    norms = np.linalg.norm(H, axis=1)
+    H = H[norms > 0] / norms[norms > 0, None]
+    scale = float(np.linalg.norm(A, 2)) or 1.0
+    Ar = A.T / scale  # the staircase of the controllable part of (Aᵀ, Hᵀ): the observable directions of (A, H)
+    Br = H.T
+    V = np.eye(A.shape[0])
+    while V.shape[1]:
+        u, s, _ = np.linalg.svd(Br, full_matrices=True)
+        rho = int(np.sum(s > tol))
+        if rho == 0:
+            break
+        Ar = u.T @ Ar @ u
+        V = V @ u
+        Br = Ar[rho:, :rho]  # how the directions just reached drive the rest
+        Ar = Ar[rho:, rho:]
+        V = V[:, rho:]
+    return V
+
+
+def _blocks(A: np.ndarray) -> list:
+    """Groups of states A does not couple (connected components), merged where their spectra meet."""
+    from scipy.sparse.csgraph import connected_components
+
+    n, labels = connected_components((A != 0) | (A.T != 0), directed=False)
+    groups = [np.flatnonzero(labels == k) for k in range(n)]
+    spectra = [np.linalg.eigvals(A[np.ix_(g, g)]) for g in groups]
+    merged = True
+    while merged:
+        merged = False
+        for i in range(len(groups)):
+            for j in range(i + 1, len(groups)):
+                d = np.abs(spectra[i][:, None] - spectra[j][None, :])
+                size = np.maximum(np.abs(spectra[i])[:, None], np.abs(spectra[j])[None, :])
+                if np.any(d <= 1e-9 * np.maximum(size, 1e-300)):
+                    groups[i] = np.concatenate([groups[i], groups.pop(j)])
+                    spectra[i] = np.concatenate([spectra[i], spectra.pop(j)])
+                    merged = True
+                    break
+            if merged:
+                break
+    return groups
 
 
 def unobservable_subspace(A, H, *, tol: float = RTOL) -> np.ndarray:
-    """Orthonormal basis of the unobservable subspace of ``(A, H)``: the largest A-invariant subspace in ``ker H``.
+    """Orthonormal basis of the unobservable subspace of ``(A, H)``, block by block, by the orthogonal staircase.
+
+    The states are split into groups that A does not couple; groups whose
+    spectra meet are kept together (identical oscillators sharing the output
+    can cancel in it).  Groups with disjoint spectra are observable together
+    exactly when each is observable alone (the parallel connection of systems
+    with disjoint spectra), so each group is reduced on its own, at the scale
+    of its own dynamics: a stiff block (a rocking oscillator) then does not
+    swamp the slow couplings of another (the Earth rate).
 
     Parameters
     ----------
     A : array_like
-        ``(n, n)`` dynamics (well scaled: couplings of comparable size).
+        ``(n, n)`` dynamics (scale the states first so that the couplings inside a block are comparable).
     H : array_like
         ``(m, n)`` measurement matrix.
     tol : float, keyword-only
-        Relative tolerance of the rank decisions.
+        Rank decisions at ``tol`` times the block's norm (A and the rows of H are scaled to unit norm).
 
     Returns
     -------
@@ -390,7 +484,9 @@ def unobservable_subspace(A, H, *, tol: float = RTOL) -> np.ndarray:
 
     References
     ----------
-    Wonham (1985), sec. 3.3 (the invariant-subspace recursion).
+    Van Dooren (1981) (the staircase form, here of the dual pair ``(Aᵀ, Hᵀ)``);
+    Chen, C.-T., *Linear System Theory and Design*, 3rd ed., Oxford, 1999,
+    sec. 6.3 (observability of a parallel connection: the PBH test mode by mode).
 
     Examples
     --------
@@ -402,28 +498,36 @@ def unobservable_subspace(A, H, *, tol: float = RTOL) -> np.ndarray:
     """
     A = np.atleast_2d(np.asarray(A, dtype=float))
     H = np.atleast_2d(np.asarray(H, dtype=float))
-    norms = np.linalg.norm(H, axis=1)
-    Hn = H[norms > 0] / norms[norms > 0, None]
-    Z = _null(Hn, tol)
-    scale = tol * max(1.0, float(np.linalg.norm(A, 2)))
-    while Z.shape[1]:
-        M = A @ Z - Z @ (Z.T @ A @ Z)  # the part of A Z outside span(Z)
-        c = _null(M, scale)
-        if c.shape[1] == Z.shape[1]:
-            break
-        Z = Z @ c
-    return Z
+    n = A.shape[0]
+    parts = []
+    for g in _blocks(A):
+        V = _staircase(A[np.ix_(g, g)], H[:, g], tol)
+        if V.shape[1]:
+            Z = np.zeros((n, V.shape[1]))
+            Z[g] = V
+            parts.append(Z)
+    return np.concatenate(parts, axis=1) if parts else np.zeros((n, 0))
 
 
-def _scaled(problem: ObservabilityProblem):
-    """Models in equivalent angles and the time unit 1/Ω: ``(A_j τ, H S, Φ_j)``."""
-    S = problem.models[0].scales
-    tau = 1.0 / EARTH_RATE
-    out = []
+def _unobservable(problem: ObservabilityProblem, S: np.ndarray) -> np.ndarray:
+    """Basis (prior-scaled states) of the states unobservable over every segment of ``problem``."""
+    n = len(S)
+    rows, Phi = [], np.eye(n)
     for m, d in zip(problem.models, problem.durations):
-        A = (m.A * S[None, :] / S[:, None]) * tau
-        out.append((A, m.H * S[None, :], expm(A * (d / tau))))
-    return S, out
+        A = m.A * S[None, :] / S[:, None]
+        N = unobservable_subspace(A, m.H * S[None, :])
+        if len(problem.models) == 1:
+            return N
+        C = Phi - N @ (N.T @ Phi)  # x must land in this segment's unobservable subspace
+        norm = float(np.linalg.norm(Phi, 2))
+        rows.append(C / norm)
+        Phi = expm(A * d) @ Phi
+    return _null(np.concatenate(rows), RTOL)
+
+
+def _prior_scales(problem: ObservabilityProblem) -> np.ndarray:
+    S = np.sqrt(np.diag(problem.P0))
+    return np.where(S > 0.0, S, problem.models[0].scales)
 
 
 def _rref_directions(Z: np.ndarray, names) -> list:
@@ -488,28 +592,21 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
     names = problem.names
     labels = state_labels(names)
     n = len(names)
-    S, scaled = _scaled(problem)
-    # backwards: M_J = N(A_J); M_j = {x ∈ N(A_j): Φ_j x ∈ M_{j+1}}
-    M = None
-    for A, H, Phi in reversed(scaled):
-        N = unobservable_subspace(A, H)
-        if M is not None and N.shape[1]:
-            P = Phi @ N
-            c = _null(P - M @ (M.T @ P), RTOL * max(1.0, float(np.linalg.norm(Phi, 2))))
-            N = N @ c
-            if N.shape[1]:
-                N, _ = np.linalg.qr(N)
-        M = N
+    S = problem.models[0].scales  # equivalent angles: the couplings inside a block are of order one
+    M = _unobservable(problem, S)
     directions = []
+    E = problem.models[0].scales  # equivalent angles: the partners are ranked in these
     for col, row in _rref_directions(M, names):
         comp = row * S / S[col]  # SI per unit of the pivot
+        row = comp * E[col] / E  # the same direction in equivalent angles, pivot 1
         others = sorted((i for i in range(n) if i != col and row[i] != 0.0), key=lambda i: -abs(row[i]))
         partners = tuple(names[i] for i in others)
         lead = [labels[i] for i in others if abs(row[i]) >= (1.0 - 1e-6) * abs(row[others[0]])]  # ties named together
         text = f"{labels[col]} ↔ {' and '.join(lead)}" if others else f"{labels[col]} (alone)"
         directions.append(UnobservableDirection(names[col], {names[i]: float(comp[i]) for i in range(n) if row[i] != 0.0}, partners, text))
     return ObservabilityResult(
-        problem.kind, names, labels, n - M.shape[1], tuple(directions), _posterior_ratio(problem), _gramian_singular_values(problem), problem.duration, problem.latitude
+        problem.kind, names, labels, n - M.shape[1], tuple(directions), _posterior_ratio(problem), np.linalg.eigvalsh(observability_gramian(problem))[::-1].copy(),
+        problem.duration, problem.latitude,
     )
 
 
@@ -523,20 +620,3 @@ def _posterior_ratio(problem: ObservabilityProblem) -> np.ndarray:
     p0 = np.diag(problem.P0)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(p0 > 0, np.sqrt(np.maximum(np.diag(P), 0.0) / np.where(p0 > 0, p0, 1.0)), np.nan)
-
-
-def _gramian_singular_values(problem: ObservabilityProblem) -> np.ndarray:
-    """Singular values of ``∫ Φᵀ Hᵀ N⁻¹ H Φ dt`` over the horizon, states in equivalent angles."""
-    S = problem.models[0].scales
-    Ninv = np.linalg.inv(problem.R * problem.epoch)  # measurement noise density [unit² s]
-    n = len(S)
-    W = np.zeros((n, n))
-    Phi0 = np.eye(n)
-    for m, d in zip(problem.models, problem.durations):
-        A = m.A * S[None, :] / S[:, None]
-        Hs = m.H * S[None, :]
-        _, Wj = kalman.discretise(A.T, Hs.T @ Ninv @ Hs, d)  # ∫ e^{Aᵀs} Hᵀ N⁻¹ H e^{As} ds
-        W += Phi0.T @ Wj @ Phi0
-        Phi0 = expm(A * d) @ Phi0
-    return np.linalg.svd(0.5 * (W + W.T), compute_uv=False)
-
