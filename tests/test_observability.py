@@ -21,8 +21,8 @@ from strapdown.analysis.alignment.observability import (
     BodyRotation,
     multi_position_problem,
     observability,
-    rocking_problem,
     observability_gramian,
+    rocking_problem,
     stationary_problem,
 )
 
@@ -141,6 +141,10 @@ def test_rocking_about_the_lever_arm_is_unobservable():
     S = np.sqrt(np.diag(p.P0))
     x = mode / S[:, None]
     assert np.abs(x.T @ W @ x).max() < 1e-12 * np.abs(W).max()
+    # and the analysis finds it: the mode lies in the span of the directions it reports
+    found = np.array([[d.components.get(k, 0.0) for k in r.names] for d in r.unobservable]).T
+    coef, *_ = np.linalg.lstsq(found, mode, rcond=None)
+    np.testing.assert_allclose(found @ coef, mode, atol=1e-9)
 
 
 def test_errors():
