@@ -11,7 +11,7 @@ import pytest
 from strapdown.analysis import cli
 from strapdown.analysis.alignment.imu import Scenario, simulate_imu
 from strapdown.analysis.alignment.observability import observability
-from strapdown.analysis.alignment.recorded import ImuLog, align_log, read_log, recorded_problem, write_log
+from strapdown.analysis.alignment.recorded import ImuLog, align_log, example_log, read_log, recorded_problem, write_log
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "docs" / "examples" / "rocking-imu-log.npz"
@@ -66,9 +66,10 @@ def test_every_method_aligns_a_still_log(method):
     assert abs(r.heading_error) < math.radians(0.05), (method, math.degrees(r.heading_error))
 
 
-def test_the_example_log_is_the_script_output():
-    ns = runpy.run_path(str(ROOT / "tools" / "make_example_log.py"))
-    made = ns["example_log"]()
+def test_the_example_log_is_the_script_output(tmp_path):
+    runpy.run_path(str(ROOT / "tools" / "make_example_log.py"))["main"]([str(tmp_path / "log.npz")])
+    made = read_log(tmp_path / "log.npz")
+    assert made.metadata == example_log().metadata
     log = read_log(EXAMPLE)
     assert EXAMPLE.stat().st_size < 0.5e6
     np.testing.assert_array_equal(log.dtheta, made.dtheta)
