@@ -448,7 +448,7 @@ def fit_allan(taus, adev, *, weights=None) -> AllanFit:
     --------
     >>> t = np.geomspace(0.1, 1e4, 30)
     >>> fit = fit_allan(t, np.sqrt(4.0 / t + FLICKER_FLOOR**2 * 0.09 + 1e-6 * t / 3.0))
-    >>> [round(x, 6) for x in fit]
+    >>> [round(x, 6) for x in (fit.random_walk, fit.bias_instability, fit.rate_random_walk)]
     [2.0, 0.3, 0.001]
     """
     from scipy.optimize import nnls

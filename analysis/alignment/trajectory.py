@@ -123,7 +123,17 @@ class Manoeuvre:
         return self.speed * abs(self.weave_amplitude) * 2.0 * math.pi / self.weave_period
 
     def speed_profile(self, t):
-        """``(s, s')`` at times t [m/s, m/s²]."""
+        """``(s, s')`` at times t [m/s, m/s²].
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+
+        Returns
+        -------
+        tuple of ndarray
+        """
         t = np.asarray(t, dtype=float)
         d = self.start_speed - self.speed
         inside = t < self.run_up
@@ -133,7 +143,17 @@ class Manoeuvre:
         return s, ds
 
     def heading_profile(self, t):
-        """``(ψ, ψ', ψ'')`` at times t [rad, rad/s, rad/s²]."""
+        """``(ψ, ψ', ψ'')`` at times t [rad, rad/s, rad/s²].
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s].
+
+        Returns
+        -------
+        tuple of ndarray
+        """
         w = 2.0 * math.pi / self.weave_period
         a = self.weave_amplitude
         t = np.asarray(t, dtype=float)
