@@ -20,7 +20,8 @@ Public API
 ----------
 DESIGN_LATITUDE, DESIGN_SENSORS, design_scenario, observability_study, ObservabilityStudy,
 methods_study, grade_tuning, GradeCurve, grade_study, RockingRow, rocking_design_study,
-CheckPoint, design_check_points, ManoeuvreRow, manoeuvre_study, aided_checks, AllanStudy, allan_study
+CheckPoint, design_check_points, ManoeuvreRow, manoeuvre_study, aided_checks, AllanStudy, allan_study,
+LargeHeadingStudy, large_heading_study
 """
 
 from __future__ import annotations
@@ -61,6 +62,8 @@ __all__ = [
     "aided_checks",
     "AllanStudy",
     "allan_study",
+    "LargeHeadingStudy",
+    "large_heading_study",
 ]
 
 #: Latitude of the design studies [rad].
@@ -551,3 +554,64 @@ def allan_study(sheet: DataSheet = GRADES[3], *, n_samples: int = 2**17, dt: flo
     rate = e.increments[0, :, 0] / dt - e.turn_on[0, 0]
     a = allan_deviation(rate, dt, spec=spec)
     return AllanStudy(sheet.name, spec, a, np.sqrt(spec.allan_variance(a.taus)), fit_allan(a.taus, a.adev, weights=a.edf), n_samples * dt)
+
+
+@dataclass(frozen=True)
+class LargeHeadingStudy:
+    """Alignment from large heading errors: the unscented filter and the closed-loop error-state filter from the same starts.
+
+    Attributes
+    ----------
+    initial : ndarray
+        ``(n,)`` initial heading errors [rad].
+    times : ndarray
+        ``(K,)`` times read [s].
+    unscented : ndarray
+        ``(n, K)`` the unscented filter's heading error then [rad].
+    error_state : ndarray
+        ``(n, K)`` the error-state filter's (:mod:`.fine`) [rad].
+    unscented_sigma, error_state_sigma : ndarray
+        ``(K,)`` their own azimuth σ then (trial 0's for the unscented filter) [rad].
+    """
+
+    initial: np.ndarray
+    times: np.ndarray
+    unscented: np.ndarray
+    error_state: np.ndarray
+    unscented_sigma: np.ndarray
+    error_state_sigma: np.ndarray
+
+
+def large_heading_study(*, n_trials: int, rng=None, prior_heading: float = rad(40.0), duration: float = 180.0) -> LargeHeadingStudy:
+    """Both filters from the same large initial heading errors (navigation-grade sensors, at rest, 1 s epochs).
+
+    Parameters
+    ----------
+    n_trials : int, keyword-only
+        Trials (one unscented filter each).
+    rng : Generator | SeedSequence | int | None, keyword-only
+        Root seed: the record, the initial errors, the filters' noise.
+    prior_heading : float, keyword-only
+        Standard deviation of the initial heading errors, and the filters' prior [rad].
+    duration : float, keyword-only
+        [s].
+
+    Returns
+    -------
+    LargeHeadingStudy
+    """
+    from .tilt_attitude import attitude_matrix
+    from .unscented import UnscentedTuning, unscented_alignment
+
+    root = montecarlo.root_seed_sequence(rng)
+    s_rec, s_init, s_u, s_f = (np.random.default_rng(montecarlo.block_seed(root, k)) for k in range(4))
+    e = DESIGN_SENSORS
+    sc = Scenario(DESIGN_LATITUDE, heading=rad(30.0), sample_rate=5.0, duration=duration)
+    rec = simulate_imu(sc, e, n_trials=n_trials, rng=s_rec, truth_stride=5)
+    kw = dict(gyro_bias=e.gyro_bias_sigma, accel_bias=e.accel_bias_sigma, gyro_noise=e.gyro_noise, accel_noise=e.accel_noise)
+    tilt = rad(0.1)
+    x0 = s_init.standard_normal((n_trials, 3)) * np.array([prior_heading, tilt, tilt])
+    u = unscented_alignment(rec, UnscentedTuning(prior_heading=prior_heading, prior_tilt=tilt, alpha=1e-3, **kw), rng=s_u, initial_errors=x0)
+    f = fine_alignment(rec, FilterTuning(epoch=1.0, prior_heading=prior_heading, prior_tilt=tilt, **kw), rng=s_f, initial_attitude=attitude_matrix(rec.truth_angles[:, 0] + x0))
+    idx = [k for k in (9, 29, 59, 119, u.times.size - 1) if k < u.times.size]
+    return LargeHeadingStudy(x0[:, 0], u.times[idx], u.heading_error[:, idx], f.heading_error[:, idx], u.heading_sigma[0, idx], f.heading_sigma[idx])
