@@ -513,9 +513,16 @@ class AllanStudy:
     expected : ndarray
         The data sheet's Allan deviation at the same τ [rad/s].
     fit : AllanFit
-        N, B, K read back from the measured curve.
+        N, B, K read back from the measured curve up to ``fit_tau``.
     duration : float
         Length of the record [s].
+    fit_tau : float
+        Longest averaging time of the fit [s]: a third of the flicker band's
+        longest correlation time, beyond which the Gauss–Markov sum leaves the
+        flicker floor.
+    model_fit : AllanFit
+        The same fit of the data sheet's own curve at the same τ (what a perfect
+        record would read back).
     """
 
     grade: str
@@ -524,6 +531,8 @@ class AllanStudy:
     expected: np.ndarray
     fit: AllanFit
     duration: float
+    fit_tau: float
+    model_fit: AllanFit
 
     @property
     def inside(self) -> int:
@@ -553,7 +562,12 @@ def allan_study(sheet: DataSheet = GRADES[3], *, n_samples: int = 2**17, dt: flo
     e = simulate_sensor_errors(spec, n_trials=1, n_samples=n_samples, dt=dt, rng=rng)
     rate = e.increments[0, :, 0] / dt - e.turn_on[0, 0]
     a = allan_deviation(rate, dt, spec=spec)
-    return AllanStudy(sheet.name, spec, a, np.sqrt(spec.allan_variance(a.taus)), fit_allan(a.taus, a.adev, weights=a.edf), n_samples * dt)
+    top = spec.flicker_band[1] / 3.0
+    used = a.taus <= top
+    expected = np.sqrt(spec.allan_variance(a.taus))
+    fit = fit_allan(a.taus[used], a.adev[used], weights=a.edf[used])
+    model = fit_allan(a.taus[used], expected[used], weights=a.edf[used])
+    return AllanStudy(sheet.name, spec, a, expected, fit, n_samples * dt, float(top), model)
 
 
 @dataclass(frozen=True)
