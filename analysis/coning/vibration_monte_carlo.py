@@ -121,7 +121,7 @@ def _density(spectrum: Spectrum):
     return grid, cell / cell.sum(), cdf
 
 
-def draw_components(environment: Environment, count: int, rng: np.random.Generator, *, band_components: int = BAND_COMPONENTS):
+def draw_components(environment: Environment, count: int, rng: np.random.Generator, *, band_components: int = BAND_COMPONENTS, densities=None):
     """Frequencies and amplitudes of ``count`` realisations (module docstring).
 
     Parameters
@@ -134,6 +134,9 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         Random stream.
     band_components : int, keyword-only
         Sinusoids per spectrum [count].
+    densities : list, keyword-only
+        The sampling densities of the spectra, as made by this function when
+        absent (passed in to draw many times from one environment).
 
     Returns
     -------
@@ -151,8 +154,8 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         freq[:, : len(lines)] = [ln.frequency for ln in lines]
         amp[:, : len(lines)] = np.stack([ln.amplitude for ln in lines])[None] * np.exp(1j * phases)[..., None]
     k = len(lines)
-    for s in environment.spectra:
-        grid, cell, cdf = _density(s)
+    densities = densities if densities is not None else [_density(s) for s in environment.spectra]
+    for s, (grid, cell, cdf) in zip(environment.spectra, densities):
         u = rng.uniform(size=(count, band_components))
         idx = np.clip(np.searchsorted(cdf, u, side="right") - 1, 0, cell.size - 1)
         frac = (u - cdf[idx]) / np.where(cell[idx] > 0, cell[idx], 1.0)
@@ -403,11 +406,12 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
     seed = rng if isinstance(rng, np.random.SeedSequence) else np.random.SeedSequence(rng.integers(2**63) if isinstance(rng, np.random.Generator) else rng)
     children = seed.spawn(pairs)
     out_pairs = np.empty((pairs, 6))
+    densities = [_density(s) for s in environment.spectra]
     for start in range(0, pairs, chunk):
         sel = children[start : start + chunk]
         freqs, amps = [], []
         for child in sel:
-            f, z = draw_components(environment, 1, np.random.default_rng(child), band_components=band_components)
+            f, z = draw_components(environment, 1, np.random.default_rng(child), band_components=band_components, densities=densities)
             freqs += [f[0], f[0]]
             amps += [z[0], -z[0]]
         freq = np.array(freqs)
