@@ -36,6 +36,7 @@ Public API
 
    TunedAlgorithm
    tune
+   tuned_drift
    lag_functions
    drift_across_band
    BandDrift
@@ -55,7 +56,7 @@ from ..core.validation import as_array, as_int, positive
 from .environment import Environment, coning_line
 from .vibration_drift import environment_drift, response_integrals
 
-__all__ = ["TunedAlgorithm", "tune", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
+__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
 
 #: What an algorithm is tuned for.
 QUANTITIES = ("coning", "sculling")
@@ -293,10 +294,48 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     terms = tuple(Term(Fraction(repr(float(v))), (N - lag, N)) for lag, v in enumerate(k, start=1) if v != 0.0)
     alg = Algorithm(name or f"tuned-{quantity}-{suffix}", N, terms, f"{N}-sample algorithm tuned to {environment.name} ({quantity}, h = {h:g} s)", "tuned by strapdown-analysis")
     classical = optimal_coning_algorithm(N, history=K)
-    d_t = environment_drift(alg, environment, h)
     d_c = environment_drift(classical, environment, h)
-    pick = (lambda d: d.total_vector) if quantity == "coning" else (lambda d: d.sculling_vector)
-    return TunedAlgorithm(alg, quantity, tuple(float(v) for v in k), nulled, r, taylor, pick(d_t), classical, pick(d_c), h)
+    lag_sums = tuple(float(t.coefficient) for t in sorted(terms, key=lambda t: -t.cross[0]))
+    drift = c - M @ np.array([float(Fraction(repr(float(v)))) for v in k])
+    return TunedAlgorithm(alg, quantity, lag_sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h)
+
+
+def tuned_drift(environment: Environment, samples: int, sample_interval: float, lag_sums, *, history: int = 0, quantity: str = "coning") -> np.ndarray:
+    """Drift (or rectification error) vector of the pairwise algorithm with ``lag_sums`` in ``environment``.
+
+    The linear model of the module docstring, ``c − M k``: the same value as
+    :func:`strapdown.analysis.coning.vibration_drift.environment_drift` for
+    that algorithm, without deriving its closed form symbolically (cheap for
+    many coefficient sets).
+
+    Parameters
+    ----------
+    environment : Environment
+        Lines, spectra, sensors.
+    samples : int
+        N.
+    sample_interval : float
+        h [s].
+    lag_sums : sequence of float
+        k_l, l = 1 … N + history − 1.
+    history : int, keyword-only
+        Samples of earlier steps.
+    quantity : str, keyword-only
+        ``"coning"`` [rad/s] or ``"sculling"`` [m/s²].
+
+    Returns
+    -------
+    ndarray (3,)
+    """
+    N = as_int(samples, "samples", minimum=1)
+    K = as_int(history, "history", minimum=0)
+    if quantity not in QUANTITIES:
+        raise ValueError(f"Expected `quantity` among {', '.join(QUANTITIES)}, got {quantity!r}")
+    k = np.asarray(lag_sums, dtype=float).ravel()
+    if k.size != N + K - 1:
+        raise ValueError(f"Expected {N + K - 1} lag sums, got {k.size}")
+    c, M = _environment_model(environment, N, K, positive(sample_interval, "sample_interval"), quantity)
+    return c - M @ k
 
 
 @dataclass(frozen=True, eq=False)
