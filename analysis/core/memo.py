@@ -3,8 +3,8 @@
 The common random numbers of a parameter search make the same deterministic
 work recur (the same draw evaluated again, the same noise drawn again, the
 same records filtered by another filter); the modules that serve it from
-memory (:mod:`.repeated_draws`, :mod:`strapdown.analysis.gyrocompass.base_motion`,
-:mod:`strapdown.analysis.gyrocompass.fine_alignment`) keep it here.  A value
+memory (:mod:`.repeated_draws`, :mod:`strapdown.analysis.alignment.base_motion`,
+:mod:`strapdown.analysis.alignment.fine`) keep it here.  A value
 is an array, or a tuple of arrays and other items; its arrays are made
 read-only and count against the bound.
 """

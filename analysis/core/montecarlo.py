@@ -5,7 +5,8 @@ The unit of randomness is a *block* of trials.  Block ``i`` draws from the
 ``SeedSequence.spawn`` would give, built directly from the spawn key), and
 contributes one row of sums to the result.  Chunks are only groups of whole
 blocks handed to a worker, and the rows are combined with the exactly rounded
-:func:`math.fsum` and integer histogram counts, so the result is bit-identical
+:func:`math.fsum`, integer histogram counts and the errors themselves (whose
+order statistics are the quantiles, :mod:`.quantiles`), so the result is bit-identical
 for any chunk size, any number of workers and any executor (serial,
 :class:`concurrent.futures.ProcessPoolExecutor`, or a ``dask.distributed``
 ``Client``).
@@ -26,6 +27,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .quantiles import sample_quantiles
 from .validation import as_array, as_int, positive
 
 __all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
@@ -61,16 +63,19 @@ class MonteCarloResult:
     rms_ci : tuple of float
         95 % interval of the rms, ``√`` of the interval of ``mse`` [error units].
     quantiles : dict
-        Level → error quantile [error units] (NaN if it falls outside the histogram).
+        Level → error quantile [error units]: the order statistic of the errors
+        (:func:`strapdown.analysis.core.quantiles.sample_quantiles`).
     minimum, maximum : float
         Extreme errors [error units].
     aux_mean : tuple of float
         Per-trial side quantities averaged over trials.
     histogram : tuple
-        ``(edges, counts, underflow, overflow)``.
+        ``(edges, counts, underflow, overflow)``: for display (quantiles come from the errors themselves).
     aux_std_error : tuple of float
         Standard error of each entry of ``aux_mean`` (from the per-trial values,
         which are independent across trials).
+    quantile_intervals : dict
+        Level → ``(low, high)``, the 95 % interval of the quantile (NaN where the samples do not reach).
     """
 
     n_trials: int
@@ -87,6 +92,7 @@ class MonteCarloResult:
     aux_mean: tuple = ()
     histogram: tuple = field(default=(), repr=False, compare=False)
     aux_std_error: tuple = ()
+    quantile_intervals: dict = field(default_factory=dict)
 
     def covers(self, bound: float) -> str:
         """Classify ``bound`` against the rms.
@@ -178,7 +184,7 @@ class _Chunk:
 
     def __call__(self):
         root = np.random.SeedSequence(self.entropy, spawn_key=self.spawn_key, pool_size=self.pool_size)
-        rows, aux_rows, aux_squares = [], [], []
+        rows, aux_rows, aux_squares, kept = [], [], [], []
         counts = np.zeros(self.n_bins + 2, dtype=np.int64)
         lo, hi = math.inf, -math.inf
         for b in range(self.first, self.last):
@@ -186,6 +192,7 @@ class _Chunk:
             out = self.kernel(n, np.random.default_rng(block_seed(root, b)))
             errors, aux = out if isinstance(out, tuple) else (out, None)
             errors = np.asarray(errors, dtype=float).reshape(n, -1)
+            kept.append(errors)
             m = errors.mean(axis=1)
             ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
             rows.append((m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum()))
@@ -199,7 +206,7 @@ class _Chunk:
             idx = np.clip(u, 0.0, self.n_bins + 1.0).astype(np.int64)
             counts += np.bincount(idx, minlength=self.n_bins + 2)[: self.n_bins + 2]
         aux_arr = np.concatenate([np.array(aux_rows), np.array(aux_squares)], axis=1) if aux_rows else None
-        return np.array(rows), aux_arr, counts, lo, hi
+        return np.array(rows), aux_arr, counts, lo, hi, np.concatenate(kept)
 
 
 def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, desc: str = "Monte Carlo") -> list:
@@ -344,6 +351,9 @@ def run(
     n_bins = as_int(n_bins, "n_bins", minimum=2)
     scale = positive(scale, "scale")
     half_width = positive(half_width, "half_width")
+    for level in quantiles:
+        if not 0.0 < float(level) < 1.0:
+            raise ValueError(f"Expected quantile levels in (0, 1), got {level}")
     root = root_seed_sequence(rng)
     n_blocks = -(-n_trials // trials_per_block)
     tasks = [
@@ -363,7 +373,10 @@ def run(
         k = aux.shape[1] // 2
         aux_mean = tuple(math.fsum(aux[:, j]) / n_trials for j in range(k))
         aux_se = tuple(math.sqrt(max(math.fsum(aux[:, k + j]) / n_trials - m * m, 0.0) / (n_trials - 1)) for j, m in enumerate(aux_mean))
-    return replace(_summarise(n_trials, sums, counts, lo, hi, scale, half_width, n_bins, quantiles, aux_mean), aux_std_error=aux_se)
+    errors = np.concatenate([p[5] for p in parts])
+    q = sample_quantiles(errors, quantiles)
+    summary = _summarise(n_trials, sums, counts, lo, hi, scale, half_width, n_bins, aux_mean)
+    return replace(summary, aux_std_error=aux_se, quantiles={x.level: x.value for x in q}, quantile_intervals={x.level: (x.low, x.high) for x in q})
 
 
 @dataclass(frozen=True)
@@ -652,7 +665,7 @@ def controlled(result: MonteCarloResult, *, offsets, mean_column: int = 0, squar
     )
 
 
-def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_mean) -> MonteCarloResult:
+def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, aux_mean) -> MonteCarloResult:
     s_m, s_m2, s_ms, s_ms2, _ = sums
     mean = s_m / n
     mse = s_ms / n
@@ -663,17 +676,6 @@ def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_m
     edges = np.linspace(-half_width * scale, half_width * scale, n_bins + 1)
     inner = counts[1:-1]
     total = int(counts.sum())
-    cdf = np.concatenate([[counts[0]], counts[0] + np.cumsum(inner)]) / total
-    q = {}
-    for level in levels:
-        if not 0.0 < level < 1.0:
-            raise ValueError(f"Expected quantile levels in (0, 1), got {level}")
-        if level <= cdf[0] or level > cdf[-1]:
-            q[float(level)] = math.nan
-            continue
-        i = int(np.searchsorted(cdf, level, side="left"))  # cdf[i-1] < level <= cdf[i]
-        frac = (level - cdf[i - 1]) / (cdf[i] - cdf[i - 1])
-        q[float(level)] = float(edges[i - 1] + frac * (edges[i] - edges[i - 1]))
     n_samples = total
     return MonteCarloResult(
         n_trials=n,
@@ -684,7 +686,7 @@ def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_m
         mse_std_error=se_mse,
         rms=math.sqrt(mse),
         rms_ci=(math.sqrt(mse_lo), math.sqrt(mse_hi)),
-        quantiles=q,
+        quantiles={},
         minimum=lo,
         maximum=hi,
         aux_mean=aux_mean,

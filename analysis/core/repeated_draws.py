@@ -1,7 +1,7 @@
 """Normal draws repeated from the same generator state, served from memory.
 
 A search over a parameter with common random numbers — the admissible rocking
-amplitude of :mod:`strapdown.analysis.gyrocompass.alignment_design`, whose
+amplitude of :mod:`strapdown.analysis.alignment.design`, whose
 every amplitude reruns the same trials from the same seeds — draws the same
 white noise again and again.  :func:`standard_normal` returns
 ``rng.standard_normal(shape)`` and leaves ``rng`` in the state that call would

@@ -2,8 +2,8 @@
 
 The rocking centre is fixed on the Earth at latitude φ; the block sits at the
 lever arm ``r`` (body axes) from it.  Its attitude is the stable attitude
-``(ψ0, β0, γ0)`` plus the rocking of :mod:`strapdown.analysis.gyrocompass.base_motion`,
-``C_b^n(t)`` of :mod:`strapdown.analysis.gyrocompass.tilt_attitude`.  The ideal sensors measure
+``(ψ0, β0, γ0)`` plus the rocking of :mod:`strapdown.analysis.alignment.base_motion`,
+``C_b^n(t)`` of :mod:`strapdown.analysis.alignment.tilt_attitude`.  The ideal sensors measure
 
 * gyros: ``ω_ib^b = ω_nb^b + C_n^b ω_ie^n`` (the base does not move over the
   Earth, so the transport rate is zero);
@@ -34,11 +34,11 @@ import numpy as np
 
 from ..core import repeated_draws
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
-from . import alignment_kernels as kernels
-from .azimuth import check_latitude
+from ..gyrocompass.azimuth import check_latitude
+from ..gyrocompass.rocking import as_generator
+from . import kernels
 from .base_motion import StillBase
 from .earth import earth_rate_ned, gravity_ned
-from .rocking import as_generator
 from .tilt_attitude import attitude_matrix, body_acceleration, body_rate
 
 __all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu", "ideal_increments"]
@@ -119,7 +119,7 @@ class Scenario:
     beta0, gamma0 : float
         Stable tilts [rad].
     motion : rocking model
-        From :mod:`strapdown.analysis.gyrocompass.base_motion` (default no rocking).
+        From :mod:`strapdown.analysis.alignment.base_motion` (default no rocking).
     lever_arm : array_like
         Position of the sensor block relative to the rocking centre, body axes [m].
     sample_rate : float
@@ -244,9 +244,9 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     scenario : Scenario
         Place, stable attitude, lever arm and sampling.
     motion : MotionRealisation
-        The rocking of n trials (:meth:`strapdown.analysis.gyrocompass.base_motion.SineMotion.draw` and kin).
+        The rocking of n trials (:meth:`strapdown.analysis.alignment.base_motion.SineMotion.draw` and kin).
     compiled : bool or None, keyword-only
-        Fused compiled loop (:mod:`.alignment_kernels`) or the numpy form,
+        Fused compiled loop (:mod:`.kernels`) or the numpy form,
         kept as the reference (equal to round-off); None (default): the loop
         when it pays off (:func:`.alignment_kernels.use_compiled`).
 

@@ -12,14 +12,14 @@ computed once by filterpy.
 The result carries the theory that applies to the method:
 
 ``analytic``
-    :func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`,
+    :func:`strapdown.analysis.alignment.theory.analytic_theory`,
     term by term;
 ``inertial``
-    the first-order bias floors (:func:`strapdown.analysis.gyrocompass.alignment_theory.bias_floor`);
+    the first-order bias floors (:func:`strapdown.analysis.alignment.theory.bias_floor`);
 ``kalman``
     the bias floors, the linear filter's own response to the fixed biases and
     its posterior standard deviation
-    (:func:`strapdown.analysis.gyrocompass.alignment_theory.kalman_theory`),
+    (:func:`strapdown.analysis.alignment.theory.kalman_theory`),
     with the NEES and NIS averaged over trials at a few epochs against their χ²
     bands.
 """
@@ -33,11 +33,11 @@ import numpy as np
 
 from ..core import kalman, montecarlo
 from ..core.validation import as_int
-from .alignment_theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
-from .analytic_alignment import analytic_alignment
-from .fine_alignment import FilterTuning, filter_model, fine_alignment, simulate_epoch_record
+from .analytic import analytic_alignment
+from .fine import FilterTuning, filter_model, fine_alignment, simulate_epoch_record
 from .imu import Scenario, SensorErrors, simulate_imu
-from .inertial_alignment import inertial_alignment
+from .inertial import inertial_alignment
+from .theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
 
 __all__ = ["METHODS", "AlignmentOptions", "AlignmentKernel", "KalmanConsistency", "AlignmentMonteCarlo", "alignment_monte_carlo"]
 

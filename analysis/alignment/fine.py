@@ -24,7 +24,7 @@ discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r'
 The model does not depend on the trial, so filterpy computes the gains and
 covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
 they are applied to every trial at once; the navigator integrates the epoch
-increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
+increments of :mod:`strapdown.analysis.alignment.preintegration`, one Python
 step per epoch vectorised over trials.  After every update the attitude and
 velocity estimates are fed back and the bias estimates compensate the sensors.
 
@@ -49,9 +49,9 @@ import numpy as np
 from ..core import kalman
 from ..core.memo import BoundedMemo
 from ..core.validation import as_array, as_float, nonnegative, positive
-from . import alignment_kernels as kernels
-from .alignment_estimate import AlignmentEstimate
+from . import kernels
 from .earth import earth_rate_ned, gravity_ned
+from .estimate import AlignmentEstimate
 from .imu import ImuRecord, Scenario, SensorErrors, simulate_imu
 from .preintegration import EpochIncrements, preintegrate
 from .tilt_attitude import angles_from_matrix, attitude_matrix, euler_rate_matrix
@@ -214,7 +214,7 @@ class FineAlignmentModel:
 
 
 def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel:
-    """Discretise the error model of :mod:`strapdown.analysis.gyrocompass.fine_alignment` for a scenario.
+    """Discretise the error model of :mod:`strapdown.analysis.alignment.fine` for a scenario.
 
     Parameters
     ----------
@@ -303,12 +303,12 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     """Standard deviation of the lever-arm velocity per NED axis [m/s], to first order in the rocking.
 
     ``v = C0 (J0 θ_r' × r)`` with C0 the stable attitude and J0 the Euler-rate
-    matrix there; the rate variances come from the motion's spectrum.
+    matrix there; the rate variances come from the motion's spectral density.
 
     Parameters
     ----------
     motion : rocking model
-        From :mod:`strapdown.analysis.gyrocompass.base_motion`.
+        From :mod:`strapdown.analysis.alignment.base_motion`.
     scenario : Scenario
         Stable attitude, lever arm and sampling.
 
@@ -317,8 +317,7 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     ndarray
         ``(3,)``.
     """
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    rate_var = np.sum(s.power * s.omega**2, axis=1)
+    rate_var = motion.rate_variance(scenario.dt)
     L = lever_matrix(scenario)
     return np.sqrt((L * L) @ rate_var)
 
@@ -343,9 +342,8 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     """
     if kind == "none" or not np.any(lever_velocity_sigma(motion, scenario)):
         return Disturbance("none")
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    sigma = s.sigma
-    rate = np.sqrt(np.sum(s.power * s.omega**2, axis=1))
+    sigma = motion.sigma
+    rate = np.sqrt(motion.rate_variance(scenario.dt))
     # the period whose oscillator has the rate variance of the rocking
     period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
     damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))
@@ -512,7 +510,7 @@ def simulate_epoch_record(
     import hashlib
     import pickle
 
-    from .rocking import as_generator
+    from ..gyrocompass.rocking import as_generator
 
     g = as_generator(rng)
     M, n, chunk = int(samples_per_epoch), int(n_trials), int(chunk)
@@ -596,7 +594,7 @@ def fine_alignment(
     TypeError
         If ``record`` or ``model`` is of the wrong type.
     """
-    from .rocking import as_generator
+    from ..gyrocompass.rocking import as_generator
 
     tuning = FilterTuning() if tuning is None else tuning
     sc = record.scenario

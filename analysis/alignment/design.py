@@ -13,7 +13,7 @@ sensor errors, ``e(a) = e_0 + a u``:
 
 ``analytic``
     ``u`` and the sensor part ``e_0`` come from the first-order theory
-    (:func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`);
+    (:func:`strapdown.analysis.alignment.theory.analytic_theory`);
     for a sinusoid the residues are bounded sinusoids, and the envelope over
     phase (the worst alignment time in ``[T, T + period]``) smooths the
     whole-period zeros;
@@ -47,12 +47,12 @@ import numpy as np
 
 from ..core import montecarlo
 from ..core.validation import as_array, as_int, in_open_interval, positive
-from .alignment_monte_carlo import METHODS, AlignmentKernel, AlignmentOptions, alignment_monte_carlo
-from .alignment_theory import analytic_theory
+from ..gyrocompass.error_distribution import abs_error_probability, abs_error_quantile
 from .base_motion import NarrowbandMotion, SineMotion
-from .error_distribution import abs_error_probability, abs_error_quantile
-from .fine_alignment import assumed_disturbance, filter_model
+from .fine import assumed_disturbance, filter_model
 from .imu import Scenario, SensorErrors
+from .monte_carlo import METHODS, AlignmentKernel, AlignmentOptions, alignment_monte_carlo
+from .theory import analytic_theory
 
 __all__ = ["AdmissibleAlignment", "admissible_rocking", "DesignCheckPoint", "design_check", "ROCKINGS"]
 
