@@ -55,9 +55,10 @@ rate of ``ΔW_I = W_I,true − W_I,computed`` [m/s²] (positive: the algorithm
 under-rectifies).
 
 *Spectra.*  Each band of a spectrum adds incoherent lines, ``P = G(f) df``:
-the drift is ``∫ u(f) df`` with the same integrand, taken by Gauss–Legendre
-quadrature in log f on every table interval, halved until two levels agree
-(:data:`QUADRATURE_RTOL`).  Lines at distinct frequencies add: the cross
+the drift is ``∫ u(f) df`` with the same integrand, taken by composite
+Gauss–Legendre quadrature in log f, every table frequency a break point
+(:func:`strapdown.analysis.core.quadrature.integrate`, to
+:data:`QUADRATURE_RTOL` of the integral of the integrand's magnitude).  Lines at distinct frequencies add: the cross
 terms of two lines average to zero unless the sum or difference of their
 frequencies is a multiple of the step rate 1/H (then the phases matter).
 
@@ -88,11 +89,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core.quadrature import integrate
 from ..core.validation import positive
 from .drift_theory import coning_drift_function
 from .environment import Environment, Spectrum, VibrationLine
@@ -101,10 +102,8 @@ __all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integ
 
 #: Relative tolerance of the spectrum quadrature (against the integral of the magnitude).
 QUADRATURE_RTOL = 1e-10
-#: Gauss–Legendre nodes per interval [count].
+#: Gauss–Legendre nodes per table interval of the estimate of the integrand's scale [count].
 QUADRATURE_NODES = 16
-#: Most halvings of a table interval [count].
-QUADRATURE_LEVELS = 24
 
 
 def _w(m: np.ndarray) -> np.ndarray:
@@ -190,46 +189,21 @@ def _integrand(environment: Environment, sample_interval: float, functions, freq
     return np.stack(cols, axis=1)
 
 
-@lru_cache(maxsize=4)
-def _legendre(n: int):
-    return np.polynomial.legendre.leggauss(n)
-
-
 def _spectrum_integral(environment, sample_interval, functions, spectrum: Spectrum, rtol: float) -> np.ndarray:
-    """∫ integrand df over the spectrum's table, adaptive Gauss–Legendre in u = ln f."""
-    nodes, weights = _legendre(QUADRATURE_NODES)
-    lo = np.log(spectrum.frequency[:-1])
-    hi = np.log(spectrum.frequency[1:])
-    total = None
-    scale = None
+    """∫ integrand df over the spectrum's table, in u = ln f (:func:`strapdown.analysis.core.quadrature.integrate`)."""
 
-    def rule(a, b):
-        mid, half = 0.5 * (a + b), 0.5 * (b - a)
-        u = mid[:, None] + half[:, None] * nodes[None, :]
+    def g(u):
         f = np.exp(u)
-        power = spectrum.at(f.ravel())
-        vals = _integrand(environment, sample_interval, functions, f.ravel(), power)
-        vals = vals.reshape(f.shape + vals.shape[1:]) * (f * half[:, None] * weights[None, :])[..., None, None]
-        return vals.sum(axis=1), np.abs(vals).sum(axis=1)
+        vals = _integrand(environment, sample_interval, functions, f, spectrum.at(f)) * f[:, None, None]
+        return np.moveaxis(vals, 0, -1)
 
-    for level in range(QUADRATURE_LEVELS + 1):
-        whole, _ = rule(lo, hi)
-        mid = 0.5 * (lo + hi)
-        left, left_abs = rule(lo, mid)
-        right, right_abs = rule(mid, hi)
-        halves = left + right
-        if scale is None:
-            scale = np.maximum((left_abs + right_abs).sum(axis=0), 1e-300)
-        err = np.abs(whole - halves)
-        ok = np.all(err <= rtol * scale[None], axis=(1, 2)) | (level == QUADRATURE_LEVELS)
-        accepted = halves[ok].sum(axis=0)
-        total = accepted if total is None else total + accepted
-        if np.all(ok):
-            break
-        lo_next = np.concatenate([lo[~ok], mid[~ok]])
-        hi_next = np.concatenate([mid[~ok], hi[~ok]])
-        lo, hi = lo_next, hi_next
-    return total
+    edges = np.log(spectrum.frequency)
+    nodes, weights = np.polynomial.legendre.leggauss(QUADRATURE_NODES)
+    mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
+    u = (mid[:, None] + half[:, None] * nodes[None, :]).ravel()
+    w = (half[:, None] * weights[None, :]).ravel()
+    scale = np.abs(g(u)) @ w  # ∫|integrand|, the scale of the absolute tolerance of each element
+    return integrate(g, edges, rtol=rtol, atol=rtol * float(np.max(scale)), panels=1)
 
 
 def response_integrals(environment: Environment, sample_interval: float, functions, *, rtol: float = QUADRATURE_RTOL) -> ResponseIntegrals:
