@@ -47,6 +47,8 @@ Public API
 .. autosummary::
 
    CHANNELS
+   unit_vector
+   orthonormal_pair
    VibrationLine
    Spectrum
    Environment
@@ -71,14 +73,27 @@ from ..core.units import DEG, STANDARD_GRAVITY
 from ..core.validation import as_array, as_float, positive
 from .sensor_dynamics import ANALOG_KINDS, DIGITAL_KINDS, ChannelFilter, Sensor, analog_filter, digital_filter
 
-__all__ = ["CHANNELS", "VibrationLine", "Spectrum", "Environment", "coning_line", "sculling_line", "load_environment", "EnvironmentLimits", "ENVIRONMENT_LIMITS"]
+__all__ = ["CHANNELS", "unit_vector", "orthonormal_pair", "VibrationLine", "Spectrum", "Environment", "coning_line", "sculling_line", "load_environment", "EnvironmentLimits", "ENVIRONMENT_LIMITS"]
 
 #: The six channels, in order: body angular rate ω [rad/s], specific force a [m/s²].
 CHANNELS = ("wx", "wy", "wz", "ax", "ay", "az")
 
 
 # --------------------------------------------------------------------------- lines
-def _unit(v, name: str) -> np.ndarray:
+def unit_vector(v, name: str) -> np.ndarray:
+    """``v`` normalised, refusing a zero or malformed vector (the message names ``name``).
+
+    Parameters
+    ----------
+    v : array_like of three
+        The vector.
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    ndarray (3,)
+    """
     arr = as_array(v, name)
     if arr.shape != (3,):
         raise ValueError(f"Expected `{name}` as three numbers, got shape {arr.shape}")
@@ -88,8 +103,18 @@ def _unit(v, name: str) -> np.ndarray:
     return arr / n
 
 
-def _perpendicular(w: np.ndarray) -> tuple:
-    """A right-handed orthonormal pair (u, v) with u × v = w."""
+def orthonormal_pair(w: np.ndarray) -> tuple:
+    """A right-handed orthonormal pair (u, v) with u × v = w (w a unit vector).
+
+    Parameters
+    ----------
+    w : ndarray (3,)
+        Unit vector.
+
+    Returns
+    -------
+    tuple of ndarray
+    """
     k = int(np.argmin(np.abs(w)))
     e = np.zeros(3)
     e[k] = 1.0
@@ -175,8 +200,8 @@ def coning_line(freq_hz: float, half_angle: float, *, axis=(0.0, 0.0, 1.0), phas
     a = as_float(half_angle, "half_angle")
     if not 0.0 < a < math.pi / 2:
         raise ValueError(f"Expected `half_angle` in (0, π/2) rad, got {a:g}")
-    w = _unit(axis, "axis")
-    u, v = _perpendicular(w)
+    w = unit_vector(axis, "axis")
+    u, v = orthonormal_pair(w)
     rate = 2.0 * math.pi * f * math.sin(a) * np.exp(1j * as_float(phase, "phase")) * (v + 1j * u)
     return VibrationLine(f, np.concatenate([rate, np.zeros(3)]), label or f"coning {f:g} Hz, {math.degrees(a):g}°")
 
@@ -210,8 +235,8 @@ def sculling_line(freq_hz: float, angle_amplitude: float, accel_amplitude: float
     """
     f = positive(freq_hz, "freq_hz")
     nu = 2.0 * math.pi * f
-    e_r = _unit(rotation_axis, "rotation_axis")
-    e_a = _unit(accel_axis, "accel_axis")
+    e_r = unit_vector(rotation_axis, "rotation_axis")
+    e_a = unit_vector(accel_axis, "accel_axis")
     rate = as_float(angle_amplitude, "angle_amplitude") * nu * np.exp(1j * as_float(angle_phase, "angle_phase")) * e_r
     accel = -1j * as_float(accel_amplitude, "accel_amplitude") * np.exp(1j * as_float(accel_phase, "accel_phase")) * e_a
     return VibrationLine(f, np.concatenate([rate, accel]), label or f"sculling {f:g} Hz")

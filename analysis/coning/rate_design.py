@@ -44,7 +44,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...derivations.coning.algorithms import Algorithm
 from ..core.validation import as_array, nonnegative, positive
 from .computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
 from .environment import Environment, Spectrum, VibrationLine

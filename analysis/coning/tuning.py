@@ -256,7 +256,7 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     >>> env = Environment((coning_line(10.0, math.radians(1.0)),))
     >>> t = tune(env, 2, 1e-3)
     >>> round(t.lag_sums[0], 8)                    # → 2/3 as ωh → 0
-    0.66672929
+    0.66679833
     """
     if not isinstance(environment, Environment):
         raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")

@@ -40,13 +40,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import linalg, signal
+from scipy import signal
 from scipy.integrate import solve_ivp
 
 from ...derivations.coning.algorithms import Algorithm
 from ..core import quaternion as quat
 from ..core.validation import as_int, in_open_interval, positive
-from .environment import _perpendicular, _unit
+from .environment import orthonormal_pair, unit_vector
 from .evaluation import increment
 from .sensor_dynamics import Sensor
 from .simulator import step_windows
@@ -78,8 +78,8 @@ def cone_rate(t, half_angle: float, omega: float, axis, phase: float = 0.0) -> n
     -------
     ndarray
     """
-    w = _unit(axis, "axis")
-    u, v = _perpendicular(w)
+    w = unit_vector(axis, "axis")
+    u, v = orthonormal_pair(w)
     psi = omega * np.asarray(t, dtype=float)[..., None] + phase
     return omega * math.sin(half_angle) * (-np.sin(psi) * u + np.cos(psi) * v) - (1.0 - math.cos(half_angle)) * omega * w
 
@@ -98,8 +98,8 @@ def cone_attitude(t, half_angle: float, omega: float, axis, phase: float = 0.0) 
     -------
     ndarray
     """
-    w = _unit(axis, "axis")
-    u, v = _perpendicular(w)
+    w = unit_vector(axis, "axis")
+    u, v = orthonormal_pair(w)
     psi = omega * np.asarray(t, dtype=float)[..., None] + phase
     return quat.rotvec_to_quat(half_angle * (np.cos(psi) * u + np.sin(psi) * v))
 
@@ -216,7 +216,7 @@ def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: f
     if abs(per_period - round(per_period)) > 1e-9 * per_period:
         raise ValueError(f"Expected the coning period {period:g} s to be a whole number of steps H = {step:g} s, got {per_period:.6g}")
     per_period = int(round(per_period))
-    w = _unit(axis, "axis")
+    w = unit_vector(axis, "axis")
     omega = 2.0 * math.pi * f
     M = gyro.decimation
     hs = h / M
