@@ -244,7 +244,7 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
                     hi = mid
                 else:
                     lo = mid
-                if hi / lo < 1 + 1e-4:
+                if hi / lo < 1 + 1e-3:
                     break
             rate = hi
         h = 1.0 / rate

@@ -61,6 +61,9 @@ __all__ = ["TunedAlgorithm", "tune", "tuned_drift", "lag_functions", "drift_acro
 #: What an algorithm is tuned for.
 QUANTITIES = ("coning", "sculling")
 
+#: Largest N and history of a tuned algorithm [count] (the published algorithms have at most 6 samples).
+MAX_SAMPLES = 8
+
 #: Below this x = ωh the response functions are summed from their Taylor series.
 _SERIES_BELOW = 0.05
 
@@ -227,11 +230,11 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     environment : Environment
         Lines, spectra and sensors.
     samples : int
-        N ≥ 1.
+        N, 1 … 8.
     sample_interval : float
         Algorithm sample interval h [s], > 0.
     history : int, keyword-only
-        Samples of earlier steps the algorithm may read (≥ 0); N + history ≥ 2.
+        Samples of earlier steps the algorithm may read, 0 … 8; N + history ≥ 2.
     quantity : str, keyword-only
         ``"coning"`` (the attitude drift) or ``"sculling"`` (the rectification
         error of the dual extension, the velocity algorithm).
@@ -264,6 +267,8 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     K = as_int(history, "history", minimum=0)
     if N + K < 2:
         raise ValueError(f"Expected samples + history >= 2 (one lag sum at least), got {N} and {K}")
+    if N > MAX_SAMPLES or K > MAX_SAMPLES:
+        raise ValueError(f"Expected `samples` and `history` at most {MAX_SAMPLES} each, got {N} and {K}")
     if quantity not in QUANTITIES:
         raise ValueError(f"Expected `quantity` among {', '.join(QUANTITIES)}, got {quantity!r}")
     h = positive(sample_interval, "sample_interval")
