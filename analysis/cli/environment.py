@@ -129,7 +129,7 @@ def _design(args, quantity: str) -> Result:
     }
     text = [
         f"{t.algorithm.name}: {args.samples} samples, {args.previous} previous, h = {h:g} s, tuned for {quantity} in {env.name}",
-        f"coefficients (algorithm-file keys): " + ", ".join(f"{key} = {v!r}" for key, v in t.coefficients.items()),
+        "coefficients (algorithm-file keys): " + ", ".join(f"{key} = {v!r}" for key, v in t.coefficients.items()),
         f"{'nulled' if t.nulled else 'minimised'}: {t.conditions} drift direction(s), {t.taylor_conditions} low-frequency condition(s)",
         f"{quantity} error: tuned {float(t.drift @ axis) * scale:+.6g}, classical ({t.classical.name}) {float(t.classical_drift @ axis) * scale:+.6g} "
         + ("deg/h" if quantity == "coning" else "m/s²"),
@@ -209,7 +209,10 @@ def rates_command(args) -> Result:
     env = _environment(args)
     design = rate_design(env, budget, algorithms=algorithms, tuned=tuned, rates=np.geomspace(lo, hi, args.rates), margin=args.margin)
     rows = []
-    lines = [f"budget {args.budget_deg_per_h:g} deg/h in {env.name} (frequency margin ±{args.margin:g})", f"{'algorithm':<18} {'rate [Hz]':>10} {'drift [deg/h]':>14} {'sensor [deg/h]':>15} {'load [kop/s]':>13}"]
+    lines = [
+        f"budget {args.budget_deg_per_h:g} deg/h in {env.name} (frequency margin ±{args.margin:g})",
+        f"{'algorithm':<18} {'rate [Hz]':>10} {'drift [deg/h]':>14} {'sensor [deg/h]':>15} {'load [kop/s]':>13}",
+    ]
     for r in design.rows:
         rows.append({
             "algorithm": r.algorithm, "samples": r.samples, "tuned": r.tuned, "sample_rate_hz": r.sample_rate,
