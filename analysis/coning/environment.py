@@ -408,7 +408,9 @@ class Environment:
         -------
         ndarray of complex
         """
-        return np.concatenate([self.gyro.response(omega, sample_interval), self.accelerometer.response(omega, sample_interval)], axis=-1)
+        gyro = self.gyro.response(omega, sample_interval)
+        accel = gyro if self.accelerometer == self.gyro else self.accelerometer.response(omega, sample_interval)
+        return np.concatenate([gyro, accel], axis=-1)
 
     def with_sensors(self, gyro: Sensor | None = None, accelerometer: Sensor | None = None) -> Environment:
         """The same vibration seen through other sensors.

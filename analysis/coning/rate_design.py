@@ -41,14 +41,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from fractions import Fraction
+from typing import NamedTuple
 
 import numpy as np
 
+from ...derivations.coning.algorithms import Algorithm, Term
 from ..core.validation import as_array, nonnegative, positive
 from .computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
+from .drift_theory import coning_drift_function
 from .environment import Environment, Spectrum, VibrationLine
-from .tuning import tune, tuned_drift
-from .vibration_drift import environment_drift
+from .tuning import lag_functions, solve_lag_sums
+from .vibration_drift import response_integrals
 
 __all__ = ["RateRow", "RateDesign", "rate_design", "scaled_frequency", "DEFAULT_RATES", "FREQUENCY_MARGIN"]
 
@@ -149,24 +153,56 @@ class RateDesign:
     margin: float
 
 
-def _worst_fixed(algorithm, environments, h):
-    """Worst |drift| over the environments, the nominal sensor part, and the algorithm at h."""
+class _Maker(NamedTuple):
+    """One row of the design: a fixed algorithm, or an (N, history) tuned at every rate."""
+
+    name: str
+    samples: int
+    history: int
+    algorithm: Algorithm | None
+
+
+def _evaluate(makers, environments, h, quantity):
+    """Worst |drift| over the environments, nominal sensor part and algorithm, for each maker at h.
+
+    One :func:`response_integrals` per environment serves every maker: the
+    closed form D of each fixed algorithm and the lag responses of each tuned
+    form are integrated together.
+    """
+    col = 0 if quantity == "coning" else 1
+    functions, slices = [], []
+    for m in makers:
+        start = len(functions)
+        if m.algorithm is not None:
+            functions.append(coning_drift_function(m.algorithm))
+        else:
+            functions.extend(lag_functions(m.samples, m.samples + m.history - 1))
+        slices.append(slice(start, len(functions)))
     try:
-        ds = [environment_drift(algorithm, e, h) for e in environments]
+        results = [response_integrals(e, h, functions) for e in environments]
     except ValueError:  # e.g. a digital filter's cut-off above the sensor Nyquist frequency at this rate
-        return math.nan, math.nan, None
-    return max(float(np.linalg.norm(d.total_vector)) for d in ds), float(np.linalg.norm(ds[0].sensor_vector)), algorithm
-
-
-def _worst_tuned(samples, history, name, environments, h, quantity):
-    """As :func:`_worst_fixed` for the algorithm tuned to the nominal environment at h."""
-    try:
-        t = tune(environments[0], samples, h, history=history, quantity=quantity, name=name)
-        drifts = [t.drift] + [tuned_drift(e, samples, h, t.lag_sums, history=history, quantity=quantity) for e in environments[1:]]
-        sensor = environment_drift(t.classical, environments[0], h).sensor_vector
-    except ValueError:
-        return math.nan, math.nan, None
-    return max(float(np.linalg.norm(d)) for d in drifts), float(np.linalg.norm(sensor)), t.algorithm
+        return [(math.nan, math.nan, None) for _ in makers]
+    sensors = [(r.true[:, col] - r.sensed[:, col]).sum(axis=0) for r in results]
+    out = []
+    for m, sl in zip(makers, slices):
+        parts = [r.algorithm[sl, :, col].sum(axis=1) for r in results]  # (functions of the maker, 3) per environment
+        if m.algorithm is not None:
+            drifts = [sensor + p[0] for sensor, p in zip(sensors, parts)]
+            alg = m.algorithm
+        else:
+            cs = [sensor + p[0] for sensor, p in zip(sensors, parts)]
+            Ms = [p[1:].T for p in parts]
+            try:
+                k, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
+            except ValueError:
+                out.append((math.nan, math.nan, None))
+                continue
+            k = np.array([float(Fraction(repr(float(v)))) for v in k])
+            drifts = [c - M @ k for c, M in zip(cs, Ms)]
+            terms = tuple(Term(Fraction(repr(float(v))), (m.samples - lag, m.samples)) for lag, v in enumerate(k, start=1) if v != 0.0)
+            alg = Algorithm(m.name, m.samples, terms, f"tuned at h = {h:g} s", "tuned by strapdown-analysis")
+        out.append((max(float(np.linalg.norm(d)) for d in drifts), float(np.linalg.norm(sensors[0])), alg))
+    return out
 
 
 def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned=((2, 0), (3, 0)), rates=DEFAULT_RATES,
@@ -214,43 +250,37 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
     margin = nonnegative(margin, "margin")
     model = model or LoadModel()
     envs = [environment] + ([scaled_frequency(environment, 1 - margin), scaled_frequency(environment, 1 + margin)] if margin > 0 else [])
-    makers = [(a.name, a.samples, False, (lambda h, a=a: _worst_fixed(a, envs, h))) for a in algorithms]
-    for n, k in tuned:
-        label = f"tuned-{n}" if k == 0 else f"tuned-{n}+{k}"
-        makers.append((label, n, True, (lambda h, n=n, k=k, label=label: _worst_tuned(n, k, label, envs, h, quantity))))
+    makers = [_Maker(a.name, a.samples, a.history, a) for a in algorithms]
+    makers += [_Maker(f"tuned-{n}" if k == 0 else f"tuned-{n}+{k}", n, k, None) for n, k in tuned]
     omega_bound = _rate_bound(environment)
-    rows, curves, sensor = [], [], None
-    for name, n, is_tuned, make in makers:
-        values = [make(1.0 / r) for r in grid]
-        curve = np.array([v[0] for v in values])
-        curves.append(curve)
-        if sensor is None:
-            sensor = np.array([v[1] for v in values])
-        ok = curve <= u
+    table = [_evaluate(makers, envs, 1.0 / r, quantity) for r in grid]  # table[rate][maker]
+    curves = np.array([[table[i][j][0] for i in range(grid.size)] for j in range(len(makers))])
+    sensor = np.array([table[i][0][1] for i in range(grid.size)]) if makers else np.zeros(grid.size)
+    rows = []
+    for j, m in enumerate(makers):
+        curve = curves[j]
         admissible = None
         for i in range(grid.size - 1, -1, -1):
-            if not ok[i]:
+            if not curve[i] <= u:
                 break
             admissible = i
         if admissible is None:
-            rows.append(RateRow(name, n, is_tuned, None, None, None, None, None))
+            rows.append(RateRow(m.name, m.samples, m.algorithm is None, None, None, None, None, None))
             continue
         rate = float(grid[admissible])
         if admissible > 0:  # bisect between the failing rate below and the admissible one
             lo, hi = float(grid[admissible - 1]), rate
-            for _ in range(30):
+            while hi / lo > 1 + 1e-3:
                 mid = math.sqrt(lo * hi)
-                if make(1.0 / mid)[0] <= u:
+                if _evaluate([m], envs, 1.0 / mid, quantity)[0][0] <= u:
                     hi = mid
                 else:
                     lo = mid
-                if hi / lo < 1 + 1e-3:
-                    break
             rate = hi
         h = 1.0 / rate
-        worst, sens, alg = make(h)
-        step = n * h
+        worst, sens, alg = _evaluate([m], envs, h, quantity)[0]
+        step = m.samples * h
         terms = series_terms(omega_bound * step, step, u, fraction=model.truncation_fraction) if omega_bound > 0 else 1
         cost = operation_count(alg).cost(model.m) + quaternion_update_count(terms).cost(model.m)
-        rows.append(RateRow(name, n, is_tuned, rate, worst, sens, cost, cost / model.time(step, n)))
-    return RateDesign(u, grid, tuple(rows), np.array(curves), sensor if sensor is not None else np.zeros(grid.size), margin)
+        rows.append(RateRow(m.name, m.samples, m.algorithm is None, rate, worst, sens, cost, cost / model.time(step, m.samples)))
+    return RateDesign(u, grid, tuple(rows), curves, sensor, margin)

@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy import signal
@@ -164,6 +165,16 @@ class AnalogFilter:
         return float(np.min(-np.roots(self.den).real))
 
 
+@lru_cache(maxsize=256)
+def _butterworth(order: int, cutoff_hz: float, sensor_interval: float) -> tuple:
+    """``scipy.signal.butter`` at the sensor rate, designed once per (order, cut-off, interval)."""
+    b, a = signal.butter(order, cutoff_hz, fs=1.0 / sensor_interval)
+    b, a = b / a[0], a / a[0]
+    b.setflags(write=False)
+    a.setflags(write=False)
+    return b, a
+
+
 @dataclass(frozen=True)
 class DigitalFilter:
     """A digital filter on the stream of increments at the sensor rate.
@@ -249,8 +260,7 @@ class DigitalFilter:
         nyquist = 0.5 / hs
         if self.cutoff_hz >= nyquist:
             raise ValueError(f"Expected the digital filter's `cutoff_hz` below the sensor Nyquist frequency {nyquist:g} Hz, got {self.cutoff_hz:g}")
-        b, a = signal.butter(self.order, self.cutoff_hz, fs=1.0 / hs)
-        return b / a[0], a / a[0]
+        return _butterworth(self.order, self.cutoff_hz, hs)
 
     def response(self, omega, sensor_interval: float) -> np.ndarray:
         """``D(e^{iω h_s})`` (``scipy.signal.freqz``).
@@ -370,7 +380,11 @@ class Sensor:
         ndarray of complex
         """
         hs = self.sensor_interval(sample_interval)
-        return np.stack([a.response(omega, hs) for a in self.axes], axis=-1)
+        seen: dict = {}
+        for a in self.axes:  # identical axes are evaluated once
+            if a not in seen:
+                seen[a] = a.response(omega, hs)
+        return np.stack([seen[a] for a in self.axes], axis=-1)
 
     @property
     def is_ideal(self) -> bool:

@@ -37,6 +37,7 @@ Public API
    TunedAlgorithm
    tune
    tuned_drift
+   solve_lag_sums
    lag_functions
    drift_across_band
    BandDrift
@@ -56,7 +57,7 @@ from ..core.validation import as_array, as_int, positive
 from .environment import Environment, coning_line
 from .vibration_drift import environment_drift, response_integrals
 
-__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
+__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
 
 #: What an algorithm is tuned for.
 QUANTITIES = ("coning", "sculling")
@@ -222,6 +223,51 @@ def _environment_model(environment: Environment, samples: int, history: int, sam
     return c, M
 
 
+def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, quantity: str = "coning") -> tuple:
+    """Lag sums that null ``c − M k`` where the degrees of freedom allow, else minimise it (module docstring).
+
+    Parameters
+    ----------
+    c : ndarray (3,)
+        Drift of the algorithm with no pairwise terms, sensor part included.
+    M : ndarray (3, L)
+        Drift removed per unit lag sum.
+    samples, history : int
+        N and the samples of earlier steps (L = N + history − 1).
+    quantity : str, keyword-only
+        For the message only.
+
+    Returns
+    -------
+    tuple
+        ``(k, nulled, conditions, taylor_conditions)``.
+
+    Raises
+    ------
+    ValueError
+        When there is nothing to tune to (c and M zero).
+    """
+    L = samples + history - 1
+    augmented = np.concatenate([M, c[:, None]], axis=1)
+    scale = float(np.max(np.abs(augmented))) if augmented.size else 0.0
+    if scale == 0.0:
+        raise ValueError(f"Expected an environment with {quantity} to tune to, got none (no {quantity} vector in any line or spectrum)")
+    u, s, _ = np.linalg.svd(augmented)
+    directions = u[:, : s.size][:, s > 1e-12 * s[0]]
+    r = directions.shape[1]
+    A_env = directions.T @ M
+    b_env = directions.T @ c
+    if r <= L:
+        rows, rhs = [a / np.linalg.norm(a) for a in A_env], [b / np.linalg.norm(a) for a, b in zip(A_env, b_env)]
+        for m in range(1, L - r + 1):
+            row, value = _taylor_row(samples, L, m)
+            norm = math.sqrt(sum(v * v for v in row))
+            rows.append(np.array(row) / norm)
+            rhs.append(value / norm)
+        return np.linalg.solve(np.array(rows), np.array(rhs)), True, r, L - r
+    return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0
+
+
 def tune(environment: Environment, samples: int, sample_interval: float, *, history: int = 0, quantity: str = "coning", name: str | None = None) -> TunedAlgorithm:
     """Tune an N-sample algorithm to ``environment`` (module docstring).
 
@@ -272,36 +318,15 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     if quantity not in QUANTITIES:
         raise ValueError(f"Expected `quantity` among {', '.join(QUANTITIES)}, got {quantity!r}")
     h = positive(sample_interval, "sample_interval")
-    L = N + K - 1
     c, M = _environment_model(environment, N, K, h, quantity)
-    augmented = np.concatenate([M, c[:, None]], axis=1)
-    scale = float(np.max(np.abs(augmented))) if augmented.size else 0.0
-    if scale == 0.0:
-        raise ValueError(f"Expected an environment with {quantity} to tune to, got none (no {quantity} vector in any line or spectrum)")
-    u, s, _ = np.linalg.svd(augmented)
-    directions = u[:, : s.size][:, s > 1e-12 * s[0]]
-    r = directions.shape[1]
-    A_env = directions.T @ M
-    b_env = directions.T @ c
-    if r <= L:
-        rows, rhs = [a / np.linalg.norm(a) for a in A_env], [b / np.linalg.norm(a) for a, b in zip(A_env, b_env)]
-        for m in range(1, L - r + 1):
-            row, value = _taylor_row(N, L, m)
-            norm = math.sqrt(sum(v * v for v in row))
-            rows.append(np.array(row) / norm)
-            rhs.append(value / norm)
-        k = np.linalg.solve(np.array(rows), np.array(rhs))
-        nulled, taylor = True, L - r
-    else:
-        k = np.linalg.lstsq(A_env, b_env, rcond=None)[0]
-        nulled, taylor = False, 0
+    k, nulled, r, taylor = solve_lag_sums(c, M, N, K, quantity=quantity)
     suffix = f"{N}" if K == 0 else f"{N}+{K}"
     terms = tuple(Term(Fraction(repr(float(v))), (N - lag, N)) for lag, v in enumerate(k, start=1) if v != 0.0)
     alg = Algorithm(name or f"tuned-{quantity}-{suffix}", N, terms, f"{N}-sample algorithm tuned to {environment.name} ({quantity}, h = {h:g} s)", "tuned by strapdown-analysis")
     classical = optimal_coning_algorithm(N, history=K)
     d_c = environment_drift(classical, environment, h)
-    lag_sums = tuple(float(t.coefficient) for t in sorted(terms, key=lambda t: -t.cross[0]))
-    drift = c - M @ np.array([float(Fraction(repr(float(v)))) for v in k])
+    lag_sums = tuple(float(Fraction(repr(float(v)))) for v in k)
+    drift = c - M @ np.array(lag_sums)
     return TunedAlgorithm(alg, quantity, lag_sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h)
 
 
