@@ -390,3 +390,16 @@ def test_rate_design_finds_the_lowest_admissible_rate():
             assert worst > budget * 0.9
     unreachable = rate_design(Environment((coning_line(20.0, DEG),), gyro=Sensor((_lowpass(50.0),) * 3)), budget, algorithms=[get("two-sample")], tuned=())
     assert unreachable.rows[0].sample_rate is None  # the filter's pseudo-coning alone exceeds the budget
+
+
+def test_monte_carlo_quadrature_of_the_sensor_samples_has_converged():
+    """The Gauss–Legendre rule over each sensor sample (ωh_s ≈ 0.94 here): three nodes agree with six, two do not (fixed draws)."""
+    pytest.importorskip("numba")
+    from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift
+
+    env = Environment((coning_line(150.0, 0.2 * DEG),), gyro=Sensor((_lowpass(200.0), _lowpass(260.0), _lowpass(200.0))))
+    three = monte_carlo_drift(get("two-sample"), env, 1e-3, pairs=2, duration=0.3, rng=9, quadrature_points=3)
+    six = monte_carlo_drift(get("two-sample"), env, 1e-3, pairs=2, duration=0.3, rng=9, quadrature_points=6)
+    two = monte_carlo_drift(get("two-sample"), env, 1e-3, pairs=2, duration=0.3, rng=9, quadrature_points=2)
+    assert np.allclose(three.mean, six.mean, rtol=2e-5, atol=0)
+    assert not np.allclose(two.mean, six.mean, rtol=1e-3, atol=0)

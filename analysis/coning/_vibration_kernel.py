@@ -116,8 +116,8 @@ def rotate(q0, q1, q2, q3, x, y, z):
     return x + q0 * tx + (q2 * tz - q3 * ty), y + q0 * ty + (q3 * tx - q1 * tz), z + q0 * tz + (q1 * ty - q2 * tx)
 
 
-def motion(k_count, zr, zi, th_re, th_im, a_re, a_im, b_re, b_im, out):
-    """θ, θ̇, a_I at one instant from the phases ``zr + i zi`` of the components; out[0:9]."""
+def motion(k_count, zr, zi, th_re, th_im, a_re, a_im, b_re, b_im, out, dual):
+    """θ, θ̇ (and a_I when ``dual``) at one instant from the phases ``zr + i zi`` of the components; out[0:9]."""
     for c in range(9):
         out[c] = 0.0
     for k in range(k_count):
@@ -125,7 +125,9 @@ def motion(k_count, zr, zi, th_re, th_im, a_re, a_im, b_re, b_im, out):
         for c in range(3):
             out[c] += th_re[k, c] * r - th_im[k, c] * i
             out[3 + c] += a_re[k, c] * r - a_im[k, c] * i
-            out[6 + c] += b_re[k, c] * r - b_im[k, c] * i
+        if dual:
+            for c in range(3):
+                out[6 + c] += b_re[k, c] * r - b_im[k, c] * i
 
 
 def run(freq, th_re, th_im, a_re, a_im, b_re, b_im, hs, decimation, warm_samples, steps, nodes, weights,
@@ -188,7 +190,7 @@ def run(freq, th_re, th_im, a_re, a_im, b_re, b_im, hs, decimation, warm_samples
                 for k in range(k_count):
                     zr[k] = ar[k] * step_r[k, jr] - ai[k] * step_i[k, jr]
                     zi[k] = ar[k] * step_i[k, jr] + ai[k] * step_r[k, jr]
-                motion(k_count, zr, zi, tr_, ti_, ar_, ai_, br_, bi_, val)
+                motion(k_count, zr, zi, tr_, ti_, ar_, ai_, br_, bi_, val, dual)
                 q0, q1, q2, q3 = quat_of(val[0], val[1], val[2])
                 vx = vy = vz = 0.0
                 for k in range(k_count):  # v_I = Re(B/(iω) z) = (Im(B z))/ω ... Re(-i B z)/ω = Im(B z)/ω
@@ -224,7 +226,7 @@ def run(freq, th_re, th_im, a_re, a_im, b_re, b_im, hs, decimation, warm_samples
                     bi = ar[k] * tab_i[k, jr, q] + ai[k] * tab_r[k, jr, q]
                     zr[k] = br
                     zi[k] = bi
-                motion(k_count, zr, zi, tr_, ti_, ar_, ai_, br_, bi_, val)
+                motion(k_count, zr, zi, tr_, ti_, ar_, ai_, br_, bi_, val, dual)
                 tx, ty, tz = val[0], val[1], val[2]
                 sa, ca, da_ = so3_coefficients(tx * tx + ty * ty + tz * tz)
                 # ω = J_r(θ) θ̇ = θ̇ − ca θ×θ̇ + da θ×(θ×θ̇)
