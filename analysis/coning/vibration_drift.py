@@ -54,6 +54,10 @@ gyro and accelerometer filters) and algorithm part ``q̃_s D(ωh)/ω``, both the
 rate of ``ΔW_I = W_I,true − W_I,computed`` [m/s²] (positive: the algorithm
 under-rectifies).
 
+*Lines of one frequency* are coherent (one rotor): their amplitudes add
+before the bilinear forms are taken, and they make one part
+(:func:`coherent_groups`).
+
 *Spectra.*  Each band of a spectrum adds incoherent lines, ``P = G(f) df``:
 the drift is ``∫ u(f) df`` with the same integrand, taken by composite
 Gauss–Legendre quadrature in log f, every table frequency a break point
@@ -75,6 +79,7 @@ Public API
    EnvironmentDrift
    environment_drift
    response_integrals
+   coherent_groups
    line_response
    QUADRATURE_RTOL
 
@@ -98,7 +103,7 @@ from ..core.validation import positive
 from .drift_theory import coning_drift_function
 from .environment import Environment, Spectrum, VibrationLine
 
-__all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "line_response", "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals"]
+__all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "coherent_groups", "line_response", "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals"]
 
 #: Relative tolerance of the spectrum quadrature (against the integral of the magnitude).
 QUADRATURE_RTOL = 1e-10
@@ -206,6 +211,28 @@ def _spectrum_integral(environment, sample_interval, functions, spectrum: Spectr
     return integrate(g, edges, rtol=rtol, atol=rtol * float(np.max(scale)), panels=1)
 
 
+def coherent_groups(lines) -> list:
+    """Lines grouped by frequency, in order of first appearance: lines of one frequency are coherent.
+
+    Two lines of the same frequency (a coning and a sculling line of one rotor)
+    have a fixed relative phase, so their cross terms do not average out: the
+    closed form takes their sum as one line.
+
+    Parameters
+    ----------
+    lines : sequence of VibrationLine
+        The lines.
+
+    Returns
+    -------
+    list of list of VibrationLine
+    """
+    groups: dict = {}
+    for ln in lines:
+        groups.setdefault(ln.frequency, []).append(ln)
+    return list(groups.values())
+
+
 def response_integrals(environment: Environment, sample_interval: float, functions, *, rtol: float = QUADRATURE_RTOL) -> ResponseIntegrals:
     """Truth, sensed truth and algorithm responses of every line and spectrum (:class:`ResponseIntegrals`).
 
@@ -238,10 +265,11 @@ def response_integrals(environment: Environment, sample_interval: float, functio
     functions = tuple(functions)
     parts, values = [], []
     if environment.lines:
-        freq = np.array([ln.frequency for ln in environment.lines])
-        power = np.stack([ln.power for ln in environment.lines])
+        groups = coherent_groups(environment.lines)
+        freq = np.array([g[0].frequency for g in groups])
+        power = np.stack([VibrationLine(g[0].frequency, sum(ln.amplitude for ln in g)).power for g in groups])
         values.extend(_integrand(environment, h, functions, freq, power))
-        parts.extend(("line", ln.label, (ln.frequency, ln.frequency)) for ln in environment.lines)
+        parts.extend(("line", " + ".join(ln.label for ln in g), (g[0].frequency, g[0].frequency)) for g in groups)
     for s in environment.spectra:
         values.append(_spectrum_integral(environment, h, functions, s, rtol))
         parts.append(("spectrum", s.label, s.band))
@@ -319,7 +347,7 @@ class EnvironmentDrift:
     sample_interval : float
         h [s].
     parts : tuple of DriftPart
-        One per line and spectrum, in the environment's order.
+        One per line frequency (coherent lines together) and spectrum, in the environment's order.
     coning_axis : ndarray (3,)
         Unit direction of the true coning rate (module docstring); signed drifts are along it.
     sculling_axis : ndarray (3,)

@@ -12,7 +12,8 @@ Each realisation is a sum of sinusoids with exact kinematics
 ``a_I = Σ_k Re(B_k e^{iω_k t})``; the body rate ``J_r(θ) θ̇`` and specific
 force ``R(θ)ᵀ a_I`` are exact, so the truth has no linearisation.
 
-* A **line** enters with its amplitude and a uniform random phase.
+* A **line** enters with its amplitude and a uniform random phase (one phase
+  for all the lines of one frequency, which are coherent).
 * A **spectrum** enters as :data:`BAND_COMPONENTS` sinusoids per realisation,
   each at a random frequency drawn from a density ``p(f)`` proportional to
   the normalised traces of its rate and acceleration blocks (on a fine grid,
@@ -152,7 +153,9 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
     freq = np.empty((count, K))
     amp = np.empty((count, K, 6), dtype=complex)
     if lines:
-        phases = rng.uniform(0.0, 2.0 * math.pi, size=(count, len(lines)))
+        groups = {}  # lines of one frequency are coherent: one random phase for them all
+        index = np.array([groups.setdefault(ln.frequency, len(groups)) for ln in lines])
+        phases = rng.uniform(0.0, 2.0 * math.pi, size=(count, len(groups)))[:, index]
         freq[:, : len(lines)] = [ln.frequency for ln in lines]
         amp[:, : len(lines)] = np.stack([ln.amplitude for ln in lines])[None] * np.exp(1j * phases)[..., None]
     k = len(lines)
