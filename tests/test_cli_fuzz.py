@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 #: The environment file of the environment commands' baselines.
-ENVIRONMENT = str(Path(__file__).resolve().parents[1] / "docs" / "environments" / "coning-10hz.toml")
+ENVIRONMENT = str(Path(__file__).resolve().parents[1] / "analysis" / "coning" / "environments" / "coning-10hz.toml")
 
 #: A valid, fast invocation of every command (the fuzz mutates one option at a time).
 BASELINES = {

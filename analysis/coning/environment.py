@@ -418,13 +418,17 @@ class Environment:
         Parameters
         ----------
         gyro, accelerometer : Sensor, optional
-            Replacements (default: keep).
+            Replacements (default: keep; a kept triad takes the decimation of the replaced one).
 
         Returns
         -------
         Environment
         """
-        return Environment(self.lines, self.spectra, gyro or self.gyro, accelerometer or self.accelerometer, self.name, self.description)
+        if gyro is not None and accelerometer is None:
+            accelerometer = Sensor(self.accelerometer.axes, gyro.decimation)
+        if accelerometer is not None and gyro is None:
+            gyro = Sensor(self.gyro.axes, accelerometer.decimation)
+        return Environment(self.lines, self.spectra, gyro, accelerometer, self.name, self.description)
 
     @property
     def frequency_range(self) -> tuple:

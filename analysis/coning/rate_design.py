@@ -10,7 +10,8 @@ For each algorithm, on a grid of sample rates ``1/h`` (ascending), the drift
 magnitude ``|u(h)|`` is the closed form of
 :mod:`strapdown.analysis.coning.vibration_drift`.  The *lowest admissible
 rate* is the lowest grid rate from which on every higher grid rate meets the
-budget, refined by bisection against the rate below it.  The sensor part of
+budget, refined by bisection against the rate below it (to
+:data:`RATE_TOLERANCE`).  The sensor part of
 the drift does not depend on the algorithm: where it alone exceeds the
 budget, no rate is admissible.
 
@@ -58,6 +59,8 @@ __all__ = ["RateRow", "RateDesign", "rate_design", "scaled_frequency", "DEFAULT_
 
 #: Grid of algorithm sample rates searched by default [Hz].
 DEFAULT_RATES = tuple(float(v) for v in np.geomspace(50.0, 20000.0, 61))
+#: Relative width of the bisection's last bracket of the lowest admissible rate [-].
+RATE_TOLERANCE = 2e-3
 #: Relative frequency margin of the admissibility check [-].
 FREQUENCY_MARGIN = 0.05
 
@@ -270,7 +273,7 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
         rate = float(grid[admissible])
         if admissible > 0:  # bisect between the failing rate below and the admissible one
             lo, hi = float(grid[admissible - 1]), rate
-            while hi / lo > 1 + 1e-3:
+            while hi / lo > 1 + RATE_TOLERANCE:
                 mid = math.sqrt(lo * hi)
                 if _evaluate([m], envs, 1.0 / mid, quantity)[0][0] <= u:
                     hi = mid
