@@ -63,9 +63,12 @@ def increment(w, wd):
 
 
 def so3_coefficients(x2):
-    """``sin x / x``, ``(1 − cos x)/x²``, ``(x − sin x)/x³`` of x = √x2 (series at small x)."""
-    if x2 < 1e-6:
-        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0, 0.5 - x2 / 24.0 + x2 * x2 / 720.0, 1.0 / 6.0 - x2 / 120.0 + x2 * x2 / 5040.0
+    """``sin x / x``, ``(1 − cos x)/x²``, ``(x − sin x)/x³`` of x = √x2 (Taylor through x⁸ below x = 0.1: error < 1e-17)."""
+    if x2 < 1e-2:
+        a = 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0)))
+        b = 0.5 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))))
+        c = (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0 * (1.0 - x2 / 110.0)))) / 6.0
+        return a, b, c
     x = math.sqrt(x2)
     s, c = math.sin(x), math.cos(x)
     return s / x, (1.0 - c) / x2, (x - s) / (x2 * x)
