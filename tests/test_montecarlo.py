@@ -157,20 +157,3 @@ def test_components_match_direct_trigonometry_over_all_angles():
     A, B = tilt_components(beta, gamma, sphi, cphi)
     np.testing.assert_allclose(A, cphi * np.cos(gamma) + sphi * np.cos(beta) * np.sin(gamma), rtol=0, atol=2e-15)
     np.testing.assert_allclose(B, sphi * np.sin(beta), rtol=0, atol=1e-15)
-
-
-def test_repeated_draws_are_the_generators_own_and_advance_it_alike():
-    """A draw served from memory is bit for bit the generator's, and leaves the stream where a fresh draw would."""
-    from strapdown.analysis.core import repeated_draws
-
-    fresh, first, again = (np.random.default_rng(np.random.SeedSequence(11, spawn_key=(3,))) for _ in range(3))
-    expected = fresh.standard_normal((4, 5, 3))
-    a = repeated_draws.standard_normal(first, (4, 5, 3))
-    b = repeated_draws.standard_normal(again, (4, 5, 3))  # same state and shape: from memory
-    assert b is a and not b.flags.writeable
-    np.testing.assert_array_equal(a, expected)
-    tail = fresh.random(3)
-    np.testing.assert_array_equal(first.random(3), tail)
-    np.testing.assert_array_equal(again.random(3), tail)
-    other = repeated_draws.standard_normal(np.random.default_rng(12), (4, 5, 3))  # another state: another draw
-    assert not np.array_equal(other, a)

@@ -30,7 +30,7 @@ import numpy as np
 from .quantiles import sample_quantiles
 from .validation import as_array, as_int, positive
 
-__all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
+__all__ = ["MonteCarloResult", "run", "summarise", "block_output", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
 
 #: normal quantile of the two-sided 95 % interval
 Z95 = 1.959963984540054
@@ -168,7 +168,7 @@ def block_seed(root: np.random.SeedSequence, index: int) -> np.random.SeedSequen
 
 @dataclass(frozen=True)
 class _Chunk:
-    """Work item: blocks ``[first, last)`` of a run (picklable for process pools and dask)."""
+    """Work item: the kernel's outputs on blocks ``[first, last)`` of a run (picklable for process pools and dask)."""
 
     kernel: Callable
     entropy: object
@@ -178,35 +178,42 @@ class _Chunk:
     trials_per_block: int
     first: int
     last: int
-    scale: float
-    half_width: float
-    n_bins: int
 
     def __call__(self):
         root = np.random.SeedSequence(self.entropy, spawn_key=self.spawn_key, pool_size=self.pool_size)
-        rows, aux_rows, aux_squares, kept = [], [], [], []
-        counts = np.zeros(self.n_bins + 2, dtype=np.int64)
-        lo, hi = math.inf, -math.inf
+        out = []
         for b in range(self.first, self.last):
             n = min(self.trials_per_block, self.n_trials - b * self.trials_per_block)
-            out = self.kernel(n, np.random.default_rng(block_seed(root, b)))
-            errors, aux = out if isinstance(out, tuple) else (out, None)
-            errors = np.asarray(errors, dtype=float).reshape(n, -1)
-            kept.append(errors)
-            m = errors.mean(axis=1)
-            ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
-            rows.append((m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum()))
-            if aux is not None:
-                aux = np.asarray(aux, dtype=float).reshape(n, -1)
-                aux_rows.append(aux.sum(axis=0))
-                aux_squares.append(np.einsum("ij,ij->j", aux, aux))
-            lo, hi = min(lo, float(errors.min())), max(hi, float(errors.max()))
-            u = errors.ravel() * (self.n_bins / (2.0 * self.half_width * self.scale))
-            u += self.n_bins / 2.0 + 1.0
-            idx = np.clip(u, 0.0, self.n_bins + 1.0).astype(np.int64)
-            counts += np.bincount(idx, minlength=self.n_bins + 2)[: self.n_bins + 2]
-        aux_arr = np.concatenate([np.array(aux_rows), np.array(aux_squares)], axis=1) if aux_rows else None
-        return np.array(rows), aux_arr, counts, lo, hi, np.concatenate(kept)
+            out.append(block_output(self.kernel(n, np.random.default_rng(block_seed(root, b))), n))
+        return out
+
+
+def block_output(output, n_trials: int) -> tuple:
+    """A kernel's output on one block as ``(errors, aux)``: ``(n, n_steps)`` and ``(n, k)`` or None.
+
+    Parameters
+    ----------
+    output : array_like or tuple
+        ``errors`` or ``(errors, aux)`` as a kernel returns them.
+    n_trials : int
+        Trials of the block [count].
+
+    Returns
+    -------
+    tuple
+    """
+    errors, aux = output if isinstance(output, tuple) else (output, None)
+    errors = np.asarray(errors, dtype=float).reshape(n_trials, -1)
+    return errors, (None if aux is None else np.asarray(aux, dtype=float).reshape(n_trials, -1))
+
+
+def _block_rows(errors: np.ndarray, aux):
+    """The sums a block contributes: statistics of the per-trial means, and of the auxiliaries."""
+    m = errors.mean(axis=1)
+    ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
+    row = (m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum())
+    aux_row = None if aux is None else np.concatenate([aux.sum(axis=0), np.einsum("ij,ij->j", aux, aux)])
+    return row, aux_row
 
 
 def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, desc: str = "Monte Carlo") -> list:
@@ -357,25 +364,55 @@ def run(
     root = root_seed_sequence(rng)
     n_blocks = -(-n_trials // trials_per_block)
     tasks = [
-        _Chunk(kernel, root.entropy, tuple(root.spawn_key), root.pool_size, n_trials, trials_per_block, first, min(first + blocks_per_chunk, n_blocks), scale, half_width, n_bins)
+        _Chunk(kernel, root.entropy, tuple(root.spawn_key), root.pool_size, n_trials, trials_per_block, first, min(first + blocks_per_chunk, n_blocks))
         for first in range(0, n_blocks, blocks_per_chunk)
     ]
-    parts = map_tasks(executor, tasks, progress=progress)
-    rows = np.concatenate([p[0] for p in parts])
-    counts = np.sum([p[2] for p in parts], axis=0)
-    lo = min(p[3] for p in parts)
-    hi = max(p[4] for p in parts)
+    blocks = [block for part in map_tasks(executor, tasks, progress=progress) for block in part]
+    return summarise(blocks, scale=scale, half_width=half_width, n_bins=n_bins, quantiles=quantiles)
+
+
+def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: int = 8000, quantiles: Sequence[float] = QUANTILES) -> MonteCarloResult:
+    """Statistics of a kernel's outputs on consecutive blocks of trials.
+
+    :func:`run` ends here; a caller that evaluates the same draws with several
+    kernels (common random numbers, passed explicitly) summarises each
+    kernel's outputs the same way.
+
+    Parameters
+    ----------
+    blocks : sequence of tuple
+        ``(errors, aux)`` per block, in block order (:func:`block_output`).
+    scale, half_width, n_bins : float, float, int, keyword-only
+        The histogram (for display), as in :func:`run`.
+    quantiles : sequence of float, keyword-only
+        Levels in (0, 1).
+
+    Returns
+    -------
+    MonteCarloResult
+
+    Raises
+    ------
+    ValueError
+        For fewer than two trials.
+    """
+    errors = np.concatenate([e for e, _ in blocks])
+    n_trials = errors.shape[0]
+    if n_trials < 2:
+        raise ValueError(f"Expected at least 2 trials, got {n_trials}")
+    rows, aux_rows = zip(*(_block_rows(e, a) for e, a in blocks))
+    rows = np.array(rows)
     sums = [math.fsum(rows[:, k]) for k in range(rows.shape[1])]
-    aux_parts = [p[1] for p in parts if p[1] is not None]
+    u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)
+    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
     aux_mean, aux_se = (), ()
-    if aux_parts:
-        aux = np.concatenate(aux_parts)
+    if aux_rows[0] is not None:
+        aux = np.array(aux_rows)
         k = aux.shape[1] // 2
         aux_mean = tuple(math.fsum(aux[:, j]) / n_trials for j in range(k))
         aux_se = tuple(math.sqrt(max(math.fsum(aux[:, k + j]) / n_trials - m * m, 0.0) / (n_trials - 1)) for j, m in enumerate(aux_mean))
-    errors = np.concatenate([p[5] for p in parts])
     q = sample_quantiles(errors, quantiles)
-    summary = _summarise(n_trials, sums, counts, lo, hi, scale, half_width, n_bins, aux_mean)
+    summary = _summarise(n_trials, sums, counts, float(errors.min()), float(errors.max()), scale, half_width, n_bins, aux_mean)
     return replace(summary, aux_std_error=aux_se, quantiles={x.level: x.value for x in q}, quantile_intervals={x.level: (x.low, x.high) for x in q})
 
 
