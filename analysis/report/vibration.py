@@ -99,7 +99,8 @@ def build(ctx) -> None:
         "specific force, analog filters per axis, digital filters, decimation) and gives, to second order in the vibration",
         "amplitude and exactly in ωh (`strapdown.analysis.coning.vibration_drift`), the mean drift as two parts:",
         "",
-        "$$u = \\frac{q - \\tilde q}{2\\omega} + \\tilde q\\,\\frac{D(\\omega h)}{\\omega},\\qquad q = \\frac{1}{2}\\mathrm{Im}(A\\times\\bar A),\\quad \\tilde q = \\frac{1}{2}\\mathrm{Im}(\\tilde A\\times\\bar{\\tilde A}),$$",
+        "$$u = \\frac{q - \\tilde q}{2\\omega} + \\tilde q\\,\\frac{D(\\omega h)}{\\omega},\\qquad q = \\frac{1}{2}\\mathrm{Im}(A\\times\\bar A),\\quad "
+        "\\tilde q = \\frac{1}{2}\\mathrm{Im}(\\tilde A\\times\\bar{\\tilde A}),$$",
         "",
         "the first term the sensor part (pseudo-coning), the second the algorithm part, per line of complex rate amplitude A",
         "sensed as $\\tilde A = HA$, with the sensors' equivalent responses H per axis (analog filter times digital",
