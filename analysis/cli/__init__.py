@@ -244,6 +244,7 @@ COMMANDS = {
     "derive lyapunov": ("lyapunov", "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))"),
     "design": ("design", "largest step and computational load of each algorithm for a drift budget"),
     "drift": ("drift", "constant drift rate of an algorithm under regular precession (parallel computation)"),
+    "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, order, drift, remainder, check"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
     "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth, index, HTML)"),
     "reproduce tables": ("tables", "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values"),
