@@ -53,12 +53,12 @@ from .verification import (
     DRIFT_TOLERANCE,
     OMEGA_H,
     PERIODS,
-    SCULLING_NU_H,
     STEPS,
     Check,
     coning_drift_check,
     local_error_exponent,
     sculling_check,
+    sculling_points,
 )
 
 __all__ = ["Consistency", "ScullingAssessment", "Assessment", "linear_error_weight", "verification_samples", "work", "assess"]
@@ -236,7 +236,7 @@ class Assessment:
                 "second_order_defect": _text(con.second_order_sum - con.second_order_expected),
             },
             "local_error_order": self.order,
-            "local_error_exponent": self.local_error_exponent,
+            "local_error_exponent": _finite(self.local_error_exponent),
             "order": None,
             "coefficient": None,
             "coefficient_float": None,
@@ -312,6 +312,15 @@ def _check(check: Check | None):
     }
 
 
+def _order(algorithm: Algorithm) -> int | None:
+    """ρ of the series, through weight 5 first (the parts are computed on demand and kept), then the default weight."""
+    for weight in (5, S.DEFAULT_MAX_WEIGHT):
+        order = S.local_error(algorithm, weight).order
+        if order is not None:
+            return order
+    return None
+
+
 def verification_samples(samples: int, history: int, *, omega_h=OMEGA_H, velocity: bool = False) -> int:
     """Samples the verification of :func:`assess` feeds an integrator.
 
@@ -333,7 +342,7 @@ def verification_samples(samples: int, history: int, *, omega_h=OMEGA_H, velocit
     warm = -(-history // samples) + 1
     total = len(omega_h) * len(CONE_ANGLES) * (warm + STEPS) * samples + 9 * (warm + 1) * samples
     if velocity:
-        total += sum(len(ANGLE_AMPLITUDES) * (warm + round(2 * math.pi / x) * PERIODS) * samples for x in SCULLING_NU_H)
+        total += sum(len(ANGLE_AMPLITUDES) * (warm + round(2 * math.pi / x) * PERIODS) * samples for x in sculling_points(samples))
     return int(total)
 
 
@@ -444,7 +453,7 @@ def assess(
     n = ident.samples
     weight = linear_error_weight(ident.linear_part, n)
     consistency = Consistency(ident.linear_part, weight, second_order_defect(alg) + Fraction(n**3, 12), Fraction(n**3, 12))
-    order = S.local_error(alg).order
+    order = _order(alg)
     if weight is not None:
         order = weight - 1 if order is None else min(order, weight - 1)
     coning = coning_drift(alg) if weight is None else None

@@ -9,8 +9,12 @@ pyins (``python-ins`` on the package index)
     ``pyins.earth.RATE`` set to zero before its loop is compiled, the body at
     rest at the equator (no specific force, ``with_altitude=False``), the
     transport rate is zero and its frame is inertial: its matrices are our Λ
-    (E → I), multiplied on the right by each step, as ours.  Its "before"
-    sample is zero (the record starts from rest).  The attitude after every
+    (E → I), multiplied on the right by each step, as ours.  Setting the rate
+    changes pyins's module in this process; its loop, compiled with that rate,
+    is cached by numba (next to pyins's source, or in numba's cache directory)
+    like this package's kernels, so that later processes do not compile it
+    again (pyins used without this adapter neither reads nor writes that
+    cache).  Its "before" sample is zero (the record starts from rest).  The attitude after every
     N-th sample is its output.
     :func:`pyins_increments` is its increment function alone
     (``compute_increments_from_imu``, one sample per step): rotation vector
@@ -36,6 +40,8 @@ Public API
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from ...core.validation import positive
@@ -53,8 +59,14 @@ def _pyins(sample_interval: float):
     except ImportError:
         raise ImportError("pyins is not installed: pip install 'strapdown-analysis[peers]' (the package index name is python-ins)") from None
     pyins.earth.RATE = 0.0  # before its loop is first compiled: an inertial navigation frame
+    import numba
     import pandas as pd
     from pyins import strapdown
+
+    # its loop is a numba dispatcher calling others of its module: compiled once per installation, like this package's kernels
+    for dispatcher in vars(sys.modules[strapdown.integrate.__module__]).values():
+        if isinstance(dispatcher, numba.core.registry.CPUDispatcher) and not dispatcher.signatures:
+            dispatcher.enable_caching()
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])

@@ -43,9 +43,11 @@ changes the order only if the exponents part.
 
 Public API
 ----------
-:data:`DRIFT_TOLERANCE`, :data:`OMEGA_H`, :data:`CONE_ANGLES`, :data:`SCULLING_NU_H`,
+:data:`DRIFT_TOLERANCE`, :data:`OMEGA_H`, :data:`CONE_ANGLES`, :data:`SCULLING_PERIOD_SAMPLES`,
+:func:`sculling_points`,
 :data:`ANGLE_AMPLITUDES`, :class:`CheckPoint`, :class:`Check`,
-:func:`attitude_errors`, :func:`coning_drift_check`, :func:`sculling_check`,
+:func:`attitude_errors`, :func:`coning_drift_rate`, :func:`sculling_rate`,
+:func:`coning_drift_check`, :func:`sculling_check`,
 :func:`local_error_exponent`.
 
 References
@@ -66,7 +68,7 @@ from ...core.roundoff import drift_floor
 from ...core.validation import as_int, positive
 from ..drift_theory import coning_drift_function
 from ..local_error import TumblingMotion
-from ..precession import RegularPrecession, exact_state
+from ..precession import RegularPrecession
 from ..sculling_motion import ScullingMotion
 from ..simulator import drift_rate, prefix_product
 from .interface import Integrator, step_increments
@@ -76,11 +78,14 @@ __all__ = [
     "DRIFT_TOLERANCE",
     "OMEGA_H",
     "CONE_ANGLES",
-    "SCULLING_NU_H",
+    "SCULLING_PERIOD_SAMPLES",
+    "sculling_points",
     "ANGLE_AMPLITUDES",
     "CheckPoint",
     "Check",
     "attitude_errors",
+    "coning_drift_rate",
+    "sculling_rate",
     "coning_drift_check",
     "sculling_check",
     "local_error_exponent",
@@ -96,8 +101,9 @@ CONE_ANGLES = (0.04, 0.02, 0.01, 0.005)
 NU = 2.0 * math.pi
 #: Algorithm steps per coning run.
 STEPS = 200
-#: νh of the sculling check, 2π/K (K samples per vibration period) [rad].
-SCULLING_NU_H = (2 * math.pi / 24, 2 * math.pi / 12, 2 * math.pi / 6)
+#: Samples per vibration period K of the sculling check (νh = 2π/K), before :func:`sculling_points` moves
+#: any that would make ν N h a multiple of π.
+SCULLING_PERIOD_SAMPLES = (24, 12, 6)
 #: Amplitudes θ₀_k of the extrapolation to θ₀ → 0 [rad].
 ANGLE_AMPLITUDES = (0.02, 0.01, 0.005, 0.0025)
 #: Vibration periods per sculling run.
@@ -235,10 +241,111 @@ def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPre
     lam = prefix_product(quat.rotvec_to_quat(rotation, validate=False))
     lam = np.concatenate([quat.identity((1,)), lam], axis=0)
     time = np.arange(steps + 1) * n * h
-    exact = exact_state(motion, time, attitude0=(1.0, 0.0, 0.0, 0.0)).attitude
+    # the general solution (1.8) through Λ*(0) = 1: Λ*(t) = Q̄(0) ∘ Q(t)
+    exact = quat.multiply(quat.conjugate(motion.attitude(0.0)), motion.attitude(time))
     # rotvec(Λ* ∘ Λ̄) = −rotvec(Λ ∘ Λ̄*), as the simulator forms it
     error = -quat.quat_to_rotvec(quat.multiply(lam, quat.conjugate(exact)), canonical=True, validate=False)
     return time, error
+
+
+def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, *, steps: int = STEPS, history: int = 0) -> float:
+    """Simulated coning drift of ``integrator`` along the cone axis [rad/s], exact minus integrator.
+
+    The least-squares slope of the cone-axis component of :func:`attitude_errors`
+    (module docstring); the cone axis of the motion (ε = −1, nutation α) in
+    frame I is ``−(0, sin α, cos α)`` with the run starting at Λ(0) = 1.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box.
+    samples_per_step : int
+        N.
+    motion : RegularPrecession
+        Classical coning (ε = −1).
+    sample_interval : float
+        h [s].
+    steps : int, keyword-only
+        Steps of the run.
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+
+    Returns
+    -------
+    float
+        u [rad/s]; positive when the computed attitude lags the coning rotation.
+
+    Raises
+    ------
+    ValueError
+        If the motion is not coning (ε ≠ −1).
+    """
+    if not isinstance(motion, RegularPrecession) or motion.eps != -1.0:
+        raise ValueError(f"Expected `motion` to be classical coning, a RegularPrecession with eps = -1, got {motion!r}")
+    time, error = attitude_errors(integrator, samples_per_step, motion, sample_interval, steps, history=history)
+    axis = -np.array([0.0, math.sin(motion.nutation), math.cos(motion.nutation)])
+    return float(drift_rate(time, error) @ axis)
+
+
+def _sculling_run(integrator, n, motion, h, steps, warm):
+    """(rate along e_r × e_a [m/s²], its round-off floor) of one run of whole periods."""
+    dual = motion.grid_increments(h, -warm * n, (warm + steps) * n, dual=True)
+    out = step_increments(integrator, dual.re, n, dual.du)
+    lam = prefix_product(quat.rotvec_to_quat(out.rotation, validate=False))
+    lam = np.concatenate([quat.identity((1,)), lam], axis=0)
+    # W_I from t = 0 (the end of the warm-up), in the integrator's frame, and the exact
+    # solution from the same attitude and W_I = 0 at t = 0
+    w_end = np.sum(quat.rotate(lam[warm:-1], out.velocity[warm:]), axis=0)
+    t_total = steps * n * h
+    # the exact solution through the same attitude and W_I = 0 at t = 0 is θ = C ∘ P(t) with
+    # C = Λ(0) ∘ Q̄(0) (Lebedev & Panov 1989, (1.5)): its W_I(T) is C turning the motion's own
+    # apparent velocity W(T) (zero at t = 0), and e_r × e_a of the motion's frame is C e_n in frame I
+    c = quat.multiply(lam[warm], quat.conjugate(motion.attitude(0.0)))
+    w_exact = motion.apparent_velocity(t_total)
+    e_n = np.cross(motion.e_r, motion.e_a)
+    rate = float(w_exact @ e_n - quat.rotate(quat.conjugate(c), w_end) @ e_n) / t_total
+    return rate, 64 * float(np.finfo(float).eps) * float(np.abs(w_exact).max()) / t_total
+
+
+def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMotion, sample_interval, *, periods: int = PERIODS, history: int = 0) -> float:
+    """Simulated rectification error rate of ``integrator`` along ``e_r × e_a`` [m/s²], exact minus integrator.
+
+    A run of whole vibration periods (``ν h = 2π/K``), its velocity increments
+    rotated by its own attitude and summed, against the exact apparent velocity
+    (module docstring).
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box (with ``velocity``).
+    samples_per_step : int
+        N.
+    motion : ScullingMotion
+        Classical sculling.
+    sample_interval : float
+        h [s]; ``2π / (ν h)`` must be a whole number.
+    periods : int, keyword-only
+        Vibration periods of the run (times N).
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+
+    Returns
+    -------
+    float
+        Rate [m/s²]; positive when the integrator under-rectifies.
+
+    Raises
+    ------
+    ValueError
+        If ``2π / (ν h)`` is not a whole number.
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    h = positive(sample_interval, "sample_interval")
+    per_period = 2 * math.pi / (motion.nu * h)
+    if abs(per_period - round(per_period)) > 1e-9:
+        raise ValueError(f"Expected `sample_interval` with 2π/(ν h) a whole number of samples per period, got {per_period:g}")
+    steps = int(round(per_period)) * as_int(periods, "periods", minimum=1)
+    return _sculling_run(integrator, n, motion, h, steps, _warmup(history, n))[0]
 
 
 def coning_drift_check(
@@ -297,10 +404,7 @@ def coning_drift_check(
         h = x / NU
         values, errors = [], []
         for alpha in cone_angles:
-            motion = RegularPrecession(-1.0, NU, alpha)
-            time, error = attitude_errors(integrator, samples_per_step, motion, h, steps, history=history)
-            axis = -np.array([0.0, math.sin(alpha), math.cos(alpha)])
-            u = float(drift_rate(time, error) @ axis)
+            u = coning_drift_rate(integrator, samples_per_step, RegularPrecession(-1.0, NU, alpha), h, steps=steps, history=history)
             scale = alpha**2 * NU
             values.append(u / scale)
             errors.append(drift_floor(NU, -NU) / scale)
@@ -309,13 +413,44 @@ def coning_drift_check(
     return Check("coning drift D(ωh) = u / (α² ω), along the cone axis, exact minus integrator", tuple(points), tuple(cone_angles))
 
 
+def sculling_points(samples_per_step) -> tuple:
+    """νh of the sculling check for N samples per step: ``2π/K`` for K of :data:`SCULLING_PERIOD_SAMPLES`.
+
+    A K that divides 2N would make ν N h a multiple of π (every step sees the
+    vibration at the same phase, and the error is no constant rate); it is
+    replaced by the next K that does not.
+
+    Parameters
+    ----------
+    samples_per_step : int
+        N.
+
+    Returns
+    -------
+    tuple of float
+        νh [rad].
+
+    Examples
+    --------
+    >>> [round(2 * math.pi / x) for x in sculling_points(6)]
+    [24, 13, 7]
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    out = []
+    for k in SCULLING_PERIOD_SAMPLES:
+        while (2 * n) % k == 0:
+            k += 1
+        out.append(2 * math.pi / k)
+    return tuple(out)
+
+
 def sculling_check(
     integrator: Integrator,
     samples_per_step,
     terms: ScullingTerms,
     *,
     history: int = 0,
-    nu_h=SCULLING_NU_H,
+    nu_h=None,
     angle_amplitudes=ANGLE_AMPLITUDES,
     periods: int = PERIODS,
     tolerance: float = DRIFT_TOLERANCE,
@@ -332,8 +467,8 @@ def sculling_check(
         The identified sculling part.
     history : int, keyword-only
         Samples before a step the integrator reads (sets the warm-up).
-    nu_h : sequence of float, keyword-only
-        νh [rad], each 2π/K for a whole number K of samples per period.
+    nu_h : sequence of float, optional, keyword-only
+        νh [rad], each 2π/K for a whole number K of samples per period (default :func:`sculling_points`).
     angle_amplitudes : sequence of float, keyword-only
         θ₀_k, halving [rad].
     periods : int, keyword-only
@@ -354,7 +489,7 @@ def sculling_check(
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     warm = _warmup(history, n)
     points = []
-    for x in nu_h:
+    for x in sculling_points(n) if nu_h is None else nu_h:
         x = positive(x, "nu_h")
         per_period = 2 * math.pi / x
         if abs(per_period - round(per_period)) > 1e-9:
@@ -364,22 +499,10 @@ def sculling_check(
         values, errors, closed = [], [], None
         for theta0 in angle_amplitudes:
             motion = ScullingMotion(theta0, 1.0, NU)
-            dual = motion.grid_increments(h, -warm * n, (warm + steps) * n, dual=True)
-            out = step_increments(integrator, dual.re, n, dual.du)
-            lam = prefix_product(quat.rotvec_to_quat(out.rotation, validate=False))
-            lam = np.concatenate([quat.identity((1,)), lam], axis=0)
-            # W_I from t = 0 (the end of the warm-up), in the integrator's frame, and the exact
-            # solution from the same attitude and W_I = 0 at t = 0
-            w = np.concatenate([np.zeros((1, 3)), np.cumsum(quat.rotate(lam[warm:-1], out.velocity[warm:]), axis=0)], axis=0)
-            time = np.arange(steps + 1) * n * h
-            exact = exact_state(motion, time, attitude0=lam[warm])
-            # e_r × e_a of the motion's reference frame, in frame I: C = Λ(0) ∘ Q̄(0) maps one to the other
-            e_n = quat.rotate(quat.multiply(lam[warm], quat.conjugate(motion.attitude(0.0))), np.cross(motion.e_r, motion.e_a))
-            t_total = time[-1]
-            rate = float((exact.w_inertial[-1] - w[-1]) @ e_n) / t_total
+            rate, floor = _sculling_run(integrator, n, motion, h, steps, warm)
             scale = theta0 * motion.accel_amplitude
             values.append(rate / scale)
-            errors.append(64 * np.finfo(float).eps * float(np.abs(exact.w_inertial).max()) / t_total / scale)
+            errors.append(floor / scale)
             if closed is None:
                 closed = terms.rectification_error(motion, h)
         value, unc = _richardson(values, errors)
@@ -388,8 +511,13 @@ def sculling_check(
     return Check("rectification error rate / (θ₀ A) along e_r × e_a, exact minus integrator", tuple(points), tuple(angle_amplitudes))
 
 
-def local_error_exponent(integrator: Integrator, samples_per_step, *, history: int = 0, steps=(0.05, 0.025, 0.0125), times=(0.3, 1.1, 2.4)) -> float:
-    """Mean exponent of the integrator's one-step error against the step H on :class:`TumblingMotion`.
+def local_error_exponent(integrator: Integrator, samples_per_step, *, history: int = 0, steps=(0.05, 0.025, 0.0125, 0.00625), times=(0.3, 1.1, 2.4)) -> float:
+    """Exponent of the integrator's one-step error against the step H on :class:`TumblingMotion`.
+
+    The slope of ``log|δφ|`` against ``log H`` over the three smallest steps
+    whose error is above ``1e-13`` (a thousand times the round-off of a step),
+    averaged over the step middles: the asymptotic exponent ρ + 1 where the
+    data reach it.
 
     Parameters
     ----------
@@ -400,14 +528,14 @@ def local_error_exponent(integrator: Integrator, samples_per_step, *, history: i
     history : int, keyword-only
         Samples before a step the integrator reads (sets the warm-up).
     steps : sequence of float, keyword-only
-        Steps H [s].
+        Steps H [s], decreasing.
     times : sequence of float, keyword-only
         Middles of the step [s].
 
     Returns
     -------
     float
-        ``d log|δφ| / d log H`` (ρ + 1 for an integrator of order ρ).
+        ``d log|δφ| / d log H`` (ρ + 1 for an integrator of order ρ); NaN when fewer than two steps are above round-off.
     """
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     warm = _warmup(history, n)
@@ -422,5 +550,7 @@ def local_error_exponent(integrator: Integrator, samples_per_step, *, history: i
             got = step_increments(integrator, record, n).rotation[-1]
             exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + big_h)), validate=False)
             errs.append(float(np.linalg.norm(exact - got)))
-        exps.append(np.polyfit(np.log(steps), np.log(np.maximum(errs, 1e-300)), 1)[0])
-    return float(np.mean(exps))
+        keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
+        if len(keep) >= 2:
+            exps.append(np.polyfit(np.log(np.array(steps)[keep]), np.log(np.array(errs)[keep]), 1)[0])
+    return float(np.mean(exps)) if exps else math.nan
