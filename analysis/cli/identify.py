@@ -129,7 +129,8 @@ def _text(a, data) -> str:
     lines.append("linear part: " + (", ".join(f"{a_} p{j}" for j, a_ in data["linear"].items()) or "none"))
     lines.append("terms: " + (", ".join(f"{c} p{key.replace(',', '×p')}" for key, c in data["terms"].items()) or "none"))
     lines.append(
-        f"  exact fractions within {ident.tolerance:g} (denominators ≤ {ident.max_denominator}): {'yes' if ident.exact else 'no (approximate fractions used)'}; "
+        f"  exact fractions (each within 4 × its uncertainty, at most {ident.tolerance:g}: denominators up to {ident.max_denominator} at least): "
+        f"{'yes' if ident.exact else 'no (approximate fractions used)'}; "
         f"every axis alike: {'yes' if ident.isotropic else 'no'}"
     )
     lines.append(
@@ -195,7 +196,10 @@ def register(commands) -> None:
         type=number,
         default=TOLERANCE,
         metavar="T",
-        help=f"largest |c − p/q| accepted by the rational reconstruction, which then admits denominators up to (2T)^(-1/2) [dimensionless] (default {TOLERANCE:g})",
+        help=(
+            "largest |c − p/q| accepted by the rational reconstruction (each coefficient uses 4 × its uncertainty when smaller); "
+            f"denominators up to (2T)^(-1/2) are admitted [dimensionless] (default {TOLERANCE:g})"
+        ),
     )
     p.add_argument(
         "--omega-h-rad",

@@ -267,7 +267,7 @@ class Assessment:
 
 
 def _coefficient(c) -> dict:
-    return {"value": c.value, "uncertainty": c.uncertainty, "exact": c.exact is not None, "fraction": _text(c.fraction)}
+    return {"value": c.value, "uncertainty": c.uncertainty, "tolerance": c.tolerance, "exact": c.exact is not None, "fraction": _text(c.fraction)}
 
 
 def _finite(x):

@@ -34,16 +34,21 @@ difference of the last two extrapolations plus the round-off propagated from
 the outputs.  Two more orientations of the probe (u, v cycled) at one
 amplitude check that the integrator treats every axis alike.
 
-Rational reconstruction.  A value known within ``tolerance`` is the exact
-fraction ``p/q`` returned by ``Fraction(value).limit_denominator(Q)`` with
-``Q = ⌊(2 tolerance)^(−1/2)⌋``, verified to lie within ``tolerance`` of the
-value.  Two distinct fractions of denominators at most Q differ by at least
-``1/Q² > 2 tolerance``, so at most one fraction can pass: the reconstruction
-is unique.  The default tolerance :data:`TOLERANCE` = 1e-9 admits
-denominators up to 22 360; the largest in the registry is 4620.  A value whose
-uncertainty exceeds the tolerance is not reconstructed: it is reported with
-its uncertainty, and the analyses use the nearest fraction of denominator at
-most Q, marked approximate.
+Rational reconstruction.  A value known within ``t`` is the exact fraction
+``p/q`` returned by ``Fraction(value).limit_denominator(Q)`` with
+``Q = ⌊(2t)^(−1/2)⌋``, verified to lie within ``t`` of the value.  Two distinct
+fractions of denominators at most Q differ by at least ``1/Q² > 2t``, so at
+most one fraction can pass: the reconstruction is unique.  Each coefficient's
+own ``t`` is :data:`UNCERTAINTY_FACTOR` times its uncertainty, no smaller than
+:data:`TOLERANCE_FLOOR` and no larger than the stated ``tolerance``
+(:data:`TOLERANCE` = 1e-9 by default, which admits denominators up to 22 360): a
+coefficient measured to 1e-12 is reconstructed among denominators up to about
+3·10⁵ (the polynomial-fit algorithms of the registry need 145 152), one
+measured only to 1e-10 among denominators up to 35 000.  A value whose
+uncertainty exceeds the stated tolerance is not reconstructed: it is reported
+with its uncertainty, and the analyses use the nearest fraction of
+denominator at most Q, marked approximate.  A wrong fraction would leave a
+bilinear (degree-two) remainder, which the remainder measurement shows.
 
 Remainder.  On random windows (seeded, ``rng``) at decreasing scales, the
 remainder ``R = F − model`` of the identified model (its exact fractions) is
@@ -90,8 +95,12 @@ __all__ = [
     "identify",
 ]
 
-#: Default tolerance of the rational reconstruction [dimensionless]: |c − p/q| ≤ 1e-9, q ≤ 22 360.
+#: Largest tolerance of the rational reconstruction [dimensionless]: |c − p/q| ≤ 1e-9, q ≤ 22 360 at most.
 TOLERANCE = 1e-9
+#: A coefficient's own tolerance is this many times its uncertainty (when smaller than the largest tolerance).
+UNCERTAINTY_FACTOR = 4.0
+#: Smallest tolerance of a coefficient [dimensionless] (denominators up to 7·10⁶).
+TOLERANCE_FLOOR = 1e-14
 #: Default number of earlier samples probed.
 DEFAULT_MAX_PREVIOUS = 4
 #: Probe amplitudes ε_k [rad, and m/s for accelerometer probes].
@@ -175,6 +184,11 @@ class Coefficient:
         Extrapolated to zero probe amplitude [dimensionless].
     uncertainty : float
         Estimated error of ``value``: extrapolation plus round-off [dimensionless].
+    tolerance : float
+        The tolerance of its reconstruction: :data:`UNCERTAINTY_FACTOR` times
+        its uncertainty, within [:data:`TOLERANCE_FLOOR`, the identification's
+        tolerance] [dimensionless]; it admits denominators up to
+        :func:`max_denominator` of it.
     exact : Fraction or None
         The reconstructed fraction (None: ``uncertainty`` above the tolerance,
         or no fraction within it).
@@ -188,6 +202,7 @@ class Coefficient:
 
     value: float
     uncertainty: float
+    tolerance: float
     exact: Fraction | None
     approximant: Fraction
     spread: float
@@ -327,7 +342,7 @@ class Identification:
 
     @property
     def max_denominator(self) -> int:
-        """Largest denominator of a reconstructed fraction (:func:`max_denominator`)."""
+        """Denominators every coefficient's reconstruction admits: :func:`max_denominator` of the stated tolerance (a coefficient measured more precisely admits larger ones)."""
         return max_denominator(self.tolerance)
 
     def _all(self) -> tuple:
@@ -497,12 +512,13 @@ def _richardson(levels: np.ndarray, errors: np.ndarray) -> tuple:
 
 
 def _coefficients(value, uncertainty, spread, tolerance) -> list:
-    q = max_denominator(tolerance)
     out = []
     for v, u, s in zip(np.atleast_1d(value), np.atleast_1d(uncertainty), np.atleast_1d(spread)):
         v, u, s = float(v), float(u), float(s)
-        exact = rational(v, tolerance) if u <= tolerance else None
-        out.append(Coefficient(v, u, exact, exact if exact is not None else Fraction(v).limit_denominator(q), s))
+        own = min(tolerance, max(UNCERTAINTY_FACTOR * u, TOLERANCE_FLOOR))
+        exact = rational(v, own) if u <= tolerance else None
+        approximant = exact if exact is not None else Fraction(v).limit_denominator(max_denominator(own))
+        out.append(Coefficient(v, u, own, exact, approximant, s))
     return out
 
 
@@ -710,8 +726,8 @@ def probe_samples(samples: int, max_previous: int = DEFAULT_MAX_PREVIOUS, *, vel
 
     Examples
     --------
-    >>> probe_samples(4, 8)
-    39888
+    >>> probe_samples(4, 4)
+    7704
     """
     n = as_int(samples, "samples", minimum=1)
     k = as_int(max_previous, "max_previous", minimum=0)

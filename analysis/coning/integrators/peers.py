@@ -41,6 +41,7 @@ Public API
 from __future__ import annotations
 
 import sys
+import warnings
 
 import numpy as np
 
@@ -104,7 +105,9 @@ def pyins_integrator(*, sample_interval: float = 0.0025) -> Integrator:
     def run(gyro, samples_per_step):
         n = gyro.shape[0]
         inc = strapdown.compute_increments_from_imu(imu(gyro, np.zeros_like(gyro)), "increment")
-        integ = strapdown.Integrator(start, with_altitude=False)
+        with warnings.catch_warnings():  # pyins 1.0 passes pandas a keyword that pandas 3 deprecates
+            warnings.filterwarnings("ignore", message="The copy keyword is deprecated")
+            integ = strapdown.Integrator(start, with_altitude=False)
         integ.integrate(inc)
         return np.array(integ.mat_nb[1 : n + 1][samples_per_step - 1 :: samples_per_step])
 

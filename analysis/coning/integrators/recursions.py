@@ -132,7 +132,7 @@ def recursion(*, alpha_lag: int = 1, previous_lag: int = 1, one_accumulator: boo
     --------
     >>> from .interface import step_increments
     >>> p = np.array([[1e-3, 0, 0], [0, 1e-3, 0]])
-    >>> step_increments(recursion(), p, 2).rotation[0, 2] / 1e-6     # (1/2 + 1/12) p1 × p2
+    >>> float(step_increments(recursion(), p, 2).rotation[0, 2] / 1e-6)     # (1/2 + 1/12) p1 × p2
     0.5833333333333334
     """
     alpha_lag, previous_lag = _check(alpha_lag, previous_lag, one_accumulator, velocity)
@@ -229,17 +229,17 @@ class SavageRecursion:
         d = tuple(float(x) for x in gyro)
         last = self._last if self.previous_lag else d
         if self.one_accumulator:
-            self._acc = _add(self._acc, d, _cross(_add(self._acc, _scale(last, 1 / 6)), d, 0.5))
+            self._acc = _add(self._acc, d, _cross(_add(self._acc, _sixth(last)), d, 0.5))
         else:
             m = len(self._alphas) - 1  # samples taken in this step before this one
             a_read = self._alphas[m + 1 - self.alpha_lag] if m + 1 - self.alpha_lag >= 0 else _ZERO
-            read = _add(a_read, _scale(last, 1 / 6))
+            read = _add(a_read, _sixth(last))
             self._beta = _add(self._beta, _cross(read, d, 0.5))
             if self.velocity:
                 db = tuple(float(x) for x in accel)
                 last_b = self._last_b if self.previous_lag else db
                 nu_read = self._nus[m + 1 - self.alpha_lag] if m + 1 - self.alpha_lag >= 0 else _ZERO
-                self._gamma = _add(self._gamma, _cross(read, db, 0.5), _cross(_add(nu_read, _scale(last_b, 1 / 6)), d, 0.5))
+                self._gamma = _add(self._gamma, _cross(read, db, 0.5), _cross(_add(nu_read, _sixth(last_b)), d, 0.5))
                 self._nus.append(_add(self._nus[-1], db))
                 self._last_b = db
             self._alphas.append(_add(self._alphas[-1], d))
@@ -270,8 +270,8 @@ def _add(*vectors):
     return tuple(sum(c) for c in zip(*vectors))
 
 
-def _scale(v, s):
-    return (v[0] * s, v[1] * s, v[2] * s)
+def _sixth(v):
+    return (v[0] / 6.0, v[1] / 6.0, v[2] / 6.0)
 
 
 def _cross(a, b, s=1.0):
