@@ -258,8 +258,9 @@ def build(ctx) -> None:
         "",
         "![coning drift of identified integrators against ωh](figures/integrators-in-the-wild.png)",
         "",
-        "Lines: the closed form |D(ωh)| of each identified algorithm ($u = \\alpha^2\\omega D$); circles: the integrator's own simulated",
-        "drift extrapolated to α → 0, at the points the round-off floor resolves.",
+        "Lines: the closed form |D(ωh)| of each identified algorithm ($u = \\alpha^2\\omega D$); markers: the integrator's own simulated",
+        "drift extrapolated to α → 0, at the points the round-off floor resolves. pyins falls on Savage's recursion (dashed on solid),",
+        "smsfusion on the composition without coning term: per sample they are the same algorithms.",
         "",
     ]
     curves = [
@@ -283,16 +284,17 @@ def _figure(plt, curves):
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     grid = np.geomspace(0.05, 2.5, 120)
     cmap = plt.get_cmap("tab10")
-    for k, (label, a) in enumerate(curves):
+    styles = (("-", "o", 6), ("-", "o", 6), ("-", "o", 6), ("--", "s", 9), ("--", "s", 9))  # the peers dashed: they fall on the recursions' lines
+    for k, ((label, a), (line, marker, size)) in enumerate(zip(curves, styles)):
         color = cmap(k)
         d = np.abs(np.asarray(coning_drift_function(a.algorithm)(grid), dtype=float))
-        ax.loglog(grid, d, "-", color=color, lw=1.3, label=f"{label}: {_drift(a)}")
+        ax.loglog(grid, d, line, color=color, lw=1.3, label=f"{label}: {_drift(a)}")
         if a.check is not None:
             pts = a.check.resolved
-            ax.loglog([p.x for p in pts], [abs(p.simulated) for p in pts], "o", color=color, ms=5, mfc="none")
+            ax.loglog([p.x for p in pts], [abs(p.simulated) for p in pts], marker, color=color, ms=size, mfc="none")
     ax.set_xlabel("ωh: coning rate × sample interval [rad]")
     ax.set_ylabel("|D(ωh)| = |u| / (α² ω)")
-    ax.set_title("Identified integrators: closed form (lines) and their own simulation (circles)", fontsize=10)
+    ax.set_title("Identified integrators: closed form (lines) and their own simulation (markers)", fontsize=10)
     ax.legend(fontsize=7, loc="lower right")
     fixed_layout(fig, left=0.8, right=0.15, bottom=0.5, top=0.35)
     return fig
