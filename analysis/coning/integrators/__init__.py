@@ -21,6 +21,8 @@ module                   holds
 ``sculling_terms``       the identified sculling part as data, its rectification error
 ``verification``         the integrator itself against the exact solution
 ``assessment``           everything above for one integrator, ready to print
+``studies``              the integrators of the report: flight-code recursions, a composition
+                         without coning term, the peers like for like
 =======================  ===================================================================
 
 Conventions are the package's (``strapdown.analysis``): increments ``p_j``

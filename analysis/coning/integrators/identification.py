@@ -17,9 +17,9 @@ remainder.
 
 Probes.  Each probe is a block of ``B = ⌈K/N⌉ + 1`` steps of zeros with the
 probe increments in its last step's window; the output of that last step is
-read.  All blocks of an identification go into one record (one call of the
-integrator); a block is long enough that an integrator reading at most ``K``
-samples back cannot see the block before it.
+read.  The blocks go to the integrator one after the other, in records of at
+most :data:`RECORD_SAMPLES` samples; a block is long enough that an integrator
+reading at most ``K`` samples back cannot see the block before it.
 
 * Linear: ``p_j = ±ε e`` gives ``a_j = (F(ε) − F(−ε)) / 2ε + O(ε²)``.
 * Bilinear: ``p_i = ±ε u``, ``p_j = ±ε v`` (u ⟂ v) and the four signs,
@@ -50,18 +50,23 @@ with its uncertainty, and the analyses use the nearest fraction of
 denominator at most Q, marked approximate.  A wrong fraction would leave a
 bilinear (degree-two) remainder, which the remainder measurement shows.
 
-Remainder.  On random windows (seeded, ``rng``) at decreasing scales, the
-remainder ``R = F − model`` of the identified model (its exact fractions) is
-measured: its size at each scale, the round-off floor there, and the slope
-of ``log |R|`` against ``log scale``, which is its degree in the increments
+Remainder.  On random windows (seeded, ``rng``) at decreasing scales
+(:data:`REMAINDER_SCALES`), reaching N samples further back than the probes,
+the remainder ``R = F − model`` of the identified model (its exact fractions)
+is measured: its size at each scale, the round-off floor there, and the slope
+of ``log |R|`` against ``log scale`` at the smallest resolved scales, which is
+its degree in the increments
 (3 for a composition of exact rotations, none above round-off for an
 integrator that is exactly bilinear; 2 or less means the model misses part
 of the integrator: a longer memory than ``max_previous``, an axis treated
 differently, a bias).  It is reported, never dropped.
 
+A first record of random windows, fed twice, must give the same outputs: an
+integrator that keeps state between calls or draws random numbers is refused.
+
 Public API
 ----------
-:data:`TOLERANCE`, :data:`DEFAULT_MAX_PREVIOUS`, :data:`PROBE_AMPLITUDES`,
+:data:`TOLERANCE`, :data:`DEFAULT_MAX_PREVIOUS`, :data:`PROBE_AMPLITUDES`, :data:`REMAINDER_SCALES`,
 :func:`max_denominator`, :func:`rational`, :class:`Coefficient`,
 :class:`Remainder`, :class:`ScullingIdentification`, :class:`Identification`,
 :func:`probe_samples`, :func:`identify`.
