@@ -8,6 +8,8 @@ from pathlib import Path
 from cli_contract import run, violations
 
 from strapdown.derivations.coning.algorithms import load_toml
+from strapdown.derivations.coning.registry import get
+from strapdown.derivations.coning.series import error_coefficients
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "docs" / "integrator_examples.py"
@@ -25,6 +27,9 @@ def test_json_keys_of_the_contract():
     assert data["terms"] == {"1,2": "2/3"}
     assert (data["order"], data["coefficient"]) == (4, "1/60")  # as `derive coning-drift --algorithm two-sample`
     assert data["consistent"] is True and data["local_error_order"] == 4
+    series = error_coefficients(get("two-sample"))  # the registry's own algorithm: the same series
+    assert data["local_error"]["delta"] == str(series.delta)
+    assert data["local_error"]["coefficients"] == {"x" + "".join(map(str, w)): str(c) for w, c in series.coefficients.items() if c}
     assert data["remainder"]["above_roundoff"] is False and data["remainder"]["degree"] is None
     check = data["verification"]
     assert check["holds"] is True and check["largest_difference"] <= 1e-6

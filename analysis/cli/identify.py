@@ -139,6 +139,10 @@ def _text(a, data) -> str:
         f"{'holds' if con.second_order else 'fails'}"
     )
     lines.append(f"local error O(h^{a.order + 1}) (order {a.order})" if a.order is not None else "local error zero through h^7")
+    if data["local_error"] is not None:
+        words = [(c.startswith("-"), c.lstrip("-"), w) for w, c in data["local_error"]["coefficients"].items()]
+        terms = " ".join(f"{'-' if neg else '+'} {'' if c == '1' else c + ' '}{w}" for neg, c, w in words).removeprefix("+ ")
+        lines.append(f"  exact - integrator = {data['local_error']['delta']} h^{a.order + 1} ({terms})")
     if a.local_error_exponent is not None:
         lines.append(f"  the integrator's own one-step error on a tumbling motion: exponent {a.local_error_exponent:.2f}")
     if a.coning is not None:

@@ -81,15 +81,34 @@ def _exponent(a) -> str:
     return "–" if a.local_error_exponent is None else f"{a.local_error_exponent:.2f}"
 
 
+def _tex(f: Fraction) -> str:
+    sign = "-" if f < 0 else ""
+    f = abs(f)
+    return f"{sign}{f.numerator}" if f.denominator == 1 else f"{sign}\\frac{{{f.numerator}}}{{{f.denominator}}}"
+
+
+def _series(a) -> str:
+    """The leading local error ``δ h^(ρ+1) (Σ k_w x_w)`` as LaTeX."""
+    e = a.local_error
+    if e is None:
+        return "–"
+    parts = []
+    for w, c in e.coefficients.items():
+        if c:
+            word = f"x_{{{''.join(str(k) for k in w)}}}"
+            parts.append(word if c == 1 else "-" + word if c == -1 else f"{_tex(c)}\\,{word}")
+    return f"${_tex(e.delta)}\\,h^{{{e.order + 1}}}({' + '.join(parts).replace('+ -', '- ')})$"
+
+
 def _recursion_table(rows) -> list:
     out = [
-        "| N | terms c_ij p_i×p_j | Σ c_ij (j − i) | N³/12 | order ρ | coning drift | remainder | measured exponent | simulated vs closed form |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| N | terms c_ij p_i×p_j | Σ c_ij (j − i) | N³/12 | order ρ | local error, exact − integrator | coning drift | remainder | measured exponent | simulated vs closed form |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for a in rows:
         c = a.consistency
         out.append(
-            f"| {a.identification.samples} | {_terms(a)} | {_frac(c.second_order_sum)} | {_frac(c.second_order_expected)} | {a.order} | {_drift(a)} | "
+            f"| {a.identification.samples} | {_terms(a)} | {_frac(c.second_order_sum)} | {_frac(c.second_order_expected)} | {a.order} | {_series(a)} | {_drift(a)} | "
             f"{_remainder(a.identification.remainder)} | {_exponent(a)} | {_check(a.check)} |"
         )
     return out

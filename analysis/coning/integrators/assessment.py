@@ -10,7 +10,8 @@
    second-order condition ``Σ c_ij (j − i) = N³/12``
    (:func:`strapdown.derivations.coning.algorithms.second_order_defect`);
 3. the exact local-error series of the identified algorithm
-   (:func:`strapdown.derivations.coning.series.local_error`), its order ρ, and
+   (:func:`strapdown.derivations.coning.series.local_error`), its order ρ and
+   leading term (:func:`strapdown.derivations.coning.series.error_coefficients`), and
    the closed-form coning drift (:func:`strapdown.derivations.coning.drift.coning_drift`);
    with a linear part other than P, the order is that of the linear part's
    error, whose leading weight is the first nonzero moment
@@ -184,6 +185,11 @@ class Assessment:
     order : int or None
         ρ: local error ``O(h^(ρ+1))`` (series of the identified algorithm, or
         the linear part's error when it leads); None when zero through h⁷.
+    local_error : ErrorCoefficients or None
+        The leading term of the exact local-error series of the identified
+        algorithm, ``δ h^(ρ+1) Σ k_w x_w`` in nested products of the rate
+        derivatives (:func:`strapdown.derivations.coning.series.error_coefficients`;
+        None when the linear part is not P).
     coning : ConingDrift or None
         Closed-form coning drift of the identified algorithm (None when the
         linear part is not P).
@@ -199,6 +205,7 @@ class Assessment:
     algorithm: Algorithm
     consistency: Consistency
     order: int | None
+    local_error: S.ErrorCoefficients | None
     coning: ConingDrift | None
     local_error_exponent: float | None
     check: Check | None
@@ -236,6 +243,7 @@ class Assessment:
                 "second_order_defect": _text(con.second_order_sum - con.second_order_expected),
             },
             "local_error_order": self.order,
+            "local_error": _series(self.local_error),
             "local_error_exponent": _finite(self.local_error_exponent),
             "order": None,
             "coefficient": None,
@@ -264,6 +272,17 @@ class Assessment:
                 "verification": _check(sc.check),
             }
         return out
+
+
+def _series(e) -> dict | None:
+    if e is None or e.order is None:
+        return None
+    return {
+        "convention": "exact minus integrator, delta * h^(order+1) * sum k_w x_w, h the sample interval, x_w nested products of the rate derivatives (as derive local-error)",
+        "delta": _text(e.delta),
+        "coefficients": {"x" + "".join(str(k) for k in w): _text(c) for w, c in e.coefficients.items() if c},
+        "latex": e.latex(),
+    }
 
 
 def _coefficient(c) -> dict:
@@ -457,6 +476,7 @@ def assess(
     if weight is not None:
         order = weight - 1 if order is None else min(order, weight - 1)
     coning = coning_drift(alg) if weight is None else None
+    series = S.error_coefficients(alg) if weight is None and order is not None else None
     history = max(ident.history, ident.max_previous)  # warm-up: steady state for any memory probed
     check = exponent = None
     if verify:
@@ -468,4 +488,4 @@ def assess(
         terms = ident.sculling.terms(n)
         s_check = sculling_check(integrator, n, terms, history=history, tolerance=drift_tolerance) if verify else None
         sculling = ScullingAssessment(terms, terms.defect(alg), ident.sculling.remainder, s_check)
-    return Assessment(ident, alg, consistency, order, coning, exponent, check, sculling)
+    return Assessment(ident, alg, consistency, order, series, coning, exponent, check, sculling)
