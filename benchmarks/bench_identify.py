@@ -86,7 +86,7 @@ def main() -> int:
     print()
     print(f"**Identifying a {N}-sample integrator** (max_previous = 4; target: identification under {TARGET:g} s on one core)")
     print()
-    print("| integrator | samples fed | per sample [µs] | identify [s] | assess, no simulation [s] | assess, with its runs against the exact solution [s] | within target |")
+    print("| integrator | samples fed | per sample [µs] | identify [s] | assess, no simulation, first [s] | assess, with its runs against the exact solution [s] | within target |")
     print("|---|---:|---:|---:|---:|---:|---|")
     for label, integ in cases:
         if integ is None:
@@ -108,7 +108,8 @@ def main() -> int:
     print(f"| with `--skip-verification` | {skip[0]:.2f} | {skip[1]:.2f} |")
     print(f"| whole (with the runs against the exact solution) | {full[0]:.2f} | {full[1]:.2f} |")
     print()
-    print("The first assessment of an algorithm pays its symbolic derivation (series, closed-form drift), later ones load it from the cache.")
+    print("`identify`: probes, exact fractions, remainder. The first `assess` of an algorithm pays its symbolic derivation (series, closed-form drift;")
+    print("the cache starts empty), the second finds it cached and adds the integrator's runs against the exact solution.")
     shutil.rmtree(CACHE, ignore_errors=True)
     return 0
 
