@@ -61,7 +61,7 @@ def test_every_registry_algorithm_is_recovered_exactly(name):
         assert not ident.remainder.above_roundoff
 
 
-@pytest.mark.parametrize("name", ["savage-1+1", "two-sample", "optimal-3", "ignagni-1996-1", "ignagni-1996-6", "compressed-4", "panov-4s-3", "lebedev-panov-6", "polynomial-5"])
+@pytest.mark.parametrize("name", names(library=True))
 def test_closed_form_drift_of_the_identified_algorithm_matches_the_integrator(name):
     alg = get(name)
     integ = algorithm_integrator(alg, velocity=False)
