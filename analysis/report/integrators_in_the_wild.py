@@ -97,7 +97,8 @@ def _series(a) -> str:
         if c:
             word = f"x_{{{''.join(str(k) for k in w)}}}"
             parts.append(word if c == 1 else "-" + word if c == -1 else f"{_tex(c)}\\,{word}")
-    return f"${_tex(e.delta)}\\,h^{{{e.order + 1}}}({' + '.join(parts).replace('+ -', '- ')})$"
+    delta = "" if e.delta == 1 else f"{_tex(e.delta)}\\,"
+    return f"${delta}h^{{{e.order + 1}}}({' + '.join(parts).replace('+ -', '- ')})$"
 
 
 def _recursion_table(rows) -> list:
