@@ -1,4 +1,4 @@
-"""Peers' integrators as black boxes, fed like for like (the ``peers`` extra: ``python-ins``, ``smsfusion``).
+"""Peers' integrators as black boxes, fed like for like (``python-ins``, ``smsfusion``: dependencies of the package).
 
 pyins (``python-ins`` on the package index)
     :func:`pyins_integrator` drives ``pyins.strapdown.Integrator``, the whole
@@ -40,7 +40,6 @@ Public API
 
 from __future__ import annotations
 
-import sys
 import warnings
 
 import numpy as np
@@ -58,16 +57,13 @@ def _pyins(sample_interval: float):
     try:
         import pyins.earth
     except ImportError:
-        raise ImportError("pyins is not installed: pip install 'strapdown-analysis[peers]' (the package index name is python-ins)") from None
-    pyins.earth.RATE = 0.0  # before its loop is first compiled: an inertial navigation frame
-    import numba
+        raise ImportError("pyins is not installed: it is a dependency of strapdown-analysis (the package index name is python-ins)") from None
+    # pyins's loop reads the Earth rate when numba compiles it, once per process: zero then gives an inertial
+    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); it is never
+    # cached to disk, so other processes and other users of the installation see pyins unchanged.
+    pyins.earth.RATE = 0.0
     import pandas as pd
     from pyins import strapdown
-
-    # its loop is a numba dispatcher calling others of its module: compiled once per installation, like this package's kernels
-    for dispatcher in vars(sys.modules[strapdown.integrate.__module__]).values():
-        if isinstance(dispatcher, numba.core.registry.CPUDispatcher) and not dispatcher.signatures:
-            dispatcher.enable_caching()
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])
@@ -174,7 +170,7 @@ def smsfusion_ins(*, sample_interval: float = 0.0025) -> Integrator:
     try:
         from smsfusion import StrapdownINS
     except ImportError:
-        raise ImportError("smsfusion is not installed: pip install 'strapdown-analysis[peers]'") from None
+        raise ImportError("smsfusion is not installed: it is a dependency of strapdown-analysis") from None
     x0 = np.r_[np.zeros(6), 1.0, 0.0, 0.0, 0.0, np.zeros(6)]
 
     def run(gyro, samples_per_step, accel):

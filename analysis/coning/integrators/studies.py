@@ -172,7 +172,7 @@ def peer_study() -> tuple:
     Raises
     ------
     ImportError
-        If pyins or smsfusion is not installed (the ``peers`` extra).
+        If pyins or smsfusion is not installed (both are dependencies of the package).
     """
     out = []
     for label, source, integrator, n, verify in _peers():
