@@ -167,8 +167,10 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         f = grid[idx] + np.clip(frac, 0.0, 1.0) * (grid[idx + 1] - grid[idx])
         p = cell[idx] / (grid[idx + 1] - grid[idx])
         sigma = 2.0 * s.at(f) / (band_components * p)[..., None, None]
+        # The principal (Hermitian) square root: unique, hence the same on every LAPACK build, where
+        # eigenvectors are fixed only up to a phase (and a basis, for repeated eigenvalues).
         lam, vec = np.linalg.eigh(sigma)
-        root = vec * np.sqrt(np.clip(lam, 0.0, None))[..., None, :]
+        root = (vec * np.sqrt(np.clip(lam, 0.0, None))[..., None, :]) @ np.conj(np.swapaxes(vec, -1, -2))
         w = (rng.standard_normal((count, band_components, 6)) + 1j * rng.standard_normal((count, band_components, 6))) / math.sqrt(2.0)
         y = np.einsum("...ab,...b->...a", root, w)
         freq[:, k : k + band_components] = f
