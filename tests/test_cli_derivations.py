@@ -143,7 +143,7 @@ def test_local_error_to_h13_reaches_the_six_sample_coning_term(tmp_path, capsys)
     assert data["max_order"] == 13 and data["order"] == 3 and data["nonzero_weights"] == list(range(4, 14))
     assert data["coning_drift_series"] == {"12": "1/24024"}
     closed = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f)])
-    assert (closed["order"], closed["coefficient"]) == (12, "1/24024")
+    assert (closed["coning_drift_order"], closed["coefficient"]) == (12, "1/24024")
     assert closed["step_coefficient"] == "1/52295018840064"  # Yan (PSINS), ρ_6
 
 
@@ -175,7 +175,7 @@ def test_coning_drift_json_for_every_registry_algorithm(name, capsys):
 
     data = _json(capsys, ["derive", "coning-drift", "--algorithm", name])
     d = coning_drift(get(name))
-    assert data["order"] == d.order and data["coefficient"] == f"{d.coefficient.numerator}/{d.coefficient.denominator}"
+    assert data["coning_drift_order"] == d.order and data["coefficient"] == f"{d.coefficient.numerator}/{d.coefficient.denominator}"
     assert "/" in data["coefficient"] and "exact minus algorithm" in data["quantity"] and "cone axis" in data["quantity"]
 
 
@@ -189,14 +189,14 @@ def test_coning_drift_json_for_every_registry_algorithm(name, capsys):
 )
 def test_coning_drift_published_values(name, order, coefficient, step_coefficient, capsys):
     data = _json(capsys, ["derive", "coning-drift", "--algorithm", name])
-    assert (data["order"], data["coefficient"], data["step_coefficient"]) == (order, coefficient, step_coefficient)
+    assert (data["coning_drift_order"], data["coefficient"], data["step_coefficient"]) == (order, coefficient, step_coefficient)
 
 
 def test_coning_drift_cross_step_file_and_values(tmp_path, capsys):
     f = tmp_path / "savage.toml"
     f.write_text(SAVAGE_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f), "--omega-h-rad", "0.01,0.5"])
-    assert (data["history"], data["order"], data["coefficient"]) == (1, 4, "1/60")
+    assert (data["history"], data["coning_drift_order"], data["coefficient"]) == (1, 4, "1/60")
     small, large = data["values"]
     assert small["D"] == pytest.approx(small["leading"], rel=1e-4) and large["D"] < large["leading"]
     assert main(["derive", "coning-drift", "--algorithm-file", str(f)]) == 0

@@ -173,7 +173,7 @@ def add_motion(parser) -> None:
         The command's parser.
     """
     g = parser.add_argument_group("motion: regular precession (--eps and --nutation-deg) or classical coning (--half-angle-deg)")
-    g.add_argument("--eps", type=float, default=None, help="ε = μ/ν, precession to spin rate of a regular precession [dimensionless] (−1 is coning; default: none)")
+    g.add_argument("--eps", type=float, default=None, help="ε = μ/ν, precession to spin rate of a regular precession [dimensionless], −1 is coning (default: none)")
     g.add_argument("--nutation-deg", type=float, default=None, help="nutation angle ϑ of a regular precession [deg], in (0, 180) (default: none)")
     g.add_argument(
         "--half-angle-deg",

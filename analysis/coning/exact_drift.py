@@ -149,7 +149,7 @@ def exact_drift(algorithm: Algorithm, motion: RegularPrecession, sample_interval
     for digits in _DIGITS:
         with mpmath.workdps(digits):
             eta = _drift_per_step(algorithm, motion.eps, motion.nutation, x)
-            if previous is not None and abs(eta - previous) <= RELATIVE_TOLERANCE * abs(eta):
+            if previous is not None and eta != 0 and abs(eta - previous) <= RELATIVE_TOLERANCE * abs(eta):
                 return sign * float(eta) / (algorithm.samples * h)
             previous = eta
     if abs(previous) < mpmath.mpf(10) ** (-(_DIGITS[-1] - 50)) * x:
