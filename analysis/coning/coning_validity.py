@@ -310,7 +310,7 @@ def leading_term_range(algorithm: Algorithm, *, omega_h=DEFAULT_OMEGA_H, toleran
     >>> from strapdown.derivations.coning.registry import get
     >>> r = leading_term_range(get("ignagni-1996-5"), omega_h=(0.1,))
     >>> round(math.degrees(r.half_angle_limits[0]), 3), round(r.omega_h_limit, 2)
-    (0.105, 1.32)
+    (0.101, 0.59)
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
