@@ -20,7 +20,7 @@ def test_local_error_json_table_2_algorithm_4(capsys):
     data = _json(capsys, ["derive", "local-error", "--algorithm", "panov-4s-4"])
     printed = {c.algorithm: c for c in P.BUDENNYI_TABLE_2}
     four, three = printed[4], printed[3]
-    assert data["order"] == 4 and data["delta"] == str(four.delta)
+    assert (data["accuracy_order"], data["local_error_order"]) == (4, 5) and data["delta"] == str(four.delta)
     # Table 2 as printed, except its misprinted k002, k0001 (errata): δ4 k002 and δ4 k0001 are
     # common to every pairwise algorithm, so they are algorithm 3's products over algorithm 4's δ4.
     expected = list(four.k)
@@ -34,7 +34,7 @@ def test_local_error_from_file(tmp_path, capsys):
     f = tmp_path / "alg.toml"
     f.write_text('name = "mine"\nsamples = 2\n[cross]\n"1,2" = "2/3"\n', encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f)])
-    assert data["algorithm"] == "mine" and data["order"] == 4 and data["delta"] == "1/90"
+    assert data["algorithm"] == "mine" and data["accuracy_order"] == 4 and data["delta"] == "1/90"
 
 
 def test_local_error_unknown_algorithm_exit_2(capsys):
@@ -140,7 +140,10 @@ def test_local_error_to_h13_reaches_the_six_sample_coning_term(tmp_path, capsys)
     f = tmp_path / "optimal6.toml"
     f.write_text(OPTIMAL_6_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f), "--max-order", "13"])
-    assert data["max_order"] == 13 and data["order"] == 3 and data["nonzero_weights"] == list(range(4, 14))
+    assert data["max_order"] == 13 and data["accuracy_order"] == 3 and data["nonzero_weights"] == list(range(4, 14))
+    # every weight computed is printed, not only the leading one; letters of two digits are comma-separated
+    assert [t["weight"] for t in data["series"]] == list(range(4, 14)) and data["series"][0]["coefficients"] == {k: v for k, v in data["coefficients"].items() if v != "0"}
+    assert "x0,11" in data["series"][-1]["coefficients"] and all("," not in k for k in data["series"][5]["coefficients"])
     assert data["coning_drift_series"] == {"12": "1/24024"}
     closed = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f)])
     assert (closed["coning_drift_order"], closed["coefficient"]) == (12, "1/24024")
@@ -163,7 +166,7 @@ def test_local_error_cross_step_file(tmp_path, capsys):
     f = tmp_path / "savage.toml"
     f.write_text(SAVAGE_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f), "--max-order", "9"])
-    assert (data["history"], data["order"], data["delta"], data["coefficients"]["x02"]) == (1, 3, "1/24", "1")
+    assert (data["history"], data["accuracy_order"], data["delta"], data["coefficients"]["x02"]) == (1, 3, "1/24", "1")
     assert data["coning_drift_series"] == {"4": "1/60", "6": "-1/504", "8": "1/8640"}
 
 
