@@ -166,3 +166,13 @@ def test_drift_cli_motion_options_refused_in_one_line(extra, fragment, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and fragment in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("name, first", [("two-sample", 9), ("ignagni-1996-5", 7)])
+def test_composition_enters_the_series_at_weight_2w_minus_1(name, first):
+    """The composition's leading term has weight 2w − 1 (w the lowest weight of the step error across n): below it, no term."""
+    from strapdown.analysis.coning.drift_theory import composition_drift
+
+    kw = dict(eps=0.5, nu=2 * np.pi * 10, nutation=np.radians(5.0), step=0.008)
+    assert float(composition_drift(get(name), **kw, max_weight=first - 1)) == 0.0
+    assert float(composition_drift(get(name), **kw, max_weight=first)) != 0.0

@@ -346,19 +346,15 @@ def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, at
     return signed[..., None] * axis
 
 
-def _step_error_vector(algorithm: Algorithm, eps, nutation, nu_step, max_weight):
-    """One-step error through ``max_weight`` on (4.1), body axes at mid-step [rad]: ``Σ_w (x_w, y_w, z_w) (νH)^w``.
+def _step_error_parts(algorithm: Algorithm, eps, nutation, max_weight):
+    """One-step error on (4.1) by weight, body axes at mid-step (ν = 1, H = 1): shape ``eps.shape + (max_weight + 1, 3)``.
 
-    ``eps``, ``nutation`` and ``nu_step`` (νH) are arrays of one shape.
+    ``eps`` and ``nutation`` are arrays of one shape; multiply the weight-w part by ``(νH)^w``.
     """
     weights, function = _step_error_functions(algorithm, max_weight)
-    parts = function(eps, nutation)
-    shape = np.shape(nu_step)
-    s = np.zeros(shape + (3,))
-    for k, w in enumerate(weights):
-        part = np.stack([np.broadcast_to(np.asarray(parts[3 * k + i], dtype=float), shape) for i in range(3)], axis=-1)
-        s = s + part * (nu_step**w)[..., None]
-    return s
+    values = function(eps, nutation)
+    shape = np.shape(eps)
+    return np.stack([np.stack([np.broadcast_to(np.asarray(values[3 * k + i], dtype=float), shape) for i in range(3)], axis=-1) for k in weights], axis=-2)
 
 
 def _composition_angle(axial, transverse, turn):
@@ -394,8 +390,10 @@ def composition_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weig
     The angle of T about n exceeds −μH by the axial step error ``s_n`` plus
     ``≈ −|s_⊥|² / (4 tan(μH/2))``; this function returns that excess divided
     by H, with s summed through ``max_weight`` and the relation solved
-    exactly.  Signed along n, exact minus algorithm; add it to
-    ``Σ_w d_w ν^w H^(w−1)``.
+    exactly.  Its leading term has weight ``2w − 1``, w the lowest weight of
+    the step error across n (2ρ + 1 for a leading error across n): through a
+    lower ``max_weight`` it is not in the series and 0 is returned.  Signed
+    along n, exact minus algorithm; add it to ``Σ_w d_w ν^w H^(w−1)``.
 
     Parameters
     ----------
@@ -439,11 +437,19 @@ def composition_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weig
     eps, nutation = _check_params(eps, nutation)
     max_weight = check_max_weight(max_weight)
     eps, nu, nutation, step = np.broadcast_arrays(eps, nu, nutation, step)
-    s = _step_error_vector(algorithm, eps, nutation, nu * step, max_weight)
-    axis = np.stack([np.zeros(nutation.shape), np.sin(nutation), np.cos(nutation)], axis=-1)
-    axial = np.sum(s * axis, axis=-1)
-    transverse = np.linalg.norm(s - axial[..., None] * axis, axis=-1)
-    return _composition_angle(axial, transverse, eps * nu * step) / step
+    parts = _step_error_parts(algorithm, eps, nutation, max_weight)
+    axis = np.stack([np.zeros(nutation.shape), np.sin(nutation), np.cos(nutation)], axis=-1)[..., None, :]
+    across = np.linalg.norm(parts - np.sum(parts * axis, axis=-1, keepdims=True) * axis, axis=-1)
+    # the composition starts at weight 2w − 1, w the lowest weight of the step error across n: in the series through
+    # max_weight only where that is reached
+    size = np.abs(parts).sum(axis=(-2, -1))[..., None]
+    present = across > 1e-13 * np.maximum(size, np.finfo(float).tiny)
+    lowest = np.where(present.any(axis=-1), np.argmax(present, axis=-1), max_weight + 1)
+    s = np.sum(parts * ((nu * step)[..., None] ** np.arange(max_weight + 1))[..., None], axis=-2)
+    axial = np.sum(s * axis[..., 0, :], axis=-1)
+    transverse = np.linalg.norm(s - axial[..., None] * axis[..., 0, :], axis=-1)
+    angle = _composition_angle(axial, transverse, eps * nu * step)
+    return np.where(2 * lowest - 1 <= max_weight, angle, 0.0) / step
 
 
 def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):

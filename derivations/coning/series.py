@@ -456,7 +456,7 @@ class LocalError:
 
     @property
     def order(self) -> int | None:
-        """Order ρ of the algorithm: local error O(h^(ρ+1)); None if zero through :attr:`max_weight`."""
+        """Accuracy order ρ of the algorithm: local error O(h^(ρ+1)) (local-error order ρ + 1); None if zero through :attr:`max_weight`."""
         w = self.leading_weight
         return None if w is None else w - 1
 
@@ -736,7 +736,8 @@ class ErrorCoefficients:
     Attributes
     ----------
     order : int or None
-        ρ (None if the error vanishes through ``h**max_weight``).
+        ρ, the accuracy order (None if the error vanishes through ``h**max_weight``);
+        ρ + 1 is the local-error order.
     delta : Fraction
         δ.
     coefficients : dict
