@@ -74,7 +74,8 @@ def _run(args) -> Result:
     vector = deg_per_h(asymptotic_drift_vector(alg, **theory, max_weight=terms.max_weight))
     series = float(deg_per_h(terms.total))
     truncation = _finite_or_none(deg_per_h(terms.truncation_error))
-    converged = truncation is not None and truncation <= rtol * series
+    # None: nothing through weight K (no term and no composition), so nothing to converge
+    converged = None if series == 0.0 else bool(truncation is not None and truncation <= rtol * series)
     try:
         exact = abs(float(deg_per_h(exact_drift(alg, motion, args.sample_interval))))
     except ValueError:  # the drift did not settle in the precisions tried (it vanishes, or nearly)
@@ -124,7 +125,9 @@ def _run(args) -> Result:
         f"composition of the steps {data['composition_drift_deg_per_h'] or 0.0:.3g} deg/h)",
         f"exact drift (one step in extended precision, no series): {exact:.6g} deg/h" if exact is not None else "exact drift: did not settle (it vanishes or nearly)",
     ]
-    if not converged:
+    if converged is None:
+        lines.append(f"note: the drift series vanishes through h^{terms.max_weight} (--max-order {K})")
+    elif not converged:
         lines.append(
             f"note: through h^{terms.max_weight} (--max-order {K}) the series has not reached --series-rtol {rtol:g}: "
             f"estimated truncation error {truncation_text}; raise --max-order, or quote the exact drift"
