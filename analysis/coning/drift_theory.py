@@ -16,7 +16,7 @@ the attitude error along the precession axis is
 and the *asymptotic* drift u_a keeps only its leading nonvanishing term, of
 weight ``ρ + 1``: ``u_a = |d_{ρ+1}| ν^{ρ+1} H^ρ`` (Budennyi, Kalinovsky,
 Panov et al., eq. (3); Lebedev & Panov 1989, eq. (5.3)).  For the algorithms
-whose fourth-order drift cancels under coning (ε = −1), ρ = 6 there.
+whose H⁴ drift cancels under coning (ε = −1) the drift order there is 6.
 
 The ``d_w`` project the error of one step on the precession axis n.  The
 steps compose: the error rotation after K steps is ``R^K ∘ T^K`` with
@@ -202,7 +202,7 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
 
 
 def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT):
-    """Order ρ of the drift at (ε, ϑ): the leading nonvanishing weight minus one.
+    """Drift order ρ at (ε, ϑ): the leading nonvanishing weight minus one (package docstring, "Orders").
 
     Parameters
     ----------
