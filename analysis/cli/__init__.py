@@ -234,16 +234,16 @@ class Commands:
 #: line: ``strapdown --help`` lists them, and a call imports only the module of the command it
 #: runs (the help is checked against what the module registers by tests/test_cli.py).
 COMMANDS = {
-    "algorithms list": ("algorithms", "list the registry: name, samples, previous samples read, order, source"),
-    "algorithms show": ("algorithms", "one algorithm: terms as exact fractions, samples, history, second-order defect, order, source"),
+    "algorithms list": ("algorithms", "list the registry: name, samples, previous samples read, accuracy, local-error and coning-drift orders, source"),
+    "algorithms show": ("algorithms", "one algorithm: terms as exact fractions, samples, history, second-order defect, orders, source"),
     "align": ("align", "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory"),
     "azimuth": ("azimuth", "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)"),
     "azimuth-design": ("azimuth", "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)"),
-    "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^order, exact fraction"),
-    "derive local-error": ("derive_local_error", "local-error series of an algorithm (exact fractions, LaTeX) to any order"),
+    "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^m, the next term in α and where the leading term holds"),
+    "derive local-error": ("derive_local_error", "local-error series of an algorithm, every weight through h^K (exact fractions, LaTeX)"),
     "derive lyapunov": ("lyapunov", "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))"),
     "design": ("design", "largest step and computational load of each algorithm for a drift budget"),
-    "drift": ("drift", "constant drift rate of an algorithm under regular precession (parallel computation)"),
+    "drift": ("drift", "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
     "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth, index, HTML)"),
     "reproduce tables": ("tables", "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values"),
