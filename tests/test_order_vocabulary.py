@@ -53,6 +53,7 @@ def test_algorithms_list_gives_the_three_orders_from_their_derivations(capsys):
         ["derive", "local-error", "--algorithm", "ignagni-1996-5"],
         ["derive", "coning-drift", "--algorithm", "ignagni-1996-5", "--omega-h-rad", "0.1"],
         ["drift", "--algorithm", "ignagni-1996-5", "--half-angle-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "1", "--max-order", "9"],
+        ["identify", "--integrator", f"{ROOT / 'docs' / 'integrator_examples.py'}:PerSample", "--samples-per-step", "2", "--max-previous", "0", "--skip-verification"],
     ],
 )
 def test_no_command_says_order_without_saying_which(argv, capsys):
