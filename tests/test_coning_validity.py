@@ -131,6 +131,9 @@ def test_derive_coning_drift_prints_the_range(capsys):
         (["--half-angle-deg", "85", "--freq-hz", "10", "--sample-interval", "0.001"], "--half-angle-deg"),
         (["--half-angle-deg", "1", "--freq-hz", "1000", "--sample-interval", "0.01"], "ωh"),
         (["--tolerance", "0"], "--tolerance"),
+        (["--tolerance", "1e-320"], "--tolerance"),
+        (["--half-angle-deg", "1e-300", "--freq-hz", "10", "--sample-interval", "0.001"], "--half-angle-deg"),
+        (["--half-angle-deg", "1", "--freq-hz", "1e-9", "--sample-interval", "0.001"], "ωh"),
         (["--omega-h-rad", "5"], "--omega-h-rad"),
     ],
 )

@@ -34,10 +34,20 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.coning.drift import X, coning_drift
-from ..coning.coning_validity import DEFAULT_OMEGA_H, DEFAULT_TOLERANCE, MAX_CONE_ANGLE, MAX_OMEGA_H, coning_case, leading_term_range
+from ..coning.coning_validity import (
+    CONE_ANGLE_FLOOR,
+    DEFAULT_OMEGA_H,
+    DEFAULT_TOLERANCE,
+    MAX_CONE_ANGLE,
+    MAX_OMEGA_H,
+    OMEGA_H_FLOOR,
+    TOLERANCE_RANGE,
+    coning_case,
+    leading_term_range,
+)
 from ..coning.drift_theory import coning_drift_function
 from ..core.units import RAD_PER_DEG, deg_per_h
-from ..core.validation import in_open_interval, positive
+from ..core.validation import in_closed_interval, positive
 from . import Result, UsageError
 from ._options import add_algorithm, algorithm_from, number
 
@@ -58,8 +68,8 @@ def _omega_h(text: str) -> list:
             v = float(part)
         except ValueError:
             raise UsageError(f"Expected --omega-h-rad as comma-separated numbers of radians, got {text!r}") from None
-        if not math.isfinite(v) or not 0 < v <= MAX_OMEGA_H:
-            raise UsageError(f"Expected --omega-h-rad values in (0, {MAX_OMEGA_H:g}] (radians), got {part.strip()!r}")
+        if not math.isfinite(v) or not OMEGA_H_FLOOR <= v <= MAX_OMEGA_H:
+            raise UsageError(f"Expected --omega-h-rad values in [{OMEGA_H_FLOOR:g}, {MAX_OMEGA_H:g}] (radians), got {part.strip()!r}")
         values.append(v)
     return values
 
@@ -73,11 +83,15 @@ def _case(args):
     if len(present) < 3:
         missing = ", ".join(f for f, v in given.items() if v is None)
         raise UsageError(f"Expected --half-angle-deg, --freq-hz and --sample-interval together (a case of classical coning), got no {missing}")
-    alpha = in_open_interval(given["--half-angle-deg"], "--half-angle-deg", 0.0, math.degrees(MAX_CONE_ANGLE), text=f"(0, {math.degrees(MAX_CONE_ANGLE):g}) degrees")
+    low, high = math.degrees(CONE_ANGLE_FLOOR), math.degrees(MAX_CONE_ANGLE)
+    alpha = in_closed_interval(given["--half-angle-deg"], "--half-angle-deg", low, high, text=f"[{low:.2g}, {high:g}] degrees")
     nu = 2.0 * math.pi * positive(given["--freq-hz"], "--freq-hz")
     h = positive(given["--sample-interval"], "--sample-interval")
-    if not nu * h <= MAX_OMEGA_H:
-        raise UsageError(f"Expected the coning rate to turn at most {MAX_OMEGA_H:g} rad per sample, got ωh = {nu * h:.3g} rad (--freq-hz {args.freq_hz:g}, --sample-interval {h:g})")
+    if not OMEGA_H_FLOOR <= nu * h <= MAX_OMEGA_H:
+        raise UsageError(
+            f"Expected the coning rate to turn {OMEGA_H_FLOOR:g} to {MAX_OMEGA_H:g} rad per sample, got ωh = {nu * h:.3g} rad "
+            f"(--freq-hz {args.freq_hz:g}, --sample-interval {h:g})"
+        )
     return alpha * RAD_PER_DEG, nu, h
 
 
@@ -119,7 +133,7 @@ def coning_drift_command(args) -> Result:
         For an unknown algorithm, a malformed algorithm file, or a value out of range.
     """
     xs = _omega_h(args.omega_h_rad) if args.omega_h_rad is not None else []
-    tolerance = in_open_interval(args.tolerance, "--tolerance", 0.0, 1.0, text="(0, 1)")
+    tolerance = in_closed_interval(args.tolerance, "--tolerance", *TOLERANCE_RANGE)
     case_args = _case(args)
     alg = algorithm_from(args)
     d = coning_drift(alg)
@@ -245,11 +259,11 @@ def register(commands) -> None:
         metavar="X[,X...]",
         default=None,
         help="also evaluate the exact D(ωh) at these values of ωh, the angle the coning rate turns through in one sample interval [rad], "
-        f"comma-separated, each in (0, {MAX_OMEGA_H:g}]; the range of α is given at them (default: none; the range at "
+        f"comma-separated, each in [{OMEGA_H_FLOOR:g}, {MAX_OMEGA_H:g}]; the range of α is given at them (default: none; the range at "
         f"{', '.join(f'{x:g}' for x in DEFAULT_OMEGA_H)})",
     )
     g = p.add_argument_group("a case of classical coning (all three together)")
-    g.add_argument("--half-angle-deg", type=number, default=None, help=f"half-cone angle α [deg], in (0, {math.degrees(MAX_CONE_ANGLE):g}) (default: none)")
+    g.add_argument("--half-angle-deg", type=number, default=None, help=f"half-cone angle α [deg], in [{math.degrees(CONE_ANGLE_FLOOR):.2g}, {math.degrees(MAX_CONE_ANGLE):g}] (default: none)")
     g.add_argument("--freq-hz", type=number, default=None, help="coning frequency f [Hz], > 0, ω = 2πf (default: none)")
     g.add_argument("--sample-interval", type=number, default=None, metavar="H", help="gyro sample interval h [s], > 0 (default: none)")
     p.add_argument(
@@ -257,5 +271,6 @@ def register(commands) -> None:
         type=number,
         default=DEFAULT_TOLERANCE,
         metavar="R",
-        help=f"relative difference from the exact drift within which the leading term is said to hold [dimensionless], in (0, 1) (default {DEFAULT_TOLERANCE:g})",
+        help="relative difference from the exact drift within which the leading term is said to hold [dimensionless], "
+        f"in [{TOLERANCE_RANGE[0]:g}, {TOLERANCE_RANGE[1]:g}] (default {DEFAULT_TOLERANCE:g})",
     )

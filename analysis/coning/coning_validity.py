@@ -49,12 +49,15 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.drift import coning_drift_series
 from ...derivations.coning.series import WEIGHT_LIMIT
-from ..core.validation import in_open_interval, positive
+from ..core.validation import in_closed_interval, positive
 from .drift_theory import coning_drift
 from .exact_drift import exact_coning_drift
 
 __all__ = [
     "DEFAULT_TOLERANCE",
+    "TOLERANCE_RANGE",
+    "OMEGA_H_FLOOR",
+    "CONE_ANGLE_FLOOR",
     "NextConingTerm",
     "next_coning_term",
     "LeadingTermRange",
@@ -73,8 +76,15 @@ BISECTION_RATIO = 1.001
 MAX_CONE_ANGLE = math.radians(80.0)
 #: Largest ωh searched [rad]: the coning rate turns less than π per sample.
 MAX_OMEGA_H = 3.0
-#: Smallest ωh searched [rad]; below it the leading term is taken to hold as α → 0.
+#: Smallest ωh searched for the ωh limit [rad]; below it the leading term is taken to hold as α → 0.
 MIN_OMEGA_H = 1e-3
+#: Smallest ωh [rad] and half-cone angle [rad] accepted: below them the drift is far beyond any
+#: quoting (α² (ωh)^(m+1) below 10⁻¹⁰⁰ of the rates) and only the float range would be probed.
+OMEGA_H_FLOOR = 1e-6
+CONE_ANGLE_FLOOR = 1e-8
+#: Range of relative tolerances accepted: below the first the search would probe drifts beyond the
+#: working precision of the exact drift; above the second "within" says nothing.
+TOLERANCE_RANGE = (1e-6, 0.5)
 #: Default ωh at which the largest α is given [rad].
 DEFAULT_OMEGA_H = (0.01, 0.03, 0.1, 0.3, 1.0)
 
@@ -290,9 +300,9 @@ def leading_term_range(algorithm: Algorithm, *, omega_h=DEFAULT_OMEGA_H, toleran
     algorithm : Algorithm
         The algorithm (sample indices ≤ 0 allowed).
     omega_h : sequence of float, keyword-only
-        x = ωh [rad], each in (0, :data:`MAX_OMEGA_H`] (default :data:`DEFAULT_OMEGA_H`).
+        x = ωh [rad], each in [:data:`OMEGA_H_FLOOR`, :data:`MAX_OMEGA_H`] (default :data:`DEFAULT_OMEGA_H`).
     tolerance : float, keyword-only
-        Relative tolerance [-], in (0, 1) (default :data:`DEFAULT_TOLERANCE`).
+        Relative tolerance [-], in :data:`TOLERANCE_RANGE` (default :data:`DEFAULT_TOLERANCE`).
 
     Returns
     -------
@@ -303,7 +313,7 @@ def leading_term_range(algorithm: Algorithm, *, omega_h=DEFAULT_OMEGA_H, toleran
     TypeError
         If ``algorithm`` is not an Algorithm.
     ValueError
-        For a tolerance outside (0, 1) or an ωh outside (0, MAX_OMEGA_H].
+        For a tolerance outside TOLERANCE_RANGE or an ωh outside [OMEGA_H_FLOOR, MAX_OMEGA_H].
 
     Examples
     --------
@@ -314,8 +324,8 @@ def leading_term_range(algorithm: Algorithm, *, omega_h=DEFAULT_OMEGA_H, toleran
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
-    tolerance = in_open_interval(tolerance, "tolerance", 0.0, 1.0, text="(0, 1)")
-    xs = tuple(in_open_interval(x, "omega_h", 0.0, MAX_OMEGA_H + 1e-12, text=f"(0, {MAX_OMEGA_H:g}] rad") for x in np.atleast_1d(np.asarray(omega_h, dtype=float)))
+    tolerance = in_closed_interval(tolerance, "tolerance", *TOLERANCE_RANGE)
+    xs = tuple(in_closed_interval(x, "omega_h", OMEGA_H_FLOOR, MAX_OMEGA_H, text=f"[{OMEGA_H_FLOOR:g}, {MAX_OMEGA_H:g}] rad") for x in np.atleast_1d(np.asarray(omega_h, dtype=float)))
     terms = _Terms.of(algorithm)
     return LeadingTermRange(
         algorithm.name,
@@ -387,13 +397,13 @@ def coning_case(algorithm: Algorithm, *, cone_angle: float, nu: float, sample_in
     algorithm : Algorithm
         The algorithm (sample indices ≤ 0 allowed).
     cone_angle : float, keyword-only
-        Half-cone angle α [rad], in (0, π/2).
+        Half-cone angle α [rad], in [:data:`CONE_ANGLE_FLOOR`, :data:`MAX_CONE_ANGLE`].
     nu : float, keyword-only
         Coning rate ω [rad/s], > 0.
     sample_interval : float, keyword-only
-        Sample interval h [s], > 0, with ωh ≤ :data:`MAX_OMEGA_H`.
+        Sample interval h [s], > 0, with ωh in [:data:`OMEGA_H_FLOOR`, :data:`MAX_OMEGA_H`].
     tolerance : float, keyword-only
-        Relative tolerance of the range [-], in (0, 1) (default :data:`DEFAULT_TOLERANCE`).
+        Relative tolerance of the range [-], in :data:`TOLERANCE_RANGE` (default :data:`DEFAULT_TOLERANCE`).
 
     Returns
     -------
@@ -411,7 +421,7 @@ def coning_case(algorithm: Algorithm, *, cone_angle: float, nu: float, sample_in
     >>> round(case.ratio, 1), case.within
     (13.1, False)
     """
-    alpha = in_open_interval(cone_angle, "cone_angle", 0.0, math.pi / 2, text="(0, π/2)")
+    alpha = in_closed_interval(cone_angle, "cone_angle", CONE_ANGLE_FLOOR, MAX_CONE_ANGLE, text=f"[{CONE_ANGLE_FLOOR:g}, {MAX_CONE_ANGLE:.4g}] rad")
     nu = positive(nu, "nu")
     h = positive(sample_interval, "sample_interval")
     rng = leading_term_range(algorithm, omega_h=(nu * h,), tolerance=tolerance)

@@ -64,7 +64,7 @@ __all__ = ["RELATIVE_TOLERANCE", "exact_drift", "exact_coning_drift"]
 #: Two working precisions must agree to this fraction of the drift [-].
 RELATIVE_TOLERANCE = 1e-13
 #: Working precisions tried in turn [decimal digits].
-_DIGITS = (30, 50, 80, 130, 210, 340, 550)
+_DIGITS = (30, 50, 80, 130, 210, 340, 550, 900, 1500, 2500)
 
 
 def _increments(eps, sin_t, cos_t, x, first: int, count: int) -> np.ndarray:
@@ -118,7 +118,7 @@ def exact_drift(algorithm: Algorithm, motion: RegularPrecession, sample_interval
     -------
     float
         u [rad/s], signed, to :data:`RELATIVE_TOLERANCE`; 0.0 if it vanishes
-        below 10⁻⁵⁰⁰ of νH.
+        below 10⁻²⁴⁵⁰ of νH.
 
     Raises
     ------
