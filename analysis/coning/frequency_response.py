@@ -34,7 +34,7 @@ from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.drift import coning_drift, coning_drift_series
 from ..core.cache import derived
 from ..core.validation import as_array, in_open_interval, positive
-from .drift_theory import algorithm_key, coning_drift_function, coning_drift_rate, drift_terms
+from .drift_theory import algorithm_key, coning_drift_function, coning_drift_rate, drift_series_terms
 from .precession import RegularPrecession
 from .simulator import simulate
 
@@ -388,7 +388,8 @@ class FiniteAngleCheck:
         ``α² ω D(ωh)`` [rad/s], signed as ``series``.
     series : float
         The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in
-        α, along the cone axis, exact minus algorithm [rad/s].
+        α, with the composition of the steps, along the cone axis, exact minus
+        algorithm [rad/s].
     simulated : float or None
         Parallel computation: the simulator's drift along the cone axis, exact
         minus algorithm [rad/s] (None if not run, see ``note``).
@@ -426,7 +427,7 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     nu : float, keyword-only
         ω [rad/s], > 0.
     max_weight : int, keyword-only
-        Weight of the drift series (:func:`strapdown.analysis.coning.drift_theory.drift_terms`).
+        Weight of the drift series (:func:`strapdown.analysis.coning.drift_theory.drift_series_terms`, with the composition of the steps).
     periods : int, keyword-only
         Length of the simulated run in coning periods.
 
@@ -444,10 +445,8 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     nu = positive(nu, "nu")
     h = x / nu
     H = algorithm.samples * h
-    vals, _ = drift_terms(algorithm, -1.0, alpha, max_weight=max_weight)
-    w = np.arange(vals.shape[-1])
-    # drift_terms is along the precession axis n; the cone axis is a = −n
-    series = -float(np.sum(vals * nu**w * H ** np.maximum(w - 1, 0)))
+    # the series (with the composition of the steps) is along the precession axis n; the cone axis is a = −n
+    series = -drift_series_terms(algorithm, eps=-1.0, nu=nu, nutation=alpha, step=H, max_weight=max_weight).signed_total
     closed = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
     motion = RegularPrecession(-1.0, nu, alpha)
     try:

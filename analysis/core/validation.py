@@ -23,6 +23,7 @@ __all__ = [
     "as_float",
     "as_int",
     "in_open_interval",
+    "in_closed_interval",
     "positive",
     "nonnegative",
 ]
@@ -198,6 +199,45 @@ def in_open_interval(x, name: str, low: float, high: float, *, text: str | None 
     value = as_float(x, name)
     if not (low < value < high):
         span = text or f"({low:g}, {high:g})"
+        raise ValueError(f"Expected `{name}` in {span}, got {value:g}")
+    return value
+
+
+def in_closed_interval(x, name: str, low: float, high: float, *, text: str | None = None) -> float:
+    """Return ``x`` as a finite float in the closed interval ``[low, high]``.
+
+    Parameters
+    ----------
+    x : real number
+        The value.
+    name : str
+        Argument name for the message.
+    low, high : float
+        Ends of the interval (included), in the unit of ``x``.
+    text : str, optional, keyword-only
+        How the message shows the interval, with its unit (e.g. ``"[1e-06, 3] rad"``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is not finite or outside the interval.
+
+    Examples
+    --------
+    >>> in_closed_interval(1e-9, "tolerance", 1e-6, 0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected `tolerance` in [1e-06, 0.5], got 1e-09
+    """
+    value = as_float(x, name)
+    if not (low <= value <= high):
+        span = text or f"[{low:g}, {high:g}]"
         raise ValueError(f"Expected `{name}` in {span}, got {value:g}")
     return value
 
