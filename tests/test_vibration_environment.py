@@ -299,6 +299,19 @@ def test_monte_carlo_does_not_depend_on_chunking():
     assert np.array_equal(a.pairs, b.pairs)
 
 
+def test_draws_with_one_stream_per_realisation_are_the_single_draws(tmp_path):
+    from strapdown.analysis.coning.vibration_monte_carlo import draw_components
+
+    env = load_environment(_write(tmp_path, SPECTRUM_FILE))
+    seeds = np.random.SeedSequence(3).spawn(4)
+    freq, amp = draw_components(env, 4, [np.random.default_rng(s) for s in seeds])
+    for i, s in enumerate(seeds):
+        f, z = draw_components(env, 1, np.random.default_rng(s))
+        assert np.array_equal(freq[i], f[0]) and np.array_equal(amp[i], z[0])
+    with pytest.raises(ValueError, match="`rng`"):
+        draw_components(env, 3, [np.random.default_rng(s) for s in seeds])
+
+
 def test_monte_carlo_phases_advanced_between_anchors_agree_with_direct_evaluation():
     """Phases advanced by e^{iω h_s} between direct evaluations every REANCHOR samples, against sines and cosines at every node."""
     pytest.importorskip("numba")

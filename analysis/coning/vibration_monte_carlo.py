@@ -136,7 +136,7 @@ def _density(spectrum: Spectrum):
     return grid, cell / cell.sum(), cdf
 
 
-def draw_components(environment: Environment, count: int, rng: np.random.Generator, *, band_components: int = BAND_COMPONENTS, densities=None):
+def draw_components(environment: Environment, count: int, rng, *, band_components: int = BAND_COMPONENTS, densities=None):
     """Frequencies and amplitudes of ``count`` realisations (module docstring).
 
     Parameters
@@ -145,8 +145,10 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         Lines and spectra.
     count : int
         Realisations [count].
-    rng : numpy.random.Generator
-        Random stream.
+    rng : numpy.random.Generator or sequence of them
+        One random stream for all the realisations, or one stream per
+        realisation (``count`` of them): realisation i then takes from
+        ``rng[i]`` the numbers a draw of one realisation would take.
     band_components : int, keyword-only
         Sinusoids per spectrum [count].
     densities : list, keyword-only
@@ -159,7 +161,20 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         [Hz].
     amplitude : ndarray of complex, shape (count, K, 6)
         Rate [rad/s] and specific-force [m/s²] amplitudes.
+
+    Raises
+    ------
+    ValueError
+        A sequence of streams whose length is not ``count``.
     """
+    streams = [rng] if isinstance(rng, np.random.Generator) else list(rng)
+    if len(streams) > 1 and len(streams) != count:
+        raise ValueError(f"Expected `rng` to hold one stream per realisation ({count}), got {len(streams)}")
+
+    def draw(take):
+        """``take(generator, n)`` for all the realisations from the one stream, or for one from each stream."""
+        return take(streams[0], count) if len(streams) == 1 else np.concatenate([take(g, 1) for g in streams])
+
     lines = environment.lines
     K = len(lines) + band_components * len(environment.spectra)
     freq = np.empty((count, K))
@@ -167,13 +182,13 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
     if lines:
         groups = {}  # lines of one frequency are coherent: one random phase for them all
         index = np.array([groups.setdefault(ln.frequency, len(groups)) for ln in lines])
-        phases = rng.uniform(0.0, 2.0 * math.pi, size=(count, len(groups)))[:, index]
+        phases = draw(lambda g, n: g.uniform(0.0, 2.0 * math.pi, size=(n, len(groups))))[:, index]
         freq[:, : len(lines)] = [ln.frequency for ln in lines]
         amp[:, : len(lines)] = np.stack([ln.amplitude for ln in lines])[None] * np.exp(1j * phases)[..., None]
     k = len(lines)
     densities = densities if densities is not None else [_density(s) for s in environment.spectra]
     for s, (grid, cell, cdf) in zip(environment.spectra, densities):
-        u = rng.uniform(size=(count, band_components))
+        u = draw(lambda g, n: g.uniform(size=(n, band_components)))
         idx = np.clip(np.searchsorted(cdf, u, side="right") - 1, 0, cell.size - 1)
         frac = (u - cdf[idx]) / np.where(cell[idx] > 0, cell[idx], 1.0)
         f = grid[idx] + np.clip(frac, 0.0, 1.0) * (grid[idx + 1] - grid[idx])
@@ -181,7 +196,7 @@ def draw_components(environment: Environment, count: int, rng: np.random.Generat
         sigma = 2.0 * s.at(f) / (band_components * p)[..., None, None]
         lam, vec = np.linalg.eigh(sigma)
         root = vec * np.sqrt(np.clip(lam, 0.0, None))[..., None, :]
-        w = (rng.standard_normal((count, band_components, 6)) + 1j * rng.standard_normal((count, band_components, 6))) / math.sqrt(2.0)
+        w = draw(lambda g, n: g.standard_normal((n, band_components, 6)) + 1j * g.standard_normal((n, band_components, 6))) / math.sqrt(2.0)
         y = np.einsum("...ab,...b->...a", root, w)
         freq[:, k : k + band_components] = f
         amp[:, k : k + band_components] = np.conj(y)
@@ -439,9 +454,8 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
     densities = [_density(s) for s in environment.spectra]
     for start in range(0, pairs, chunk):
         sel = children[start : start + chunk]
-        draws = [draw_components(environment, 1, np.random.default_rng(child), band_components=band_components, densities=densities) for child in sel]
-        freq = np.concatenate([f for f, _ in draws])  # the pair's first member; the kernel runs −Z beside Z
-        amp = np.concatenate([z for _, z in draws])
+        streams = [np.random.default_rng(child) for child in sel]  # the pairs' first members; the kernel runs −Z beside Z
+        freq, amp = draw_components(environment, len(sel), streams, band_components=band_components, densities=densities)
         om = 2.0 * math.pi * freq
         rate, accel = amp[..., :3], amp[..., 3:]
         theta = rate / (1j * om[..., None])
