@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core import repeated_draws
+from ..core import budget, repeated_draws
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
 from ..gyrocompass.azimuth import check_latitude
 from ..gyrocompass.rocking import as_generator
@@ -303,7 +303,7 @@ def _quantise(x, q, g):
     return q * np.diff(np.concatenate([first, acc], axis=1), axis=1)
 
 
-def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, truth_stride: int | None = None) -> ImuRecord:
+def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, truth_stride: int | None = None, limits: budget.Limits | None = None) -> ImuRecord:
     """Sensor increments of ``n_trials`` independent rocking records.
 
     Parameters
@@ -318,6 +318,9 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
         Random stream (rocking phases and amplitudes, biases, noise, quantisation residues).
     truth_stride : int, optional
         Truth every ``truth_stride`` samples (default: at the start and the end only).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -326,7 +329,8 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     Raises
     ------
     ValueError
-        For a bad size or stride.
+        For a bad size or stride, or a record beyond ``limits`` (naming
+        ``n_trials`` and the scenario's ``duration``).
 
     Examples
     --------
@@ -345,9 +349,11 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
         raise TypeError(f"Expected `errors` to be SensorErrors, got {type(errors).__name__}")
     n = as_int(n_trials, "n_trials", minimum=1)
     N, dt = scenario.n_samples, scenario.dt
+    what = f"`n_trials` = {n:.3g} records of {N + 1:.3g} samples (`duration` = {scenario.duration:.3g} s of the scenario)"
+    budget.check(budget.imu_record(n, N + 1, what=what), limits)
     stride = N if truth_stride is None else as_int(truth_stride, "truth_stride", minimum=1)
     g = as_generator(rng)
-    motion = scenario.motion.draw(g, n, N + 1, dt)
+    motion = scenario.motion.draw(g, n, N + 1, dt, limits=limits)
     dtheta, dv = ideal_increments(scenario, motion)
     # truth at the sample instants k·stride
     idx = np.arange(0, N + 1, stride)
@@ -356,7 +362,7 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     if idx.size <= _FEW_POINTS:  # the start and the end: the sum over frequencies, not the whole record
         ang, rate = motion.evaluate_points(idx, derivatives=1)
     else:
-        (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1)
+        (ang, rate), scale = motion.unit_evaluation(N + 1, 0.0, derivatives=1, limits=limits)
         ang, rate = scale * ang[:, idx], scale * rate[:, idx]
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)

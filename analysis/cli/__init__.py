@@ -478,19 +478,29 @@ def _given(argv) -> str:
     return ", ".join(pairs)
 
 
+def _as_options(text: str, args) -> str:
+    """``text`` with each backticked Python argument replaced by its option: `` `horizon` = 3e+09 s`` → ``--horizon 3e+09 s``."""
+
+    def option(match):
+        return _option_for(match.group(1), args) or match.group(0)
+
+    return re.sub(r"`([A-Za-z_]\w*)`(?: =)?", option, text)
+
+
 def _budget_message(exc, args) -> str:
     from ..core.budget import format_bytes, format_seconds
 
     options = _option_strings(getattr(args, "parser_", None))
+    what = _as_options(exc.estimate.what, args)
     if exc.resource == "memory":
         flag = options.get("memory_limit_mb", "--memory-limit-mb")
         return (
-            f"{exc.estimate.what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
+            f"{what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
             f"over the limit of {format_bytes(exc.limits.memory)}; reduce the request or raise the limit with {flag}"
         )
     flag = options.get("time_limit", "--time-limit")
     return (
-        f"{exc.estimate.what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
+        f"{what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
         f"over the limit of {format_seconds(exc.limits.seconds)}; reduce the request or raise the limit with {flag} (seconds)"
     )
 

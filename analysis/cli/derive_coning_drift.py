@@ -41,12 +41,16 @@ QUANTITY = (
 
 def _omega_h(text: str) -> list:
     values = []
+    if not str(text).strip():
+        raise UsageError("Expected --omega-h-rad as comma-separated numbers of radians, got an empty value")
     for part in str(text).split(","):
         try:
             v = float(part)
         except ValueError:
             raise UsageError(f"Expected --omega-h-rad as comma-separated numbers of radians, got {text!r}") from None
-        if not math.isfinite(v) or v <= 0:
+        if not math.isfinite(v):
+            raise UsageError(f"Expected --omega-h-rad values to be finite numbers of radians, got {part.strip()!r} in {text!r}")
+        if v <= 0:
             raise UsageError(f"Expected --omega-h-rad values > 0 (radians), got {part.strip()!r}")
         values.append(v)
     return values

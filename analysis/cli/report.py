@@ -39,6 +39,8 @@ def report_command(args) -> Result:
     # The stamp names what determines the content (mode and sections), not where it was
     # written, so that regenerations into different directories stay byte-identical.
     command = "strapdown report" + (" --quick" if args.quick else "") + (" --only " + " ".join(args.only) if args.only else "")
+    if not str(args.out).strip():
+        raise ValueError(f"Expected `out` to name a directory, got an empty name {args.out!r}")
     start = time.perf_counter()
     names = generate(Path(args.out), only=args.only, quick=args.quick, show_progress=bool(args.progress), command=command)
     elapsed = time.perf_counter() - start

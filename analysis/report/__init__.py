@@ -412,7 +412,7 @@ def generate(
     requested = list(names) if only is None else list(only)
     unknown = [n for n in requested if n not in names]
     if unknown or not requested:
-        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(unknown) or 'nothing'}")
+        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(repr(n) for n in unknown) or 'no section'}")
     selected = set(requested) | {m.SECTION.name for m in modules if m.SECTION.gathers}
     todo = [m for m in modules if m.SECTION.name in selected]
     dest = output.prepare(out)  # refuse early, before the lock and any work

@@ -258,6 +258,8 @@ def prepare(out) -> Destination:
         ``out`` is a regular file (or anything but a directory), a file-system
         root, holds files that no earlier run wrote, or cannot be read.
     """
+    if not str(out).strip():
+        raise OutputError(f"Expected `out` to name a directory, got an empty name {str(out)!r}")
     raw = Path(out)
     path = Path(os.path.abspath(raw))
     if path.is_symlink():
