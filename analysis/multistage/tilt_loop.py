@@ -360,7 +360,10 @@ class StageLoop:
         # input); the grid only has to resolve the peak.
         fastest = float(np.abs(self.poles()).max(initial=0.0))
         dt, m, samples = pulse_grid(dur, end, fastest, max_points)
-        asked = f"`horizon` = {end:.3g} s" if horizon is not None else f"`accel_duration` = {dur:.3g} s plus two Schuler periods"
+        if horizon is not None:
+            asked = f"`horizon` = {end:.3g} s"
+        else:
+            asked = f"the default horizon, `accel_duration` = {dur:.3g} s plus two Schuler periods 2π√(`earth_radius`/`gravity`) = {self.schuler_period:.3g} s"
         budget.check(budget.loop_response(samples, what=f"{asked} at a time step of {dt:.3g} s ({samples:.3g} samples)"), limits)
         t = np.arange(int(samples)) * dt
         step = step_response_on_grid(self.error_from_accel(), t)
