@@ -260,7 +260,7 @@ def alignment_monte_carlo(
     executor : Executor | dask Client | None
         Where blocks run (the result does not depend on it).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     trials_per_block : int, optional
         Trials per block (the unit of randomness; default 32, Kalman 128).
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional

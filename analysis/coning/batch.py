@@ -180,7 +180,7 @@ def simulate_batch(
         ``"auto"``: the compiled kernel whenever numba is available; ``"numpy"``:
         a loop over points of the numpy simulator (the reference, slow).
     progress : bool, keyword-only
-        Progress bar on stderr (only when it is a terminal).
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
         Largest estimated memory and run time (default 2 GB, 300 s); a request
         beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.

@@ -44,6 +44,7 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm
 from ..core import quaternion as quat
 from ..core.dual import Dual
+from ..core.progress import bar
 from . import _kernel_template as template
 from .streaming import N_SUMS, empty_sums
 
@@ -485,12 +486,6 @@ def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> No
         run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True)
 
 
-def _progress(total: int, enabled: bool):
-    if not enabled or not sys.stderr.isatty():
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, leave=False)
 
 
 def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, series: bool, progress: bool = False):
@@ -509,7 +504,7 @@ def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, seri
     series : bool, keyword-only
         Keep the error series (every point then runs ``max(n_steps)`` steps of storage).
     progress : bool, keyword-only
-        Progress bar on stderr (only when it is a terminal).
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
 
     Returns
     -------
@@ -528,14 +523,11 @@ def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, seri
         unused = np.zeros((1, 1, 3))
         keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
     chunk = chunk_steps(par.shape[0])
-    bar = _progress(last * par.shape[0], progress)
-    for k0 in range(0, last, chunk):
-        k1 = min(last, k0 + chunk)
-        advance(run, par, theta, n_steps, sums, k0, k1, keep)
-        if bar is not None:
-            bar.update((k1 - k0) * par.shape[0])
-    if bar is not None:
-        bar.close()
+    with bar(total=last * par.shape[0], desc="simulation", enabled=progress, unit="step") as shown:
+        for k0 in range(0, last, chunk):
+            k1 = min(last, k0 + chunk)
+            advance(run, par, theta, n_steps, sums, k0, k1, keep)
+            shown.update((k1 - k0) * par.shape[0])
     return sums, keep
 
 

@@ -849,7 +849,7 @@ def azimuth_monte_carlo(
     executor : Executor | dask Client | None
         Where chunks run (the result does not depend on it).
     progress : bool
-        tqdm progress bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     blocks_per_chunk : int
         Blocks per work item (the result does not depend on it).
     control_degree : int

@@ -314,7 +314,7 @@ def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = Fa
     executor : Executor | dask Client | None
         Where cases run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates (see
         :func:`evaluate_case`).
@@ -418,7 +418,7 @@ def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, 
     executor : Executor | dask Client | None
         Where cells run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates (see
         :func:`evaluate_case`).

@@ -283,7 +283,7 @@ def sensor_error_monte_carlo(
     executor : Executor | dask Client | None
         Where chunks run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     engine : {"compiled", "python"}
         Implementation of the cascade: one compiled pass per trial, or the
         reference (plain-Python stage recursion, numpy in between); the two

@@ -19,7 +19,9 @@ are byte-identical, on this machine and on any other with the same matplotlib.
 
 Output is written into a staging directory and swapped into place atomically
 only when every section succeeded; a directory holding files that no earlier
-run wrote is refused, and so is a regular file (:mod:`.output`).
+run wrote is refused, and so is a regular file, and so is a report whose
+generated files were edited since (the manifest keeps the hash of every file),
+unless ``overwrite_modified`` (:mod:`.output`).
 """
 
 from __future__ import annotations
@@ -299,7 +301,7 @@ class Context:
 
         Returns
         -------
-        tqdm.tqdm
+        tqdm.tqdm or a task of :func:`strapdown.analysis.core.progress.lines`
         """
         from ..core.progress import bar
 
@@ -361,6 +363,7 @@ def generate(
     command: str = "strapdown report",
     sections: Sequence | None = None,
     figure_check: Callable | None = None,
+    overwrite_modified: bool = False,
 ) -> list[str]:
     """Regenerate the reports into ``out``, atomically and without touching foreign files.
 
@@ -391,6 +394,9 @@ def generate(
     figure_check : callable, optional, keyword-only
         ``figure_check(relpath, fig)``, called for every figure after it is written
         (:attr:`Context.figure_check`).
+    overwrite_modified : bool, keyword-only
+        Replace generated files of ``out`` that were edited since the run that
+        wrote them (by default such a run is refused and the edits kept).
 
     Returns
     -------
@@ -404,6 +410,9 @@ def generate(
     strapdown.analysis.report.output.OutputError
         If ``out`` must not be replaced (foreign files, a regular file), another
         run holds its lock, or it cannot be written.
+    strapdown.analysis.report.output.ModifiedFilesError
+        If the run would replace generated files edited since they were written
+        (and not ``overwrite_modified``); they are named and left untouched.
     """
     from ..core.progress import bar
 
@@ -415,11 +424,14 @@ def generate(
         raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(repr(n) for n in unknown) or 'no section'}")
     selected = set(requested) | {m.SECTION.name for m in modules if m.SECTION.gathers}
     todo = [m for m in modules if m.SECTION.name in selected]
+    replaced = None if only is None else {m.SECTION.name for m in todo}  # the sections whose files are replaced
     dest = output.prepare(out)  # refuse early, before the lock and any work
+    output.refuse_modified(dest, replaced, overwrite_modified=overwrite_modified)
     configure_matplotlib()
     with output.lock(dest):
         output.clean(dest)
         dest = output.prepare(out)  # again under the lock: another run may have replaced it meanwhile
+        output.refuse_modified(dest, replaced, overwrite_modified=overwrite_modified)
         if dest.legacy and only is not None:
             raise output.OutputError(
                 f"Expected `out` with a report manifest for --only, got {str(dest.path)!r} written before manifests existed: "
@@ -444,7 +456,10 @@ def generate(
             output.check_legacy(dest, files)
             import matplotlib
 
-            manifest = output.Manifest({k: v for k, v in written.items() if v}, matplotlib.__version__)
+            previous = dest.previous.hashes if dest.previous is not None else {}
+            carried = {f for fs in kept.values() for f in fs}
+            hashes = {f: previous[f] if f in carried and f in previous else output.file_digest(staged.joinpath(*PurePosixPath(f).parts)) for f in sorted(files)}
+            manifest = output.Manifest({k: v for k, v in written.items() if v}, matplotlib.__version__, hashes)
             (staged / output.MANIFEST).write_text(manifest.to_json(), encoding="utf-8", newline="\n")
             output.fault("complete")
             output.commit(dest, staged)
