@@ -315,7 +315,10 @@ def sensor_error_monte_carlo(
         raise ValueError(f"Expected `levels` in [0, 100], got {levels}")
     sc = Scenario() if scenario is None else scenario
     steps = sc.duration / float(step)
-    budget.check(budget.multistage(float(n_trials + 1) * steps, what=f"`n_trials` = {n_trials:.3g} runs of {steps:.3g} steps (`step` = {float(step):g} s)"), limits)
+    what = f"`n_trials` = {n_trials:.3g} runs of {steps:.3g} steps (`step` = {float(step):g} s)"
+    runs = budget.multistage(float(n_trials + 1) * steps, what=what)  # the time of every run
+    held = budget.multistage((as_int(trials_per_block, "trials_per_block", minimum=1) + 1.0) * steps, what=what)  # the memory of one block
+    budget.check(budget.Estimate(runs.seconds, held.memory, what), limits)
     clean = replace(sc, sensors=SensorErrors())
     stages = tuple(plotnikov_1999_stages(sc.gravity, sc.earth_radius) if stages is None else stages)
     if not stages or not all(isinstance(s, Stage) for s in stages):
