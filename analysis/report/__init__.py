@@ -1,8 +1,8 @@
 """Report generation: ``strapdown report`` regenerates ``reports/``.
 
 Each module of this package that defines ``SECTION`` and ``build`` is one
-report section (the others, :mod:`.output` and :mod:`.rendering`, are the
-machinery).  A section module defines
+report section (the others, :mod:`.output`, :mod:`.rendering` and
+:mod:`.warm_up`, are the machinery).  A section module defines
 
 ``SECTION``
     a :class:`Section` (name, title, order);
@@ -10,7 +10,10 @@ machinery).  A section module defines
     writes the section's files through the :class:`Context` ``ctx``;
 ``errata(ctx)`` (optional)
     returns a list of :class:`Erratum`, each with evidence computed by the
-    package; the ``errata`` section gathers them into ``errata.md``.
+    package; the ``errata`` section gathers them into ``errata.md``;
+``warm_up()`` (optional)
+    compiles and derives into the caches what ``build`` will need, writing
+    nothing else; a cold run does it on the second core (:mod:`.warm_up`).
 
 Reports are pure functions of (configuration, seed): figures carry no dates
 or software stamps and are rendered from coordinates rounded far below a pixel
@@ -35,7 +38,7 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from ...derivations.reproducible import reproducible
-from . import output
+from . import output, warm_up
 from .rendering import quantise
 
 __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
@@ -44,7 +47,7 @@ __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "genera
 SEED = 20261122
 
 #: Modules of this package that are machinery, not sections.
-_MACHINERY = frozenset({"output", "rendering"})
+_MACHINERY = frozenset({"output", "rendering", "warm_up"})
 
 
 @dataclass(frozen=True)
@@ -364,6 +367,7 @@ def generate(
     sections: Sequence | None = None,
     figure_check: Callable | None = None,
     overwrite_modified: bool = False,
+    background: bool = True,
 ) -> list[str]:
     """Regenerate the reports into ``out``, atomically and without touching foreign files.
 
@@ -397,6 +401,10 @@ def generate(
     overwrite_modified : bool, keyword-only
         Replace generated files of ``out`` that were edited since the run that
         wrote them (by default such a run is refused and the edits kept).
+    background : bool, keyword-only
+        Fill the caches of the sections ahead of them in a second process
+        (:mod:`.warm_up`; only while they are cold, and without effect on the
+        result).
 
     Returns
     -------
@@ -438,6 +446,7 @@ def generate(
                 "regenerate it whole once, then sections one by one"
             )
         staged = output.stage(dest)
+        helper = warm_up.start(todo) if background else None
         try:
             output.fault("staged")
             kept = _carry_over(dest, staged, {m.SECTION.name for m in todo}) if only is not None else {}
@@ -468,6 +477,8 @@ def generate(
 
             shutil.rmtree(staged, ignore_errors=True)
             raise
+        finally:
+            warm_up.stop(helper)
     return [m.SECTION.name for m in todo]
 
 
