@@ -57,7 +57,7 @@ def test_generated_increment_equals_evaluator(name, dual):
     rng = np.random.default_rng(7)
     for _ in range(5):
         w, wd = 0.1 * rng.normal(size=(alg.window, 3)), rng.normal(size=(alg.window, 3))
-        got = np.array(namespace["increment"](w, wd, None, alg.samples, alg.history))
+        got = np.array(namespace["increment"](w, wd))
         ref = increment(alg, Dual(w, wd)) if dual else increment(alg, w)
         np.testing.assert_allclose(got[:3], ref.re if dual else ref, rtol=0, atol=1e-16)
         np.testing.assert_allclose(got[3:], ref.du if dual else 0.0, rtol=0, atol=2e-15)
@@ -75,7 +75,7 @@ def test_data_driven_increment_is_the_generated_one_to_the_bit(name, dual):
     rng = np.random.default_rng(11)
     for _ in range(50):
         w, wd = 0.1 * rng.normal(size=(alg.window, 3)), rng.normal(size=(alg.window, 3))
-        assert tuple(driven["pairwise_increment"](w, wd, pairs, alg.samples, alg.history)) == tuple(generated["increment"](w, wd, pairs, alg.samples, alg.history))
+        assert tuple(driven["pairwise_increment"](w, wd, pairs, alg.samples, alg.history)) == tuple(generated["increment"](w, wd))
 
 
 def test_pairwise_algorithms_share_one_kernel_text():

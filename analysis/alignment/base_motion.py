@@ -51,19 +51,17 @@ Amplitudes: ``amplitude`` is the sine amplitude; for the Gaussian models it is
 
 from __future__ import annotations
 
-import hashlib
 import math
 from dataclasses import dataclass, field, replace
 from functools import cache
 
 import numpy as np
 
-from ..core import budget, repeated_draws
-from ..core.memo import BoundedMemo
+from ..core import budget
 from ..core.validation import as_array, as_float, as_int, positive
 from ..gyrocompass.rocking import as_generator
 
-__all__ = ["Spectrum", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS", "mean_transfer", "mean_variance"]
+__all__ = ["Spectrum", "UnitDraw", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS", "mean_transfer", "mean_variance"]
 
 
 @dataclass(frozen=True)
@@ -117,6 +115,57 @@ class Spectrum:
         return np.sum(self.power * np.real(ha * np.conj(hb)), axis=-1)
 
 
+class UnitDraw:
+    """The random coefficients of a rocking at unit amplitude per axis, with their evaluations kept.
+
+    A search over the rocking amplitude with common random numbers evaluates
+    one draw at many amplitudes: the realisations :meth:`MotionRealisation.rescaled`
+    makes share this object, so each evaluation of the record (an inverse
+    FFT or a sum of sinusoids) is made once and scaled per axis after.  The kept
+    evaluations live as long as the draw.
+
+    Parameters
+    ----------
+    model : rocking model
+        The model at unit amplitude on every axis.
+    spectrum : Spectrum
+        Its discrete spectrum.
+    coefficients : ndarray
+        ``(n_trials, 3, M)`` complex coefficients at unit amplitude [rad].
+    dt : float
+        Sample interval [s].
+    """
+
+    def __init__(self, model, spectrum: Spectrum, coefficients: np.ndarray, dt: float):
+        self.model, self.spectrum, self.coefficients, self.dt = model, spectrum, coefficients, dt
+        self._evaluations: dict = {}
+
+    def evaluation(self, n: int, offset: float, d: int, compute) -> np.ndarray:
+        """The d-th derivative at ``offset + k dt``, ``k < n``, made by ``compute()`` once (read-only).
+
+        Parameters
+        ----------
+        n : int
+            Time points.
+        offset : float
+            Time of the first point [s].
+        d : int
+            Derivative.
+        compute : callable
+            Makes the ``(n_trials, n, 3)`` evaluation.
+
+        Returns
+        -------
+        ndarray
+        """
+        key = (int(n), float(offset), int(d))
+        if key not in self._evaluations:
+            x = compute()
+            x.flags.writeable = False
+            self._evaluations[key] = x
+        return self._evaluations[key]
+
+
 @dataclass(frozen=True)
 class MotionRealisation:
     """Rocking of ``n`` trials: ``θ_a(t) = Σ_m Re[c[t, a, m] e^{iω_m t}]``.
@@ -129,26 +178,51 @@ class MotionRealisation:
         ``(n_trials, 3, M)`` complex coefficients [rad].
     dt : float
         Sample interval of the FFT grid [s].
-    unit : tuple or None
-        ``(key, coefficients, scale)`` of a model whose axes are one shape
-        scaled by their amplitudes (sine, narrow-band, white): ``coefficients = unit · scale`` per
-        axis, with ``key`` a digest of the random draw (the generator's state
-        before it and its shape) and of the unit model.
-        The evaluations of the unit coefficients are kept (a few, least
-        recently used first out), so that the same draw at another amplitude —
-        the common random numbers of a root search over the amplitude — costs
-        a product, not an FFT or a sum of sinusoids (equal to round-off).
+    unit : UnitDraw or None
+        The draw at unit amplitude of a model whose axes are one shape scaled
+        by their amplitudes (sine, narrow-band, white): ``coefficients =
+        unit.coefficients · scale`` per axis.  Realisations of the same draw at
+        other amplitudes (:meth:`rescaled`) share it and its evaluations.
+    scale : ndarray or None
+        ``(3,)`` the amplitudes per axis that scale ``unit``.
     """
 
     spectrum: Spectrum
     coefficients: np.ndarray
     dt: float
-    unit: tuple | None = field(default=None, repr=False, compare=False)
+    unit: UnitDraw | None = field(default=None, repr=False, compare=False)
+    scale: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def n_trials(self) -> int:
         """Trials."""
         return self.coefficients.shape[0]
+
+    def rescaled(self, model) -> MotionRealisation:
+        """The same draw (common random numbers) for ``model``, the drawn model at other amplitudes.
+
+        Parameters
+        ----------
+        model : rocking model
+            The model that drew this realisation, with other amplitudes.
+
+        Returns
+        -------
+        MotionRealisation
+            Sharing :attr:`unit` and its kept evaluations.
+
+        Raises
+        ------
+        ValueError
+            If this realisation has no unit draw, or ``model`` at unit amplitude is another model.
+        """
+        if self.unit is None:
+            raise ValueError("Expected a realisation with a unit draw (a model with per-axis amplitudes), got none")
+        if getattr(model, "amplitude", None) is None or not _same_model(_unit_model(model), self.unit.model):
+            raise ValueError(f"Expected a model that differs from the drawn one by its amplitudes only, got {model!r}")
+        a = np.asarray(model.amplitude, dtype=float)
+        power = self.unit.spectrum.power * (a * a)[:, None]
+        return MotionRealisation(replace(self.unit.spectrum, power=power), self.unit.coefficients * a[:, None], self.dt, self.unit, a.copy())
 
     def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2, limits: budget.Limits | None = None):
         """Angles, rates and angular accelerations at ``t_k = offset + k dt``, ``k < n_samples``.
@@ -224,8 +298,7 @@ class MotionRealisation:
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros(shape) for _ in range(k + 1)), np.ones(3)
         if self.unit is not None:
-            key, unit, scale = self.unit
-            return tuple(_SERIES.get((key, n, float(offset), d), lambda d=d: self._series(unit, n, offset, d)) for d in range(k + 1)), scale
+            return tuple(self.unit.evaluation(n, offset, d, lambda d=d: self._series(self.unit.coefficients, n, offset, d)) for d in range(k + 1)), self.scale
         return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1)), np.ones(3)
 
     def evaluate_points(self, indices, *, derivatives: int = 2):
@@ -264,7 +337,7 @@ class MotionRealisation:
             raise ValueError(f"Expected `derivatives` in 0..2, got {d_max}")
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros((self.n_trials, k.size, 3)) for _ in range(d_max + 1))
-        c, scale = (self.unit[1], self.unit[2]) if self.unit is not None else (self.coefficients, None)
+        c, scale = (self.unit.coefficients, self.scale) if self.unit is not None else (self.coefficients, None)
         t = k * self.dt
         w = self.spectrum.omega
         out = []
@@ -306,8 +379,18 @@ class MotionRealisation:
         return np.ascontiguousarray(np.swapaxes(x, 1, 2))
 
 
-#: Evaluations of unit coefficients (:attr:`MotionRealisation.unit`).
-_SERIES = BoundedMemo(64 * 2**20)
+def _unit_model(model):
+    """``model`` with unit amplitude on every axis."""
+    return replace(model, amplitude=np.ones(3))
+
+
+def _same_model(a, b) -> bool:
+    """Models of one type with equal parameters (arrays compared by value)."""
+    from dataclasses import fields
+
+    if type(a) is not type(b):
+        return False
+    return all(np.array_equal(getattr(a, f.name), getattr(b, f.name)) for f in fields(a))
 
 
 def _amplitude3(value, name) -> np.ndarray:
@@ -355,16 +438,15 @@ class _Model:
             (naming ``n_trials`` and ``n_samples``).
         """
         n_trials = as_int(n_trials, "n_trials", minimum=1)
-        samples = as_int(n_samples, "n_samples", minimum=1)
-        what = f"`n_trials` × `n_samples` = {n_trials:.3g} × {samples:.3g} samples"
-        budget.check(budget.arrays(3.0 * n_trials * samples, what=what, copies=6.0), limits)
         dt = positive(dt, "dt")
-        s = self.spectrum(as_int(n_samples, "n_samples", minimum=1), dt)
+        n_samples = as_int(n_samples, "n_samples", minimum=1)
+        what = f"`n_trials` × `n_samples` = {n_trials:.3g} × {n_samples:.3g} samples"
+        budget.check(budget.arrays(3.0 * n_trials * n_samples, what=what, copies=6.0), limits)
+        s = self.spectrum(n_samples, dt)
         g = as_generator(rng)
         m = s.omega.size
-        state = repr(g.bit_generator.state)  # with the shape, it fixes the draw
         if s.gaussian:
-            z = repeated_draws.standard_normal(g, (n_trials, 3, m, 2))  # the same draw again at another amplitude: from memory
+            z = g.standard_normal((n_trials, 3, m, 2))
             draw = z[..., 0] + 1j * z[..., 1]
             factor = np.sqrt  # E|c|² = 2P
         else:
@@ -372,10 +454,10 @@ class _Model:
             draw = np.exp(1j * (z * (2.0 * math.pi)))
             factor = lambda p: np.sqrt(2.0 * p)  # noqa: E731  (|c| = a)
         if "amplitude" in getattr(self, "__dataclass_fields__", {}):  # power = amplitude² · (the unit model's power)
-            unit_model = replace(self, amplitude=np.ones(3))
-            u = draw * factor(unit_model.spectrum(n_samples, dt).power)
-            key = hashlib.blake2b(repr((state, z.shape, unit_model, n_samples, dt)).encode(), digest_size=16).digest()
-            return MotionRealisation(s, u * self.amplitude[:, None], dt, (key, u, self.amplitude.copy()))
+            unit_model = _unit_model(self)
+            unit_spectrum = unit_model.spectrum(n_samples, dt)
+            unit = UnitDraw(unit_model, unit_spectrum, draw * factor(unit_spectrum.power), dt)
+            return MotionRealisation(s, unit.coefficients * self.amplitude[:, None], dt, unit, self.amplitude.copy())
         return MotionRealisation(s, draw * factor(s.power), dt)
 
     @property

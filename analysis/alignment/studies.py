@@ -23,7 +23,7 @@ from .base_motion import NarrowbandMotion, SineMotion, mean_variance
 from .earth import EARTH_RATE, normal_gravity
 from .fine import Disturbance, FilterTuning, assumed_disturbance
 from .imu import Scenario, SensorErrors
-from .monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_monte_carlo
+from .monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_draws, alignment_monte_carlo
 from .theory import analytic_theory
 
 __all__ = [
@@ -339,10 +339,13 @@ def rocking_channel_study(*, latitude: float = rad(70.0), beta0: float = rad(2.0
     rows = []
     opts = AlignmentOptions(formula="paper")
     for k, (label, make) in enumerate(cases):
+        draws = None
         for gyros, amplitude in ((False, 1.0), (True, 0.001)):
             motion = make(amplitude)
             sc = Scenario(latitude, beta0=beta0, gamma0=gamma0, motion=motion, sample_rate=10.0, duration=30.0, rocking_in_gyros=gyros)
-            mc = alignment_monte_carlo(sc, method="analytic", n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opts)
+            if draws is None:  # the trials of the first case, passed to the second (scaled)
+                draws = alignment_draws(sc, method="analytic", n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opts)
+            mc = alignment_monte_carlo(sc, method="analytic", n_trials=n_trials, options=opts, draws=draws)
             second = math.nan
             if not gyros:
                 sd = np.sqrt(mean_variance(motion, sc.n_samples * sc.dt, sc.dt))
@@ -401,11 +404,13 @@ def mismatch_study(scenario: Scenario, errors: SensorErrors, *, period_ratios=(0
         models.append((f"shaping, period × {float(r):g}", d))
     models.append(("white (lever-arm velocity as noise)", assumed_disturbance(motion, scenario, kind="white")))
     models.append(("none (rocking ignored)", Disturbance("none")))
-    seed = montecarlo.root_seed_sequence(rng)
+    # one draw of the trials for every filter (common random numbers, passed explicitly): the same records,
+    # simulated once and kept with the draws, and the same initial errors and measurement noise
+    draws = alignment_draws(scenario, errors, method="kalman", n_trials=n_trials, rng=rng, options=kalman_options(scenario, errors, epoch=epoch))
     rows = []
     for label, d in models:
         opts = kalman_options(scenario, errors, epoch=epoch, disturbance=d)
-        rows.append(MismatchRow(label, d, alignment_monte_carlo(scenario, errors, method="kalman", n_trials=n_trials, rng=seed, options=opts)))
+        rows.append(MismatchRow(label, d, alignment_monte_carlo(scenario, errors, method="kalman", n_trials=n_trials, options=opts, draws=draws)))
     return tuple(rows)
 
 

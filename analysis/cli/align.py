@@ -220,6 +220,8 @@ def _align(args) -> Result:
         "azimuth_error_rms_deg": deg(r.rms),
         "azimuth_error_rms_ci_deg": [deg(r.rms_ci[0]), deg(r.rms_ci[1])],
         "azimuth_error_quantiles_deg": {f"{level:g}": deg(v) for level, v in r.quantiles.items()},
+        # the 95 % interval of each quantile (order statistics); null where the trials do not reach
+        "azimuth_error_quantile_intervals_deg": {f"{level:g}": [deg(x) if math.isfinite(x) else None for x in ci] for level, ci in r.quantile_intervals.items()},
         "tilt_error_rms_deg": [deg(x) for x in mc.tilt_rms],
         "theory_gyro_bias_floor_deg": deg(mc.bias_floor[0]),
         "theory_accel_bias_floor_deg": deg(mc.bias_floor[1]),

@@ -53,14 +53,8 @@ N_PARAMETERS = 14
 N_SUMS = 18
 
 
-def increment(w, wd, pairs, samples, history):
-    """Placeholder for a generated increment: the two-sample algorithm, real part only.
-
-    A generated straight-line increment has this signature and ignores
-    ``pairs``, ``samples`` and ``history``; the kernel of every purely pairwise
-    algorithm uses :func:`pairwise_increment` instead, with the algorithm's
-    terms as data.
-    """
+def increment(w, wd):
+    """Placeholder for a generated straight-line increment: the two-sample algorithm, real part only."""
     p1x, p1y, p1z = w[0, 0], w[0, 1], w[0, 2]
     p2x, p2y, p2z = w[1, 0], w[1, 1], w[1, 2]
     c = 2.0 / 3.0
@@ -72,6 +66,14 @@ def increment(w, wd, pairs, samples, history):
         0.0,
         0.0,
     )
+
+
+def step_increment(w, wd, pairs, samples, history):
+    """The increment :func:`run` calls: here the straight-line :func:`increment`, which ignores the data.
+
+    The module of the data-driven kernel defines it as :func:`pairwise_increment` instead.
+    """
+    return increment(w, wd)
 
 
 def pairwise_increment(w, wd, pairs, samples, history):
@@ -308,7 +310,7 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, 
                         wind[r, 0] = damp * ss + amp * cs * nud * tm
                         wind[r, 1] = damp * cs - amp * ss * nud * tm
                         wind[r, 2] = dp3
-                x, y, z, dx, dy, dz = increment(win, wind, pairs, samples, history)
+                x, y, z, dx, dy, dz = step_increment(win, wind, pairs, samples, history)
                 for r in range(history):  # the next step's earlier samples
                     for c in range(3):
                         win[r, c] = win[r + samples, c]
