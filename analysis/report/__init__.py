@@ -39,7 +39,7 @@ from typing import Any
 
 from ...derivations.reproducible import reproducible
 from . import output, warm_up
-from .rendering import quantise
+from .rendering import configure_matplotlib, quantise
 
 __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
 
@@ -309,25 +309,6 @@ class Context:
         from ..core.progress import bar
 
         return bar(iterable, desc=desc, total=total, enabled=self.show_progress)
-
-
-def configure_matplotlib() -> None:
-    """Headless, deterministic matplotlib settings used by every figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    matplotlib.rcParams.update(
-        {
-            "svg.hashsalt": "strapdown-analysis",
-            "svg.fonttype": "path",
-            "figure.dpi": 110,
-            "axes.grid": True,
-            "grid.alpha": 0.3,
-            "font.size": 9,
-            "axes.titlesize": 10,
-            "legend.fontsize": 8,
-        }
-    )
 
 
 def section_names() -> list:

@@ -193,7 +193,7 @@ _PARALLEL_MATH = 40
 
 def _render_into_cache(texs) -> int:
     """Render ``texs`` into the cache (the work of :meth:`MathRenderer.prefetch`'s second process); returns how many rendered."""
-    from . import configure_matplotlib
+    from .rendering import configure_matplotlib
 
     configure_matplotlib()
     renderer = MathRenderer()

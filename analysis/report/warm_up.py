@@ -93,7 +93,7 @@ def main(names) -> None:
     names : sequence of str
         Fully qualified section module names.
     """
-    from . import configure_matplotlib
+    from .rendering import configure_matplotlib
 
     configure_matplotlib()
     for name in names:
