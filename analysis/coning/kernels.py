@@ -519,9 +519,23 @@ def kernel(algorithm: Algorithm, *, velocity: bool, specialised: bool | None = F
         raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
     if specialised is None:
         specialised = work >= SPECIALISE_MIN_WORK
-    run = compiled_module(kernel_source(algorithm, velocity=velocity, specialised=specialised)).run
+    text = kernel_source(algorithm, velocity=velocity, specialised=specialised)
+    run = compiled_module(text).run
     pairs = pairwise_data(algorithm) if is_pairwise(algorithm) and not specialised else np.zeros((0, 3))
-    return Kernel(run, np.ascontiguousarray(pairs), int(algorithm.samples), int(algorithm.history))
+    compiled = Kernel(run, np.ascontiguousarray(pairs), int(algorithm.samples), int(algorithm.history))
+    if not run.signatures:  # first use in this process: compile, or load what another process compiled
+        from ..core.cache import building
+
+        with building(_kernel_directory() / f"{hashlib.sha256(text.encode()).hexdigest()[:24]}.compile"):
+            _first_call(compiled)
+    return compiled
+
+
+def _first_call(compiled: Kernel) -> None:
+    """One step of one point through ``compiled``, with the argument types of every run: numba compiles (or loads) it."""
+    one = (np.array([v]) for v in (0.5, 1.0, 0.5, 0.0, 0.0, 0.01))  # ε, ν, ϑ, ν°, ϑ°, h of a harmless motion
+    par, theta = parameter_rows(*one, np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3), velocity=False)
+    advance(compiled, par, theta, np.array([1], dtype=np.int64), empty_sums(1), 0, 1)
 
 
 # --------------------------------------------------------------------------- running

@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["compiled", "derived", "contains", "cache_directory", "source_fingerprint", "generate_source"]
+__all__ = ["compiled", "derived", "contains", "building", "cache_directory", "source_fingerprint", "generate_source"]
 
 _FUNCTION = "generated"
 _memory: dict = {}
@@ -179,8 +179,22 @@ def _write(path: Path, text: str | bytes) -> None:
 
 
 @contextlib.contextmanager
-def _building(path: Path):
-    """Hold an exclusive lock on ``<path>.lock`` while an entry is built: another process building it waits."""
+def building(path: Path):
+    """Hold an exclusive lock on ``<path>.lock`` while ``path`` is built: another process building it waits.
+
+    The lock is released when the block ends (or the process dies).  Where
+    locks are not available (not POSIX, an unwritable directory) the block
+    runs without one: at worst two processes build the same thing.
+
+    Parameters
+    ----------
+    path : Path
+        What is built (the lock file is next to it).
+
+    Yields
+    ------
+    None
+    """
     try:
         import fcntl
     except ImportError:  # pragma: no cover - not POSIX: at worst two processes build the same entry
@@ -232,7 +246,7 @@ def compiled(key: str, build: Callable[[], tuple]) -> Callable:
         path = _file_for(key)
         source = _read(path, key)
         if source is None:
-            with _building(path):
+            with building(path):
                 source = _read(path, key)  # another process may have written it while this one waited
                 if source is None:
                     arguments, expression = build()
@@ -323,7 +337,7 @@ def derived(key: str, build: Callable[[], object]):
 
         result, found = load()
         if not found:
-            with _building(path):
+            with building(path):
                 result, found = load()  # another process may have written it while this one waited
                 if not found:
                     result = build()

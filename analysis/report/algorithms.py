@@ -78,15 +78,12 @@ def _order_study(quick: bool) -> dict:
 
 
 def warm_up() -> None:
-    """Compile the simulator kernels :func:`build` runs: the pairwise one and that of (2.2) of order 6, attitude and velocity."""
-    import numpy as np
+    """Compile the velocity kernels :func:`build` runs after its attitude runs: the pairwise one and that of (2.2) of order 6."""
+    from ..coning import kernels
 
-    from ..coning.simulator import simulate
-
-    motion = RegularPrecession(0.5, 2 * np.pi, 0.2, 10.0, 100.0)
-    for name in ("panov-4s-1", "lebedev-panov-6"):
-        for velocity in (False, True):
-            simulate(get(name), motion, 0.01, 0.04, velocity=velocity, engine="compiled")
+    if kernels.available():
+        for name in ("panov-4s-1", "lebedev-panov-6"):
+            kernels.kernel(get(name), velocity=True)
 
 
 def build(ctx) -> None:

@@ -4,10 +4,10 @@ The first ``strapdown report`` after an install compiles its numba kernels and
 runs its SymPy derivations; both are cached on disk (numba's cache,
 :mod:`strapdown.analysis.core.cache`), so later runs only load them.  While the
 report writes its sections one by one, :func:`start` runs, in a second
-process, the ``warm_up()`` of the sections that have one,
-in report order from the second section on (the report itself starts with the
-first), so that it runs ahead of the report: each compiles and derives what
-its ``build`` will need, and writes nothing else.  When the report reaches a section, its kernels and
+process, the ``warm_up()`` of the sections that have one, in report order, so
+that it runs ahead of the report: each compiles and derives what its
+``build`` will need (the first section only what it needs after its start),
+and writes nothing else.  When the report reaches a section, its kernels and
 derivations are usually in the cache already; where they are not, the report
 does the work itself (a derivation another process is building is waited for,
 not repeated: :func:`strapdown.analysis.core.cache.derived`).  The results are
@@ -47,7 +47,7 @@ def start(modules):
     ----------
     modules : sequence of module
         The sections of the run, in report order; those with a ``warm_up``
-        function are warmed, from the second section on.
+        function are warmed.
 
     Returns
     -------
@@ -55,7 +55,7 @@ def start(modules):
         The process, or None when there is nothing to warm (no section has a
         ``warm_up``, or an earlier warm-up of the same sections finished).
     """
-    names = [m.__name__ for m in list(modules)[1:] if callable(getattr(m, "warm_up", None))]
+    names = [m.__name__ for m in modules if callable(getattr(m, "warm_up", None))]
     if not names or os.path.exists(_marker(names)):
         return None
     code = "import sys; from strapdown.analysis.report import warm_up; warm_up.main(sys.argv[1:])"
