@@ -30,9 +30,11 @@ The contract of every command
 * Ctrl-C prints one line and exits with status 130.
 * Numerical warnings (numpy's ``RuntimeWarning``) never reach stderr; other
   warnings are printed as one line each.
-* Work longer than about two seconds shows its progress on stderr when stderr
-  is a terminal (:mod:`strapdown.analysis.core.progress`), and nothing when it
-  is not; ``--no-progress`` turns it off.
+* Work longer than a few seconds shows its progress on stderr
+  (:mod:`strapdown.analysis.core.progress`): bars on a terminal, and
+  otherwise (a log, a pipe, a notebook) a plain line at least every few
+  seconds with what runs, the fraction done and the time elapsed; ``--quiet``
+  (or ``--no-progress``) turns it off.
 
 Any other exception is a defect of the package: it prints one line asking for
 a report and exits with status 70.  ``STRAPDOWN_DEBUG=1`` in the environment
@@ -55,7 +57,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .. import __version__
-from ..core.progress import activity, wanted
+from ..core.progress import activity, lines, mode, wanted
 
 __all__ = ["main", "build_parser", "Commands", "Result", "UsageError", "EXIT_USAGE", "EXIT_INTERRUPTED", "EXIT_SOFTWARE"]
 
@@ -174,11 +176,14 @@ class Commands:
             ``"activity"``: the edge shows the elapsed time on stderr once the
             command runs longer than two seconds (on a terminal); ``"own"``: the
             command draws its own progress bar (it reads ``args.progress``).
+            Where stderr is not a terminal, the edge writes progress lines for
+            both (:func:`strapdown.analysis.core.progress.lines`), refined by
+            the bars of the command.
 
         Returns
         -------
         argparse.ArgumentParser
-            The command's parser, with ``--json`` and ``--no-progress`` already added.
+            The command's parser, with ``--json``, ``--quiet`` and ``--no-progress`` already added.
         """
         if progress not in ("activity", "own"):
             raise ValueError(f"Expected `progress` in ('activity', 'own'), got {progress!r}")
@@ -187,7 +192,10 @@ class Commands:
         else:
             parser = self._group(group).add_parser(name, help=help, description=description or help)
         parser.add_argument("--json", action="store_true", help="print exactly one JSON object on stdout")
-        parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="no progress display on stderr (shown only when stderr is a terminal)")
+        parser.add_argument(
+            "--quiet", action="store_true", help="no progress on stderr (by default: bars on a terminal, otherwise a plain line every few seconds for work that lasts)"
+        )
+        parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="the same as --quiet")
         parser.set_defaults(func_=func, parser_=parser, command_=name if group is None else f"{group} {name}", progress_mode_=progress)
         self.listing.append((name if group is None else f"{group} {name}", help))
         return parser
@@ -462,7 +470,7 @@ def _blame(message: str, args, argv=()) -> str:
 
 
 #: Options that set how a command runs, not what it computes (left out of "given: ..." lists).
-_QUIET = {"--json", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
+_QUIET = {"--json", "--quiet", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
 
 
 def _given(argv) -> str:
@@ -484,19 +492,29 @@ def _given(argv) -> str:
     return ", ".join(pairs)
 
 
+def _as_options(text: str, args) -> str:
+    """``text`` with each backticked Python argument replaced by its option: `` `horizon` = 3e+09 s`` → ``--horizon 3e+09 s``."""
+
+    def option(match):
+        return _option_for(match.group(1), args) or match.group(0)
+
+    return re.sub(r"`([A-Za-z_]\w*)`(?: =)?", option, text)
+
+
 def _budget_message(exc, args) -> str:
     from ..core.budget import format_bytes, format_seconds
 
     options = _option_strings(getattr(args, "parser_", None))
+    what = _as_options(exc.estimate.what, args)
     if exc.resource == "memory":
         flag = options.get("memory_limit_mb", "--memory-limit-mb")
         return (
-            f"{exc.estimate.what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
+            f"{what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
             f"over the limit of {format_bytes(exc.limits.memory)}; reduce the request or raise the limit with {flag}"
         )
     flag = options.get("time_limit", "--time-limit")
     return (
-        f"{exc.estimate.what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
+        f"{what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
         f"over the limit of {format_seconds(exc.limits.seconds)}; reduce the request or raise the limit with {flag} (seconds)"
     )
 
@@ -571,10 +589,13 @@ def _main(argv: list[str]) -> int:
         if not _debug():
             warnings.simplefilter("ignore", RuntimeWarning)
         try:
-            show = wanted(None if not args.no_progress else False)
-            args.progress = getattr(args, "progress", False) or show
+            how = mode(args.quiet or args.no_progress)
+            if getattr(args, "progress", False) and how != "off":  # --progress: bars even in a log
+                how = "bar"
+            args.progress = how != "off"
             _apply_rules(args)
-            with activity(prog, enabled=show and args.progress_mode_ == "activity"):
+            display = lines(prog) if how == "lines" else activity(prog, enabled=how == "bar" and args.progress_mode_ == "activity")
+            with display:
                 result = args.func_(args)
             if isinstance(result, dict):
                 result = Result(result)

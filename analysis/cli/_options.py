@@ -3,7 +3,9 @@
 Argument types for argparse (:func:`count`, :func:`number`) turn a mistyped
 value into a one-line error naming the option; :func:`add_limits` and
 :func:`limits_from` give a command the ``--time-limit`` / ``--memory-limit-mb``
-options of :mod:`strapdown.analysis.core.budget`.
+options of :mod:`strapdown.analysis.core.budget`.  The algorithm registry (and
+with it SymPy) is imported only by the commands that take an algorithm, so that
+a command such as ``strapdown stability`` starts quickly.
 """
 
 from __future__ import annotations
@@ -14,8 +16,6 @@ import re
 
 import numpy as np
 
-from ...derivations.coning.algorithms import TOML_LIMITS, SecondOrderConditionError, load_toml
-from ...derivations.coning.registry import get, names
 from ..core import budget
 from ..core.quaternion import normalize
 from ..core.roundoff import drift_floor
@@ -115,6 +115,9 @@ def add_algorithm(parser, *, required: bool = True) -> None:
     required : bool, keyword-only
         Whether one of the two must be given.
     """
+    from ...derivations.coning.algorithms import TOML_LIMITS
+    from ...derivations.coning.registry import names
+
     group = parser.add_mutually_exclusive_group(required=required)
     default = "" if required else " (default: none)"
     group.add_argument(
@@ -148,7 +151,12 @@ def algorithm_from(args):
     ValueError
         An unknown name, or a file that is missing, unreadable, malformed or beyond the limits.
     """
-    if getattr(args, "algorithm_file", None):
+    from ...derivations.coning.algorithms import SecondOrderConditionError, load_toml
+    from ...derivations.coning.registry import get
+
+    if getattr(args, "algorithm_file", None) is not None:
+        if not str(args.algorithm_file).strip():
+            raise ValueError("Expected `--algorithm-file` to name a TOML file, got an empty file name")
         try:
             return load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
         except SecondOrderConditionError as exc:

@@ -63,12 +63,16 @@ QUANTITY = (
 
 def _omega_h(text: str) -> list:
     values = []
+    if not str(text).strip():
+        raise UsageError("Expected --omega-h-rad as comma-separated numbers of radians, got an empty value")
     for part in str(text).split(","):
         try:
             v = float(part)
         except ValueError:
             raise UsageError(f"Expected --omega-h-rad as comma-separated numbers of radians, got {text!r}") from None
-        if not math.isfinite(v) or not OMEGA_H_FLOOR <= v <= MAX_OMEGA_H:
+        if not math.isfinite(v):
+            raise UsageError(f"Expected --omega-h-rad values to be finite numbers of radians, got {part.strip()!r} in {text!r}")
+        if not OMEGA_H_FLOOR <= v <= MAX_OMEGA_H:
             raise UsageError(f"Expected --omega-h-rad values in [{OMEGA_H_FLOOR:g}, {MAX_OMEGA_H:g}] (radians), got {part.strip()!r}")
         values.append(v)
     return values

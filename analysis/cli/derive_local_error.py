@@ -18,7 +18,7 @@ from __future__ import annotations
 from ...derivations.coning.drift import coning_drift_series
 from ...derivations.coning.series import DEFAULT_MAX_WEIGHT, WEIGHT_LIMIT, error_coefficients, error_series, local_error
 from . import Result, UsageError
-from ._options import add_algorithm, algorithm_from, count
+from ._options import add_algorithm, add_limits, algorithm_from, check_work, count
 
 __all__ = ["local_error_command", "register"]
 
@@ -48,12 +48,17 @@ def local_error_command(args) -> Result:
     ------
     UsageError
         For ``--max-order`` outside its range.
+    strapdown.analysis.core.budget.BudgetExceeded
+        For a series whose estimated time or memory exceeds ``--time-limit`` / ``--memory-limit-mb``.
     ValueError
         For an unknown algorithm or a malformed algorithm file.
     """
+    from ..core import budget
+
     K = args.max_order
     if not MIN_ORDER <= K <= WEIGHT_LIMIT:
         raise UsageError(f"Expected --max-order in {MIN_ORDER}..{WEIGHT_LIMIT}, got {K}")
+    check_work(args, budget.series_derivation(K, what=f"the series through h^{K} (--max-order {K})"))
     alg = algorithm_from(args)
     coeffs = error_coefficients(alg, K)
     err = local_error(alg, K)
@@ -116,5 +121,6 @@ def register(commands) -> None:
         default=DEFAULT_MAX_WEIGHT,
         metavar="K",
         help=f"keep the series through h^K and print every weight, K in {MIN_ORDER}..{WEIGHT_LIMIT} [count] (default {DEFAULT_MAX_WEIGHT}); "
-        "6-sample algorithms need K = 13 to reach their coning term",
+        "6-sample algorithms need K = 13 to reach their coning term; the work about triples with each order (K = 16: about a minute)",
     )
+    add_limits(p)

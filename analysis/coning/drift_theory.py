@@ -66,6 +66,7 @@ import sympy as sp
 from ...derivations.coning import drift as sym
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.series import DEFAULT_MAX_WEIGHT, check_max_weight
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.cache import compiled, derived
 from ..core.dual import Dual
@@ -167,7 +168,7 @@ def _check_positive(x, name):
     return arr
 
 
-def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT):
+def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
     """Drift coefficients ``d_w(ε, ϑ)``, w = 0 … max_weight (ν = 1, H = 1; exact minus algorithm).
 
     Parameters
@@ -180,6 +181,10 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
         Nutation angle ϑ [rad], in (0, π).
     max_weight : int, keyword-only
         Highest weight of the series (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -189,9 +194,11 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
     Raises
     ------
     ValueError, TypeError
-        For ϑ outside (0, π), non-finite input or a bad ``max_weight``.
+        For ϑ outside (0, π), non-finite input, a bad ``max_weight``, or a
+        series beyond ``limits`` (naming ``max_weight``).
     """
     check_max_weight(max_weight)
+    budget.check(budget.series_derivation(max_weight, what=f"`max_weight` = {max_weight}"), limits)
     eps, nutation = _check_params(eps, nutation)
     eps, nutation = np.broadcast_arrays(eps, nutation)
     s, c = np.sin(nutation), np.cos(nutation)
@@ -201,7 +208,7 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
     return np.stack(columns[:n], axis=-1), np.stack(columns[n:], axis=-1)
 
 
-def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT):
+def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
     """Drift order ρ at (ε, ϑ): the leading nonvanishing weight minus one (package docstring, "Orders").
 
     Parameters
@@ -214,6 +221,10 @@ def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = D
         Nutation angle ϑ [rad], in (0, π).
     max_weight : int, keyword-only
         Highest weight of the series (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -228,13 +239,13 @@ def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = D
     >>> int(asymptotic_order(get("panov-4s-3"), 0.5, np.radians(1.0)))
     4
     """
-    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
+    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
     nonzero = np.abs(vals) > ZERO_TOLERANCE * np.maximum(mags, np.finfo(float).tiny)
     first = np.argmax(nonzero, axis=-1)
     return np.where(nonzero.any(axis=-1), first - 1, -1)
 
 
-def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):
+def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
     """Asymptotic constant drift rate u_a of the attitude [rad/s].
 
     Parameters
@@ -251,6 +262,10 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weigh
         Algorithm step H = N h [s], > 0.
     max_weight : int, keyword-only
         Highest weight of the series searched for the leading term (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -269,15 +284,15 @@ def asymptotic_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weigh
     >>> round(float(u) * RAD_PER_S_TO_DEG_PER_H, 2)
     2.51
     """
-    return np.abs(_signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight))
+    return np.abs(_signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight, limits))
 
 
-def _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight):
+def _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight, limits=None):
     """``d_{ρ+1}(ε, ϑ) ν^{ρ+1} H^ρ``, signed (exact minus algorithm, along n); NaN where it vanishes."""
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
-    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
-    rho = asymptotic_order(algorithm, eps, nutation, max_weight=max_weight)
+    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
+    rho = asymptotic_order(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
     vals, rho, nu, step = np.broadcast_arrays(vals, rho[..., None], nu[..., None], step[..., None])
     w = rho[..., 0] + 1
     lead = np.take_along_axis(vals, np.clip(w, 0, vals.shape[-1] - 1)[..., None], axis=-1)[..., 0]
@@ -285,7 +300,7 @@ def _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight):
     return np.where(rho[..., 0] >= 0, out, np.nan)
 
 
-def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, attitude0=(1.0, 0.0, 0.0, 0.0), max_weight: int = DEFAULT_MAX_WEIGHT):
+def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, attitude0=(1.0, 0.0, 0.0, 0.0), max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
     """Asymptotic constant drift of the attitude as a signed vector in frame I [rad/s].
 
     The secular part of the accumulated error (5.2) lies along the precession
@@ -312,6 +327,10 @@ def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, at
         (:meth:`strapdown.analysis.coning.precession.RegularPrecession.precession_axis`).
     max_weight : int, keyword-only
         Highest weight of the series searched for the leading term (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -340,7 +359,7 @@ def asymptotic_drift_vector(algorithm: Algorithm, *, eps, nu, nutation, step, at
     lam0 = as_quaternion(attitude0, "attitude0", unit=True)
     if lam0.shape != (4,):
         raise ValueError(f"Expected `attitude0` of shape (4,), got {lam0.shape}")
-    signed = _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight)
+    signed = _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight, limits)
     nutation = np.broadcast_to(as_array(nutation, "nutation"), signed.shape)
     axis = quat.rotate(lam0, np.stack([np.zeros(signed.shape), np.sin(nutation), np.cos(nutation)], axis=-1))
     return signed[..., None] * axis
@@ -452,7 +471,7 @@ def composition_drift(algorithm: Algorithm, *, eps, nu, nutation, step, max_weig
     return np.where(2 * lowest - 1 <= max_weight, angle, 0.0) / step
 
 
-def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT):
+def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
     """Drift rate through ``max_weight``, ``|Σ_w d_w ν^w H^(w−1) + composition|`` [rad/s].
 
     The axial series plus :func:`composition_drift`, the drift the composition
@@ -472,6 +491,10 @@ def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: i
         Algorithm step H = N h [s], > 0.
     max_weight : int, keyword-only
         Highest weight kept (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -485,7 +508,7 @@ def drift_series(algorithm: Algorithm, *, eps, nu, nutation, step, max_weight: i
     """
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
-    vals, _ = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
+    vals, _ = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
     w = np.arange(vals.shape[-1])
     total = np.sum(vals * nu[..., None] ** w * step[..., None] ** np.maximum(w - 1, 0), axis=-1)
     return np.abs(total + composition_drift(algorithm, eps=eps, nu=nu, nutation=nutation, step=step, max_weight=max_weight))
@@ -573,7 +596,7 @@ class DriftSeries:
         return bool(abs(self.asymptotic - self.total) <= rtol * self.total)
 
 
-def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation: float, step: float, max_weight: int = DEFAULT_MAX_WEIGHT) -> DriftSeries:
+def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation: float, step: float, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None) -> DriftSeries:
     """The drift series term by term at one motion and step: which term leads and which is largest.
 
     The asymptotic drift u_a of the papers is the leading term; where a later
@@ -594,6 +617,10 @@ def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation:
         Algorithm step H = N h [s], > 0.
     max_weight : int, keyword-only
         Highest weight kept (default 7).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the symbolic series (default
+        2 GB, 300 s: ``max_weight`` up to about 17); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -616,11 +643,11 @@ def drift_series_terms(algorithm: Algorithm, *, eps: float, nu: float, nutation:
     for name, value in (("eps", eps), ("nu", nu), ("nutation", nutation), ("step", step)):
         if np.ndim(value) != 0:
             raise ValueError(f"Expected `{name}` as one number, got an array of shape {np.shape(value)}")
-    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight)
+    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
     w = np.arange(vals.shape[-1])
     nonzero = np.abs(vals) > ZERO_TOLERANCE * np.maximum(mags, np.finfo(float).tiny)
     terms = np.where(nonzero, vals, 0.0) * float(nu) ** w * float(step) ** np.maximum(w - 1, 0)
-    rho = int(asymptotic_order(algorithm, eps, nutation, max_weight=max_weight))
+    rho = int(asymptotic_order(algorithm, eps, nutation, max_weight=max_weight, limits=limits))
     composition = float(composition_drift(algorithm, eps=eps, nu=nu, nutation=nutation, step=step, max_weight=max_weight))
     return DriftSeries(terms, rho + 1 if rho >= 0 else -1, composition)
 

@@ -242,7 +242,7 @@ def in_closed_interval(x, name: str, low: float, high: float, *, text: str | Non
     return value
 
 
-def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> np.ndarray:
+def as_array(x, name: str, *, last: int | None = None, finite: bool = True, nonempty: bool = False) -> np.ndarray:
     """Return ``x`` as a float array, optionally with last axis of length ``last``.
 
     Parameters
@@ -255,6 +255,8 @@ def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> n
         Required length of the last axis.
     finite : bool, keyword-only
         Refuse NaN and infinities.
+    nonempty : bool, keyword-only
+        Refuse an array without elements.
 
     Returns
     -------
@@ -265,12 +267,22 @@ def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> n
     TypeError
         If ``x`` is not numeric.
     ValueError
-        If the last axis has the wrong length, or (with ``finite``) an entry is NaN or inf.
+        If the last axis has the wrong length, (with ``finite``) an entry is
+        NaN or inf, or (with ``nonempty``) the array is empty.
+
+    Examples
+    --------
+    >>> as_array([], "omega", nonempty=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected `omega` to hold at least one value, got an empty array (shape (0,))
     """
     try:
         arr = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
         raise TypeError(f"Expected `{name}` to be a numeric array, got {type(x).__name__} {_describe(x)}") from None
+    if nonempty and arr.size == 0:
+        raise ValueError(f"Expected `{name}` to hold at least one value, got an empty array (shape {arr.shape})")
     if last is not None and (arr.ndim == 0 or arr.shape[-1] != last):
         raise ValueError(f"Expected `{name}` with shape (..., {last}), got shape {arr.shape}")
     if finite and not np.all(np.isfinite(arr)):

@@ -14,7 +14,7 @@ import math
 
 from ...derivations.coning import published as P
 from ...derivations.coning.printed_checks import table2_checks
-from ...derivations.coning.registry import names
+from ...derivations.coning.registry import get, names
 from ..coning.local_error import BUDENNYI_BASIS
 from ..coning.order_study import drift_orders
 from ..coning.papers import budennyi_table3 as T3
@@ -75,6 +75,15 @@ def _lp_shown(quantity: str, value: float) -> float:
 def _order_study(quick: bool) -> dict:
     steps = ORDER_STUDY_STEPS[:3] if quick else ORDER_STUDY_STEPS
     return {m.eps: drift_orders(m, steps=steps) for m in ORDER_STUDY_MOTIONS}
+
+
+def warm_up() -> None:
+    """Compile the velocity kernels :func:`build` runs after its attitude runs: the pairwise one and that of (2.2) of order 6."""
+    from ..coning import kernels
+
+    if kernels.available():
+        for name in ("panov-4s-1", "lebedev-panov-6"):
+            kernels.kernel(get(name), velocity=True)
 
 
 def build(ctx) -> None:

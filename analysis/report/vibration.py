@@ -83,6 +83,15 @@ def _signed(v: float, scale: float, digits: int) -> str:
     return "0 (round-off)" if abs(v) <= 1e-9 * abs(scale) else f"{v:+.{digits}g}"
 
 
+def warm_up() -> None:
+    """Compile the Monte Carlo kernels :func:`build` runs: one per classical algorithm, the first with its velocity part."""
+    from ..coning.vibration_monte_carlo import monte_carlo_drift
+
+    env = load_environment(QUALIFICATION)
+    for i, name in enumerate(CLASSICAL):
+        monte_carlo_drift(get(name), env, H, pairs=2, duration=0.01, rng=0, velocity=(i == 0))
+
+
 def build(ctx) -> None:
     """Write ``vibration.md`` and its figures.
 

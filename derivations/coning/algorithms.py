@@ -438,11 +438,13 @@ def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TO
     ------
     ValueError
         Malformed file (the message names the file, the key and the problem),
-        a file beyond ``limits``, a file that cannot be read (missing, a
+        a file beyond ``limits``, an empty file name, a file that cannot be read (missing, a
         directory, a device, no permission, not UTF-8).
     SecondOrderConditionError
         An algorithm that misses the second-order condition (a ``ValueError``).
     """
+    if not str(path).strip():
+        raise ValueError("Expected `path` to name a TOML file, got an empty file name")
     path = Path(path)
     data = _parse(path, limits)
     known = {"name", "samples", "description", "reference", "cross", "triple", "dot_cross"}
