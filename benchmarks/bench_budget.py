@@ -99,6 +99,59 @@ def cost_rows():
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
         est = budget.series_derivation(weight, what="")
         rows.append((f"series through h^{weight} (`derive local-error --max-order`; peak RSS of a child)", weight, float(out[0]), est.seconds, float(out[1]), est.memory))
+    return rows + guard_rows()
+
+
+def guard_rows():
+    """The hot paths of the vibration checks, the drives and the sensor errors."""
+    from strapdown.analysis.alignment.aided import AidedTuning, aided_sequence
+    from strapdown.analysis.alignment.sensor_models import GRADES, simulate_sensor_errors
+    from strapdown.analysis.alignment.trajectory import Manoeuvre, trajectory_increments
+    from strapdown.analysis.coning.environment import load_environment
+    from strapdown.analysis.coning.environment_examples import QUALIFICATION
+    from strapdown.analysis.coning.integrators.adapters import algorithm_integrator
+    from strapdown.analysis.coning.integrators.verification import coning_drift_rate
+    from strapdown.analysis.coning.vibration_monte_carlo import BAND_COMPONENTS, draw_components, monte_carlo_drift
+    from strapdown.analysis.coning.vibration_simulation import filtered_coning_check
+
+    rows = []
+    env = load_environment(QUALIFICATION)
+    alg = get("two-sample")
+    K = len(env.lines) + BAND_COMPONENTS * len(env.spectra)
+    monte_carlo_drift(alg, env, 1e-3, pairs=2, duration=0.1, rng=1)  # compile
+    for duration in (2.0, 8.0):
+        result = []
+        seconds, peak = measure(lambda duration=duration, result=result: result.append(monte_carlo_drift(alg, env, 1e-3, pairs=4, duration=duration, rng=1)))
+        samples = result[0].sensor_samples / 8
+        est = budget.vibration_monte_carlo(4, samples, K, velocity=False, chunk=64, what="")
+        rows.append(("vibration Monte Carlo (4 pairs, qualification; sensor samples per realisation)", int(samples), seconds, est.seconds, peak, est.memory))
+    for count in (2000, 8000):
+        seconds, peak = measure(lambda count=count: draw_components(env, count, np.random.default_rng(1)))
+        est = budget.VIBRATION_DRAW.estimate(count * K, what="")
+        rows.append(("vibration draws (realisations)", count, seconds, est.seconds, peak, est.memory))
+    for periods in (2, 8):
+        seconds, peak = measure(lambda periods=periods: filtered_coning_check(alg, env.gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=periods))
+        est = budget.FILTERED_CONING_SAMPLE.estimate((0.1 + periods * 0.1) / 2.5e-4, what="")  # warm-up 0.1 s, sensor interval 0.25 ms
+        rows.append(("DOP853 filtered coning (periods)", periods, seconds, est.seconds, peak, est.memory))
+    for duration in (600.0, 2400.0):
+        seconds, peak = measure(lambda duration=duration: trajectory_increments(Manoeuvre(), 100.0, duration))
+        inc, sol = budget.TRAJECTORY_SAMPLE.estimate(100.0 * duration, what=""), budget.TRAJECTORY_STEP.estimate(duration / 3.0 + 1.0, what="")
+        rows.append(("drive increments at 100 Hz (samples)", int(100 * duration), seconds, inc.seconds + sol.seconds, peak, inc.memory + sol.memory))
+    for duration in (300.0, 1200.0):
+        seconds, peak = measure(lambda duration=duration: aided_sequence(Manoeuvre(), AidedTuning(), sample_rate=20.0, duration=duration))
+        est = budget.AIDED_FIX.estimate(duration, what="", extra_bytes=8.0 * (5 * duration + 1))  # one fix per second
+        rows.append(("aided filter sequence (fixes)", int(duration), seconds, est.seconds, peak, est.memory))
+    spec = GRADES[1].gyro
+    terms = len(spec.gauss_markov()[0]) + bool(spec.random_walk) + bool(spec.rate_random_walk)
+    for n in (4, 16):
+        seconds, peak = measure(lambda n=n: simulate_sensor_errors(spec, n_trials=n, n_samples=100_000, dt=0.01, rng=1))
+        est = budget.sensor_errors(3 * n * 100_000, terms, what="")
+        rows.append((f"sensor errors, {terms} terms (trials of 1e5 samples)", n, seconds, est.seconds, peak, est.memory))
+    integrator = algorithm_integrator(alg)
+    for steps in (100_000, 400_000):
+        seconds, peak = measure(lambda steps=steps: coning_drift_rate(integrator, 2, RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=steps))
+        est = budget.INTEGRATOR_SAMPLE.estimate(2 * (steps + 1), what="")
+        rows.append(("integrator on exact coning (steps of 2 samples)", steps, seconds, est.seconds, peak, est.memory))
     return rows
 
 

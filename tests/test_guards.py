@@ -63,6 +63,41 @@ def _sweep_case():
     return SweepCase(latitude=math.radians(45.0), sigma=math.radians(1.0))
 
 
+def _environment():
+    from strapdown.analysis.coning.environment import load_environment
+
+    return load_environment(QUALIFICATION)
+
+
+def _aided_inputs():
+    from strapdown.analysis.alignment.aided import AidedTuning, aided_inputs
+    from strapdown.analysis.alignment.trajectory import Manoeuvre
+
+    return aided_inputs(Manoeuvre(), AidedTuning(), sample_rate=10.0, duration=20.0)
+
+
+def _sheet():
+    from strapdown.analysis.alignment.sensor_models import GRADES
+
+    return GRADES[1]
+
+
+def _imu_scenario():
+    from strapdown.analysis.alignment.imu import Scenario
+
+    return Scenario(math.radians(45.0), duration=300.0, sample_rate=10.0)
+
+
+def _integrator():
+    from strapdown.analysis.coning.integrators.adapters import algorithm_integrator
+
+    return algorithm_integrator(get("two-sample"))
+
+
+def _module(name):
+    return __import__(f"strapdown.analysis.{name}", fromlist=["x"])
+
+
 def _bound_case():
     from strapdown.analysis.gyrocompass.studies import BoundCase
 
@@ -132,6 +167,53 @@ HUGE = {
         "n_trials",
     ),
     "base_motion.draw n_trials": (lambda: _alignment_scenario(60.0).motion.draw(1, 10**6, 10**6, 0.1), "n_trials"),
+    "vibration monte_carlo_drift pairs": (lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=10**9, duration=10.0, rng=1), "pairs"),
+    "vibration monte_carlo_drift duration": (lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=4, duration=1e9, rng=1), "duration"),
+    "vibration monte_carlo_drift sample_interval": (
+        lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-9, pairs=4, duration=10.0, rng=1),
+        "sample_interval",
+    ),
+    "vibration draw_components count": (lambda: _module("coning.vibration_monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
+    "filtered_coning_check periods": (
+        lambda: _module("coning.vibration_simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
+        "periods",
+    ),
+    "trajectory.position_solution duration": (lambda: _module("alignment.trajectory").position_solution(_module("alignment.trajectory").Manoeuvre(), 1e9), "duration"),
+    "trajectory.trajectory_state times": (lambda: _module("alignment.trajectory").trajectory_state(_module("alignment.trajectory").Manoeuvre(), [0.0, 1e9]), "times"),
+    "trajectory.trajectory_increments duration": (lambda: _module("alignment.trajectory").trajectory_increments(_module("alignment.trajectory").Manoeuvre(), 100.0, 1e9), "duration"),
+    "trajectory.trajectory_increments sample_rate": (lambda: _module("alignment.trajectory").trajectory_increments(_module("alignment.trajectory").Manoeuvre(), 1e9, 600.0), "sample_rate"),
+    "aided.aided_sequence duration": (
+        lambda: _module("alignment.aided").aided_sequence(_module("alignment.trajectory").Manoeuvre(), _module("alignment.aided").AidedTuning(), sample_rate=20.0, duration=1e9),
+        "duration",
+    ),
+    "aided.aided_inputs duration": (
+        lambda: _module("alignment.aided").aided_inputs(_module("alignment.trajectory").Manoeuvre(), _module("alignment.aided").AidedTuning(), sample_rate=20.0, duration=1e9),
+        "duration",
+    ),
+    "aided.aided_alignment n_trials": (lambda: _module("alignment.aided").aided_alignment(_aided_inputs(), _sheet().gyro, _sheet().accel, n_trials=10**9, rng=1), "n_trials"),
+    "aided.aided_monte_carlo n_trials": (lambda: _module("alignment.aided").aided_monte_carlo(_aided_inputs(), _sheet().gyro, _sheet().accel, n_trials=10**9, rng=1), "n_trials"),
+    "sensor_models.simulate_sensor_errors n_samples": (
+        lambda: _module("alignment.sensor_models").simulate_sensor_errors(_sheet().gyro, n_trials=1, n_samples=10**12, dt=0.1, rng=1),
+        "n_samples",
+    ),
+    "sensor_models.simulate_sensor_errors n_trials": (
+        lambda: _module("alignment.sensor_models").simulate_sensor_errors(_sheet().gyro, n_trials=10**9, n_samples=1000, dt=0.1, rng=1),
+        "n_trials",
+    ),
+    "comparison.compare_methods n_trials": (
+        lambda: _module("alignment.comparison").compare_methods(_imu_scenario(), _module("alignment.imu").SensorErrors(), n_trials=10**9, rng=1, methods=("analytic",)),
+        "n_trials",
+    ),
+    "integrators.coning_drift_rate steps": (
+        lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
+        "steps",
+    ),
+    "integrators.sculling_rate periods": (
+        lambda: _module("coning.integrators.verification").sculling_rate(
+            _integrator(), 2, _module("coning.sculling_motion").ScullingMotion(0.01, 1.0, 2 * np.pi * 10), 1e-3, periods=10**12
+        ),
+        "periods",
+    ),
 }
 
 
@@ -193,6 +275,11 @@ EMPTY = {
     "sweep cases=[]": (lambda: __import__("strapdown.analysis.gyrocompass.bound_sweep", fromlist=["x"]).sweep([], n_samples=100), "cases", "none"),
     "preintegrate dtheta=[]": (lambda: __import__("strapdown.analysis.alignment.preintegration", fromlist=["x"]).preintegrate([], [], 0.01, 10), "dtheta", "shape"),
     "load_toml path=''": (lambda: __import__("strapdown.derivations.coning.algorithms", fromlist=["x"]).load_toml(""), "path", "empty"),
+    "drift_across_band frequency=[]": (
+        lambda: _module("coning.tuning").drift_across_band([get("two-sample")], _environment(), 1e-3, [], half_angle=0.01),
+        "frequency",
+        "empty",
+    ),
     "report generate out=''": (lambda: __import__("strapdown.analysis.report", fromlist=["x"]).generate(""), "out", "empty"),
 }
 

@@ -48,7 +48,7 @@ import numpy as np
 from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
-from ..core import kalman, montecarlo
+from ..core import budget, kalman, montecarlo
 from ..core import quaternion as quat
 from ..core.validation import as_int, nonnegative, positive
 from ..gyrocompass.rocking import as_generator
@@ -202,7 +202,7 @@ def _prior(tuning: AidedTuning) -> np.ndarray:
     return np.diag(np.square([t.prior_tilt, t.prior_tilt, t.prior_heading] + [t.prior_velocity] * 3 + [t.prior_position] * 3 + [t.gyro_bias] * 3 + [t.accel_bias] * 3))
 
 
-def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, duration: float) -> AidedSequence:
+def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, duration: float, limits: budget.Limits | None = None) -> AidedSequence:
     """Linearise the error model along the true trajectory and run filterpy's covariances through it.
 
     Parameters
@@ -215,20 +215,32 @@ def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, d
         IMU rate [Hz].
     duration : float, keyword-only
         [s].
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     AidedSequence
+
+    Raises
+    ------
+    ValueError
+        A non-positive rate or duration, or a drive beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration``).
     """
     fs = positive(sample_rate, "sample_rate")
     M = max(1, int(round(tuning.epoch * fs)))
     D = M / fs
     K = max(1, int(round(tuning.gnss_interval / D)))
-    U = int(round(positive(duration, "duration") * fs)) // (M * K)
+    T = positive(duration, "duration")
+    U = int(round(T * fs)) // (M * K)
     E = U * K
+    what = f"`duration` = {T:.3g} s ({U:.3g} GNSS fixes and {E:.3g} epochs of the filter)"
+    budget.check(budget.AIDED_FIX.estimate(U, what=what, extra_bytes=8.0 * (E + 1)), limits)
     times = D * np.arange(E + 1)
     step = K * D
-    mid = trajectory_state(man, step * (np.arange(U) + 0.5))
+    mid = trajectory_state(man, step * (np.arange(U) + 0.5), limits=limits)
     models = [
         navigation_error_model(lat, velocity=v, specific_force=f, attitude=C, height=man.height, biases="body", position=True, transport=True,
                                gyro_noise=tuning.gyro_noise, accel_noise=tuning.accel_noise, gyro_bias_walk=tuning.gyro_bias_walk,
@@ -306,7 +318,7 @@ class AidedInputs:
         return max(1, int(round(self.tuning.epoch * self.sample_rate)))
 
 
-def aided_inputs(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float = 20.0, duration: float = 300.0) -> AidedInputs:
+def aided_inputs(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float = 20.0, duration: float = 300.0, limits: budget.Limits | None = None) -> AidedInputs:
     """Simulate the drive once: ideal increments, the truth at the epoch boundaries, the filter's gains.
 
     Parameters
@@ -319,13 +331,23 @@ def aided_inputs(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float = 20
         IMU rate [Hz].
     duration : float, keyword-only
         [s].
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of each stage, the increments and
+        the filter (default 2 GB, 300 s); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     AidedInputs
+
+    Raises
+    ------
+    ValueError
+        A non-positive rate or duration, or a drive beyond ``limits``
+        (naming ``duration`` and ``sample_rate``).
     """
-    dth, dv, sol = trajectory_increments(man, sample_rate, duration)
-    seq = aided_sequence(man, tuning, sample_rate=sample_rate, duration=duration)
+    dth, dv, sol = trajectory_increments(man, sample_rate, duration, limits=limits)
+    seq = aided_sequence(man, tuning, sample_rate=sample_rate, duration=duration, limits=limits)
     st = trajectory_state(man, seq.times, solution=sol)
     return AidedInputs(man, tuning, float(sample_rate), dth, dv, st.latitude, st.longitude, st.velocity, st.attitude, st.heading, seq)
 
@@ -367,7 +389,23 @@ def _ned_offset(lat, lon, h, lat_t, lon_t, h_t):
     return np.stack([(lat - lat_t) * (RN + h_t), (lon - lon_t) * (RE + h_t) * np.cos(lat_t), -(h - h_t)], axis=-1)
 
 
-def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *, n_trials: int, rng=None, initial_errors: bool = True, gnss_noise: bool = True) -> AidedResult:
+def _terms(spec: SensorSpec) -> int:
+    """Noise terms :func:`simulate_sensor_errors` draws for ``spec``."""
+    return int(bool(spec.random_walk)) + spec.gauss_markov()[0].size + int(bool(spec.rate_random_walk))
+
+
+def _trials_estimate(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, trials: float, held: float, calls: float, what: str) -> budget.Estimate:
+    """Time of ``trials`` trials of the aided navigator and filter in ``calls`` calls, memory of ``held`` of them at once."""
+    N = float(inputs.dtheta.shape[0])
+    seconds = sum(budget.sensor_errors(3.0 * trials * N, _terms(s), what=what).seconds for s in (gyro, accel))
+    seconds += budget.AIDED_TRIAL_SAMPLE.estimate(trials * N, what=what).seconds
+    seconds += calls * budget.AIDED_EPOCH_SECONDS * N / inputs.samples_per_epoch  # the epoch loop's overhead, whatever the trials
+    memory = budget.sensor_errors(3.0 * held * N, 1, what=what).memory + budget.AIDED_TRIAL_SAMPLE.estimate(held * N, what=what).memory
+    return budget.Estimate(seconds, memory, what)
+
+
+def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *, n_trials: int, rng=None, initial_errors: bool = True, gnss_noise: bool = True,
+                    limits: budget.Limits | None = None) -> AidedResult:  # fmt: skip
     """Run the aided navigator and filter on ``n_trials`` trials of a drive.
 
     The navigator keeps its attitude as the quaternion Λ of ``C_b^n``
@@ -391,10 +429,19 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
         Start from errors drawn from the prior (False: from the truth).
     gnss_noise : bool, keyword-only
         Add white noise to the fixes (False: the fixes are the truth).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     AidedResult
+
+    Raises
+    ------
+    ValueError
+        ``n_trials`` below 1, or trials beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``n_trials``).
     """
     g = as_generator(rng)
     n = as_int(n_trials, "n_trials", minimum=1)
@@ -402,8 +449,9 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
     fs = inputs.sample_rate
     N = inputs.dtheta.shape[0]
     M = inputs.samples_per_epoch
-    ge = simulate_sensor_errors(gyro, n_trials=n, n_samples=N, dt=1.0 / fs, rng=g)
-    ae = simulate_sensor_errors(accel, n_trials=n, n_samples=N, dt=1.0 / fs, rng=g)
+    budget.check(_trials_estimate(inputs, gyro, accel, n, n, 1, f"`n_trials` = {n:.3g} trials of {N:.3g} IMU samples"), limits)
+    ge = simulate_sensor_errors(gyro, n_trials=n, n_samples=N, dt=1.0 / fs, rng=g, limits=limits)
+    ae = simulate_sensor_errors(accel, n_trials=n, n_samples=N, dt=1.0 / fs, rng=g, limits=limits)
     ep = preintegrate(inputs.dtheta[None] + ge.increments, inputs.dv[None] + ae.increments, 1.0 / fs, M)
     D = ep.epoch
     E = seq.times.size - 1
@@ -561,7 +609,8 @@ class AidedMonteCarlo:
         return ok(self.nees, self.nees_band) and ok(self.nis, self.nis_band)
 
 
-def aided_monte_carlo(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *, n_trials: int, rng=None, trials_per_block: int = 32, executor=None) -> AidedMonteCarlo:
+def aided_monte_carlo(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *, n_trials: int, rng=None, trials_per_block: int = 32, executor=None,
+                      limits: budget.Limits | None = None) -> AidedMonteCarlo:  # fmt: skip
     """Monte Carlo of the aided alignment of one drive against the filter's own prediction and the aided floor.
 
     Parameters
@@ -578,16 +627,29 @@ def aided_monte_carlo(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, 
         Trials per block (the unit of randomness).
     executor : Executor | dask Client | None, keyword-only
         Where blocks run.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time, on one core (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     AidedMonteCarlo
+
+    Raises
+    ------
+    ValueError
+        ``n_trials`` below 2, or trials beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``n_trials``).
     """
     n = as_int(n_trials, "n_trials", minimum=2)
+    per_block = min(as_int(trials_per_block, "trials_per_block", minimum=1), n)
+    blocks = -(-n // per_block)
+    est = _trials_estimate(inputs, gyro, accel, n, per_block, blocks, f"`n_trials` = {n:.3g} trials of {inputs.dtheta.shape[0]:.3g} IMU samples")
+    budget.check(budget.Estimate(est.seconds, est.memory + 128.0 * n + 500.0 * blocks, est.what), limits)  # the rows and one task per block
     seq = inputs.sequence
     U = seq.updates.size
     checks = tuple(int(x) for x in np.unique(np.round(np.geomspace(1, U, 6)).astype(int)) - 1)
-    rows = montecarlo.collect(AidedKernel(inputs, gyro, accel, checks), n, rng=rng, trials_per_block=min(trials_per_block, n), blocks_per_chunk=1, executor=executor)
+    rows = montecarlo.collect(AidedKernel(inputs, gyro, accel, checks), n, rng=rng, trials_per_block=per_block, blocks_per_chunk=1, executor=executor)
     k = len(checks)
     e, f = rows[:, 0], rows[:, 1]
     return AidedMonteCarlo(

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core import kalman, montecarlo
+from ..core import budget, kalman, montecarlo
 from ..core.validation import as_int
 from .analytic import analytic_alignment
 from .coarse_to_fine import CoarseModel, coarse_model, coarse_to_fine, split_record
@@ -310,6 +310,7 @@ def compare_methods(
     calibration_trials: int = 64,
     trials_per_block: int = 32,
     executor=None,
+    limits: budget.Limits | None = None,
 ) -> MethodComparison:
     """Run the methods on the same ``n_trials`` records and compare each with the trials' floors.
 
@@ -337,6 +338,9 @@ def compare_methods(
         Trials per block (the unit of randomness).
     executor : Executor | dask Client | None, keyword-only
         Where blocks run (the result does not depend on it).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time, on one core (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -345,13 +349,16 @@ def compare_methods(
     Raises
     ------
     ValueError
-        For an unknown method.
+        For an unknown method, or trials beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``n_trials``
+        and the scenario's ``duration``).
     """
     methods = tuple(methods)
     unknown = [m for m in methods if m not in METHODS]
     if unknown or not methods:
         raise ValueError(f"Expected `methods` among {METHODS}, got {list(methods)}")
     n = as_int(n_trials, "n_trials", minimum=2)
+    per_block = min(as_int(trials_per_block, "trials_per_block", minimum=1), n)
     root = montecarlo.root_seed_sequence(rng)
     cal_seed, trial_seed = montecarlo.block_seed(root, 0), montecarlo.block_seed(root, 1)
     if tuning is None:
@@ -359,6 +366,11 @@ def compare_methods(
             epoch=0.5, gyro_bias=max(errors.gyro_bias_sigma, 1e-12), accel_bias=max(errors.accel_bias_sigma, 1e-12), gyro_noise=errors.gyro_noise, accel_noise=errors.accel_noise
         )
     compass = CompassLoopDesign(epoch=tuning.epoch) if compass is None else compass
+    N = scenario.n_samples
+    what = f"`n_trials` = {n:.3g} trials of {N:.3g} samples, {len(methods)} methods (`duration` = {scenario.duration:.3g} s of the scenario)"
+    # every method is costed as the Kalman filter at the filter's epochs, the slowest (an upper bound)
+    one = budget.alignment_monte_carlo(n, N, method="kalman", epochs=N / max(1, round(tuning.epoch / scenario.dt)), per_block=per_block, what=what)
+    budget.check(budget.Estimate(len(methods) * one.seconds, one.memory + 500.0 * (-(-n // per_block)), what), limits)  # and one task per block
     coarse = None
     if {"coarse-to-fine", "compass"} & set(methods):
         coarse = coarse_model(scenario, errors, coarse_duration=coarse_duration, n_trials=calibration_trials, rng=cal_seed)
@@ -368,7 +380,7 @@ def compare_methods(
     E_check = E_fine if "coarse-to-fine" in methods else E_total
     checks = tuple(int(x) for x in np.unique(np.round(np.geomspace(1, E_check, 6)).astype(int)) - 1)
     kernel = ComparisonKernel(scenario, errors, methods, tuning, coarse, compass, checks)
-    rows = montecarlo.collect(kernel, n, rng=trial_seed, trials_per_block=min(trials_per_block, n), blocks_per_chunk=1, executor=executor)
+    rows = montecarlo.collect(kernel, n, rng=trial_seed, trials_per_block=per_block, blocks_per_chunk=1, executor=executor)
     floor = rows[:, 0]
     out = []
     k = len(checks)

@@ -56,7 +56,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..core import kalman
+from ..core import budget, kalman
 from ..core.units import DEG_PER_RT_H_TO_RAD_PER_RT_S, M_S_PER_RT_H_TO_M_S_PER_RT_S, rad_per_s
 from ..core.validation import as_int, nonnegative, positive
 from ..gyrocompass.rocking import as_generator
@@ -266,7 +266,7 @@ def _first_order(g, shape, dt: float, tau: float, variance: float):
     return inc, inc.sum(axis=1) / (N * dt)
 
 
-def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, dt: float, rng=None) -> SensorErrorIncrements:
+def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, dt: float, rng=None, limits: budget.Limits | None = None) -> SensorErrorIncrements:
     """Draw the error increments of a sensor triad: turn-on bias, random walk, flicker (Gauss–Markov sum), rate random walk.
 
     Parameters
@@ -281,10 +281,19 @@ def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, d
         Sample interval [s].
     rng : Generator | SeedSequence | int | None, keyword-only
         Random stream.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     SensorErrorIncrements
+
+    Raises
+    ------
+    ValueError
+        Sizes below 1, a non-positive ``dt``, or increments beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``n_trials`` and ``n_samples``).
 
     Examples
     --------
@@ -298,15 +307,18 @@ def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, d
         raise TypeError(f"Expected `spec` to be a SensorSpec, got {type(spec).__name__}")
     n, N = as_int(n_trials, "n_trials", minimum=1), as_int(n_samples, "n_samples", minimum=1)
     h = positive(dt, "dt")
+    terms = list(zip(*spec.gauss_markov()))
+    if spec.rate_random_walk:
+        terms.append((math.inf, spec.rate_random_walk**2))
+    n_terms = len(terms) + int(bool(spec.random_walk))
+    what = f"`n_trials` = {n:.3g} runs of `n_samples` = {N:.3g} samples ({3.0 * n * N:.3g} elements, {n_terms} noise terms)"
+    budget.check(budget.sensor_errors(3.0 * n * N, n_terms, what=what), limits)
     g = as_generator(rng)
     turn_on = spec.turn_on_bias * g.standard_normal((n, 3))
     inc = np.broadcast_to(turn_on[:, None, :] * h, (n, N, 3)).copy()
     mean = turn_on.copy()
     if spec.random_walk:
         inc += spec.random_walk * math.sqrt(h) * g.standard_normal((n, N, 3))
-    terms = list(zip(*spec.gauss_markov()))
-    if spec.rate_random_walk:
-        terms.append((math.inf, spec.rate_random_walk**2))
     for tau, q in terms:
         d, m = _first_order(g, (n, N, 3), h, float(tau), float(q))
         inc += d

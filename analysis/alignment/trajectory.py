@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget
 from ..core.validation import as_float, nonnegative, positive
 from .earth import EARTH_RATE, normal_gravity
 
@@ -199,7 +200,16 @@ class TrajectoryState:
     accel: np.ndarray
 
 
-def position_solution(man: Manoeuvre, duration: float):
+def _max_step(man: Manoeuvre) -> float:
+    """Largest DOP853 step of :func:`position_solution` [s]."""
+    return max(1.0, man.weave_period / 20)
+
+
+def _solution_estimate(man: Manoeuvre, duration: float, what: str) -> budget.Estimate:
+    return budget.TRAJECTORY_STEP.estimate(math.ceil(duration / _max_step(man)) + 1.0, what=what)
+
+
+def position_solution(man: Manoeuvre, duration: float, *, limits: budget.Limits | None = None):
     """Dense DOP853 solution (rtol 1e-12) of the latitude and longitude ``(φ, λ)`` over ``[0, duration]``.
 
     Parameters
@@ -208,13 +218,24 @@ def position_solution(man: Manoeuvre, duration: float):
         The drive.
     duration : float
         [s].
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     scipy.integrate OdeResult
         With ``sol(t)`` → ``(φ, λ)`` [rad], for :func:`trajectory_state`.
+
+    Raises
+    ------
+    ValueError
+        A negative ``duration``, or one whose integration exceeds ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration``).
     """
     t_end = nonnegative(duration, "duration")
+    steps = math.ceil(t_end / _max_step(man))
+    budget.check(_solution_estimate(man, t_end, f"`duration` = {t_end:.3g} s of the drive (at least {steps:.3g} DOP853 steps)"), limits)
     from scipy.integrate import solve_ivp
 
     def rhs(t, y):
@@ -223,10 +244,10 @@ def position_solution(man: Manoeuvre, duration: float):
         RN, RE = radii(y[0])
         return [s * math.cos(psi) / (RN + man.height), s * math.sin(psi) / ((RE + man.height) * math.cos(y[0]))]
 
-    return solve_ivp(rhs, (0.0, t_end), [man.latitude, man.longitude], method="DOP853", rtol=1e-12, atol=1e-15, dense_output=True, max_step=max(1.0, man.weave_period / 20))
+    return solve_ivp(rhs, (0.0, t_end), [man.latitude, man.longitude], method="DOP853", rtol=1e-12, atol=1e-15, dense_output=True, max_step=_max_step(man))
 
 
-def trajectory_state(man: Manoeuvre, times, *, solution=None) -> TrajectoryState:
+def trajectory_state(man: Manoeuvre, times, *, solution=None, limits: budget.Limits | None = None) -> TrajectoryState:
     """The true state of the vehicle at ``times``.
 
     Parameters
@@ -237,10 +258,19 @@ def trajectory_state(man: Manoeuvre, times, *, solution=None) -> TrajectoryState
         ``(K,)`` times ≥ 0 [s].
     solution : OdeSolution-like, optional, keyword-only
         A dense position solution over a span covering ``times`` (saves the integration).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the position solution made
+        without ``solution`` (default 2 GB, 300 s), naming ``times``.
 
     Returns
     -------
     TrajectoryState
+
+    Raises
+    ------
+    ValueError
+        Negative ``times``, or a last time whose position solution exceeds
+        ``limits`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`).
 
     Examples
     --------
@@ -253,7 +283,12 @@ def trajectory_state(man: Manoeuvre, times, *, solution=None) -> TrajectoryState
     t = np.asarray(times, dtype=float).ravel()
     if np.any(t < 0):
         raise ValueError("Expected `times` >= 0 [s]")
-    sol = position_solution(man, float(t.max()) if t.size else 0.0) if solution is None else solution
+    if solution is None:
+        t_end = float(t.max()) if t.size else 0.0
+        budget.check(_solution_estimate(man, t_end, f"`times` up to {t_end:.3g} s (the position solution to the last time)"), limits)
+        sol = position_solution(man, t_end, limits=limits)
+    else:
+        sol = solution
     lat, lon = sol.sol(t) if hasattr(sol, "sol") else sol(t)
     s, ds = man.speed_profile(t)
     psi, dpsi, _ = man.heading_profile(t)
@@ -274,7 +309,7 @@ def trajectory_state(man: Manoeuvre, times, *, solution=None) -> TrajectoryState
     return TrajectoryState(t, lat, lon, h, v, a, psi, C, fn, gyro, accel)
 
 
-def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float):
+def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float, *, limits: budget.Limits | None = None):
     """Ideal angle and velocity increments of the drive, and the dense position solution.
 
     Parameters
@@ -285,6 +320,9 @@ def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float):
         [Hz].
     duration : float
         [s].
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -292,11 +330,21 @@ def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float):
         ``(dtheta (N, 3) [rad], dv (N, 3) [m/s], solution)``: the two-point
         Gauss–Legendre quadrature of the exact rates over each interval, and the
         position solution (for :func:`trajectory_state`).
+
+    Raises
+    ------
+    ValueError
+        A non-positive rate or duration, or a drive beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming
+        ``duration`` and ``sample_rate``).
     """
     fs, T = positive(sample_rate, "sample_rate"), positive(duration, "duration")
     N = int(round(T * fs))
+    samples, solution = budget.TRAJECTORY_SAMPLE.estimate(N, what=""), _solution_estimate(man, N / fs, what="")
+    what = f"`duration` = {T:.3g} s at `sample_rate` = {fs:g} Hz ({N:.3g} IMU samples)"
+    budget.check(budget.Estimate(samples.seconds + solution.seconds, samples.memory + solution.memory, what), limits)
     dt = 1.0 / fs
-    sol = position_solution(man, N * dt)
+    sol = position_solution(man, N * dt, limits=limits)
     k = np.arange(N)
     dth, dv = np.zeros((N, 3)), np.zeros((N, 3))
     for node in _GAUSS:

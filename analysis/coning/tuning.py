@@ -412,8 +412,13 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     Returns
     -------
     BandDrift
+
+    Raises
+    ------
+    ValueError
+        An empty or non-positive ``frequency``.
     """
-    f = as_array(frequency, "frequency").ravel()
+    f = as_array(frequency, "frequency", nonempty=True).ravel()
     if np.any(f <= 0):
         raise ValueError("Expected `frequency` > 0")
     lines = tuple(coning_line(v, half_angle) for v in f)

@@ -67,6 +67,7 @@ from scipy import linalg
 from scipy.stats import norm
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core import budget
 from ..core.validation import as_int, positive
 from . import _vibration_kernel as template
 from .environment import Environment, Spectrum
@@ -136,7 +137,7 @@ def _density(spectrum: Spectrum):
     return grid, cell / cell.sum(), cdf
 
 
-def draw_components(environment: Environment, count: int, rng, *, band_components: int = BAND_COMPONENTS, densities=None):
+def draw_components(environment: Environment, count: int, rng, *, band_components: int = BAND_COMPONENTS, densities=None, limits: budget.Limits | None = None):
     """Frequencies and amplitudes of ``count`` realisations (module docstring).
 
     Parameters
@@ -154,6 +155,9 @@ def draw_components(environment: Environment, count: int, rng, *, band_component
     densities : list, keyword-only
         The sampling densities of the spectra, as made by this function when
         absent (passed in to draw many times from one environment).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -165,8 +169,13 @@ def draw_components(environment: Environment, count: int, rng, *, band_component
     Raises
     ------
     ValueError
-        A sequence of streams whose length is not ``count``.
+        A sequence of streams whose length is not ``count``, or draws beyond
+        ``limits`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``count``).
     """
+    count = as_int(count, "count", minimum=1)
+    band_components = as_int(band_components, "band_components", minimum=1)
+    K = len(environment.lines) + band_components * len(environment.spectra)
+    budget.check(budget.VIBRATION_DRAW.estimate(float(count) * K, what=f"`count` = {count:.3g} realisations of {K} sinusoids"), limits)
     streams = [rng] if isinstance(rng, np.random.Generator) else list(rng)
     if len(streams) > 1 and len(streams) != count:
         raise ValueError(f"Expected `rng` to hold one stream per realisation ({count}), got {len(streams)}")
@@ -176,7 +185,6 @@ def draw_components(environment: Environment, count: int, rng, *, band_component
         return take(streams[0], count) if len(streams) == 1 else np.concatenate([take(g, 1) for g in streams])
 
     lines = environment.lines
-    K = len(lines) + band_components * len(environment.spectra)
     freq = np.empty((count, K))
     amp = np.empty((count, K, 6), dtype=complex)
     if lines:
@@ -384,7 +392,7 @@ class MonteCarloDrift:
 
 def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_interval: float, *, pairs: int, duration: float, rng=None,
                       velocity: bool = False, band_components: int = BAND_COMPONENTS, quadrature_points: int = QUADRATURE_POINTS,
-                      chunk: int = 64, reanchor: int = REANCHOR) -> MonteCarloDrift:  # fmt: skip
+                      chunk: int = 64, reanchor: int = REANCHOR, limits: budget.Limits | None = None) -> MonteCarloDrift:  # fmt: skip
     """Mean drift (and rectification) of ``algorithm`` in ``environment`` by Monte Carlo (module docstring).
 
     Parameters
@@ -414,6 +422,9 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
         sinusoids [count]; in between each phase advances by one complex
         multiplication per sample.  1 evaluates every phase directly (slower;
         the results agree to round-off).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -424,8 +435,11 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
     ImportError
         Without numba.
     ValueError
-        Bad sizes, or a draw whose rotation-vector amplitude exceeds 0.5 rad
-        (the environment is too violent for a drift to mean anything).
+        Bad sizes, a draw whose rotation-vector amplitude exceeds 0.5 rad
+        (the environment is too violent for a drift to mean anything), or a
+        run beyond ``limits`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`):
+        a single pair that exceeds them names ``duration`` and ``sample_interval``,
+        else the message names ``pairs``.
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
@@ -442,13 +456,19 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
     reanchor = as_int(reanchor, "reanchor", minimum=1)
     if not environment.lines and not environment.spectra:
         raise ValueError("Expected an environment with at least one line or spectrum, got none")
-    mats = sensor_matrices(environment, h, quadrature_points, velocity=bool(velocity))
     M = environment.decimation
-    hs = mats["hs"]
+    hs = environment.gyro.sensor_interval(h)
     N = algorithm.samples
     steps = max(2, math.ceil(T / (N * h)))
     warm_alg = max(algorithm.history, math.ceil(_transient(environment, hs) / h)) + 1
     warm_samples = warm_alg * M
+    samples = warm_samples + float(steps) * N * M
+    K = len(environment.lines) + band_components * len(environment.spectra)
+    length = f"`duration` = {T:.3g} s at `sample_interval` = {h:g} s ({samples:.3g} sensor samples per realisation, warm-up included, {K} sinusoids)"
+    budget.check(budget.vibration_monte_carlo(2, samples, K, velocity=bool(velocity), chunk=chunk, what=length), limits)
+    what = f"`pairs` = {pairs:.3g} antithetic pairs of realisations of {samples:.3g} sensor samples (`duration` = {T:.3g} s)"
+    budget.check(budget.vibration_monte_carlo(pairs, samples, K, velocity=bool(velocity), chunk=chunk, what=what), limits)
+    mats = sensor_matrices(environment, h, quadrature_points, velocity=bool(velocity))
     run = _kernel(algorithm, bool(velocity))
     seed = rng if isinstance(rng, np.random.SeedSequence) else np.random.SeedSequence(rng.integers(2**63) if isinstance(rng, np.random.Generator) else rng)
     children = seed.spawn(pairs)

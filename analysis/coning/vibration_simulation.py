@@ -44,6 +44,7 @@ from scipy import signal
 from scipy.integrate import solve_ivp
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.validation import as_int, in_open_interval, positive
 from .environment import orthonormal_pair, unit_vector
@@ -170,7 +171,7 @@ def _warmup_time(gyro: Sensor, period: float, sample_interval: float) -> float:
 
 
 def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: float, *, freq_hz: float, half_angle: float, axis=(0.0, 0.0, 1.0),
-                          periods: int = 4, rtol: float = 1e-13) -> FilteredConingCheck:  # fmt: skip
+                          periods: int = 4, rtol: float = 1e-13, limits: budget.Limits | None = None) -> FilteredConingCheck:  # fmt: skip
     """Simulate classical coning seen through ``gyro`` and run ``algorithm`` on it (module docstring).
 
     Parameters
@@ -192,6 +193,9 @@ def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: f
         Periods measured after the warm-up [count], ≥ 1.
     rtol : float, keyword-only
         Relative tolerance of DOP853 (absolute tolerance ``rtol`` × 1e-3).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -200,7 +204,9 @@ def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: f
     Raises
     ------
     ValueError
-        A period that is not a whole number of steps, or bad parameters.
+        A period that is not a whole number of steps, bad parameters, or a
+        run beyond ``limits`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`,
+        naming ``periods``).
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
@@ -226,6 +232,9 @@ def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: f
     start = period * math.ceil(start / period)  # measurement starts at a whole period
     first_sample = int(round((start - history_time) / hs))  # sensor sample where the algorithm's window begins
     n_sensor = int(round((start + periods * period) / hs))
+    what = f"`periods` = {periods:.3g} coning periods after a warm-up of {start:.3g} s ({n_sensor:.3g} sensor samples at `sample_interval` = {h:g} s)"
+    work = max(float(n_sensor), 16.0 * (start / period + periods))  # DOP853 takes at least 16 steps per period
+    budget.check(budget.FILTERED_CONING_SAMPLE.estimate(work, what=what), limits)
     A, B, C, D = _block_state_space(gyro)
     n = A.shape[0]
 

@@ -58,6 +58,17 @@ __all__ = [
     "ALIGNMENT_BLOCKS",
     "KALMAN_EPOCH",
     "KALMAN_EPOCH_BYTES",
+    "VIBRATION_SAMPLE",
+    "VIBRATION_DRAW",
+    "VIBRATION_PAIR_BYTES",
+    "FILTERED_CONING_SAMPLE",
+    "TRAJECTORY_STEP",
+    "TRAJECTORY_SAMPLE",
+    "AIDED_FIX",
+    "AIDED_TRIAL_SAMPLE",
+    "AIDED_EPOCH_SECONDS",
+    "SENSOR_ERROR_ELEMENT",
+    "INTEGRATOR_SAMPLE",
     "coning_simulation",
     "coning_batch",
     "arrays",
@@ -68,6 +79,8 @@ __all__ = [
     "monte_carlo",
     "multistage",
     "autocorrelation_sums",
+    "vibration_monte_carlo",
+    "sensor_errors",
 ]
 
 #: Default time limit [s]: five minutes, far above every documented command.
@@ -326,6 +339,41 @@ ALIGNMENT_BLOCKS = {"analytic": (32, 350.0), "inertial": (32, 350.0), "kalman": 
 #: Kalman alignment, per trial and filter epoch (time); its gain sequence and epoch records per epoch (memory).
 KALMAN_EPOCH = CostModel(seconds_per_unit=8e-6, bytes_per_unit=0.0)
 KALMAN_EPOCH_BYTES = 5e4
+#: Vibration Monte Carlo kernel, per realisation, sensor sample and sinusoid (the phases advance and the
+#: motion is summed sinusoid by sinusoid); a velocity run (dual algorithm, six channels) takes about
+#: 2.5 times longer (3 is assumed, :func:`vibration_monte_carlo`).  The fixed costs are the sensor
+#: matrices and the sampling densities of the spectra (8.4 MB for one spectrum); the numba
+#: compilation, once per algorithm, is not counted.
+VIBRATION_SAMPLE = CostModel(seconds_per_unit=3e-8, bytes_per_unit=0.0, fixed_seconds=0.3, fixed_bytes=2e7)
+#: Draws of the vibration Monte Carlo, per realisation and sinusoid: the 6×6 covariance of a random
+#: frequency, its Hermitian square root (``numpy.linalg.eigh``) and the complex amplitudes (2.6 kB at the peak).
+VIBRATION_DRAW = CostModel(seconds_per_unit=5e-5, bytes_per_unit=3e3)
+#: Memory per antithetic pair of the vibration Monte Carlo: its spawned stream and its result row [bytes].
+VIBRATION_PAIR_BYTES = 1e3
+#: DOP853 reference of a coning line seen through filtered gyros (rtol 1e-13), per sensor sample
+#: (at least 16 integration steps per coning period): the integration to every sample and the states kept.
+FILTERED_CONING_SAMPLE = CostModel(seconds_per_unit=3e-3, bytes_per_unit=1e3, fixed_seconds=0.5)
+#: Dense DOP853 position solution of a drive (rtol 1e-12), per integration step (the step is at most
+#: a twentieth of the weave period and at least 1 s): time, and the dense-output segment kept per step.
+TRAJECTORY_STEP = CostModel(seconds_per_unit=3e-4, bytes_per_unit=1e3)
+#: Ideal increments of a drive, per IMU sample: the true state at two Gauss–Legendre nodes (650 B at the peak).
+TRAJECTORY_SAMPLE = CostModel(seconds_per_unit=4e-6, bytes_per_unit=800.0)
+#: Aided filter along a drive, per GNSS fix: the error model linearised at the fix, its Van Loan
+#: exponential and filterpy's predict and update (a Python loop per fix); the stacked 30 × 30 blocks,
+#: gains and covariances kept per fix.
+AIDED_FIX = CostModel(seconds_per_unit=5e-4, bytes_per_unit=4e4, fixed_seconds=0.5)
+#: Aided navigator, per trial and IMU sample, beside its sensor errors (:data:`SENSOR_ERROR_ELEMENT`):
+#: the epoch increments and the epoch loop vectorised over trials.
+AIDED_TRIAL_SAMPLE = CostModel(seconds_per_unit=2e-6, bytes_per_unit=200.0)
+#: Aided navigator, per epoch and call, whatever the trials (the numpy calls of one epoch step) [s].
+AIDED_EPOCH_SECONDS = 3e-4
+#: Sensor-error increments, per element (trial × sample × axis) and noise term (each Gauss–Markov
+#: term of the flicker, the rate random walk, the white noise): time; the increments and the
+#: normal draws of one term alive at once (72 B per element at the peak).
+SENSOR_ERROR_ELEMENT = CostModel(seconds_per_unit=1e-7, bytes_per_unit=100.0)
+#: An integrator on exact coning increments, per sample (the library's algorithms; a slow black box
+#: takes longer): the increments, the step rotations, their prefix product and the errors (260 B per sample).
+INTEGRATOR_SAMPLE = CostModel(seconds_per_unit=1.5e-6, bytes_per_unit=400.0)
 
 
 def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, chunk_steps: int, what: str) -> Estimate:
@@ -455,6 +503,57 @@ def autocorrelation_sums(points, terms, *, what: str) -> Estimate:
     """
     one = AUTOCORRELATION_TERM.estimate(terms, what=what)
     return Estimate(one.seconds * max(float(points), 1.0), one.memory, what)
+
+
+def vibration_monte_carlo(pairs, samples, sinusoids, *, velocity: bool, chunk: int, what: str) -> Estimate:
+    """Estimate of a vibration Monte Carlo: ``pairs`` antithetic pairs of realisations of ``samples`` sensor samples.
+
+    Parameters
+    ----------
+    pairs : float
+        Antithetic pairs [count].
+    samples : float
+        Sensor samples per realisation, the warm-up included [count].
+    sinusoids : int
+        Sinusoids per realisation (lines plus the components of the spectra) [count].
+    velocity : bool, keyword-only
+        Dual (apparent-velocity) run.
+    chunk : int, keyword-only
+        Pairs drawn at once [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+        The kernel over both members of every pair plus the draws (time); the
+        pairs' streams and results, the draws of one chunk and the kernel's
+        weights over the samples (memory).
+    """
+    pairs, samples, sinusoids = float(pairs), float(samples), float(sinusoids)
+    run = VIBRATION_SAMPLE.estimate(2.0 * pairs * samples * sinusoids, what=what, seconds_factor=3.0 if velocity else 1.0)
+    draws = VIBRATION_DRAW.estimate(pairs * sinusoids, what=what)
+    memory = run.memory + pairs * VIBRATION_PAIR_BYTES + min(pairs, float(chunk)) * sinusoids * VIBRATION_DRAW.bytes_per_unit + 8.0 * samples
+    return Estimate(run.seconds + draws.seconds, memory, what)
+
+
+def sensor_errors(elements, terms, *, what: str) -> Estimate:
+    """Estimate of sensor-error increments over ``elements`` trial-sample-axis elements with ``terms`` noise terms.
+
+    Parameters
+    ----------
+    elements : float
+        Trials × samples × 3 [count].
+    terms : int
+        Noise terms drawn (white noise, Gauss–Markov terms, rate random walk) [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    return SENSOR_ERROR_ELEMENT.estimate(elements, what=what, seconds_factor=max(float(terms), 1.0))
 
 
 def arrays(elements, *, what: str, copies: float = 1.0) -> Estimate:

@@ -63,6 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ....derivations.coning.algorithms import Algorithm
+from ...core import budget
 from ...core import quaternion as quat
 from ...core.roundoff import drift_floor
 from ...core.validation import as_int, positive
@@ -206,7 +207,7 @@ def _warmup(history: int, samples: int) -> int:
     return -(-history // samples) + 1
 
 
-def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, steps, *, history: int = 0):
+def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, steps, *, history: int = 0, limits: budget.Limits | None = None):
     """Run ``integrator`` on the exact increments of ``motion`` and return the attitude error after every step.
 
     Parameters
@@ -224,6 +225,9 @@ def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPre
     history : int, keyword-only
         Samples before a step the integrator reads; ``⌈history/N⌉ + 1`` warm-up
         steps from the same motion precede t = 0.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -231,12 +235,19 @@ def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPre
         Step ends [s], from 0.
     error : ndarray, shape (steps + 1, 3)
         ``δφ_I = rotvec(Λ* ∘ Λ̄)`` [rad], frame I, with Λ(0) = Λ*(0) = (1, 0, 0, 0).
+
+    Raises
+    ------
+    ValueError
+        Sizes out of range, or a run beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``steps``).
     """
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     h = positive(sample_interval, "sample_interval")
     steps = as_int(steps, "steps", minimum=2)
     warm = _warmup(history, n)
-    inc = motion.grid_increments(h, -warm * n, (warm + steps) * n)
+    budget.check(budget.INTEGRATOR_SAMPLE.estimate(float(warm + steps) * n, what=f"`steps` = {steps:.3g} steps of {n} samples"), limits)
+    inc = motion.grid_increments(h, -warm * n, (warm + steps) * n, limits=limits)
     rotation = step_increments(integrator, inc, n).rotation[warm:]
     lam = prefix_product(quat.rotvec_to_quat(rotation, validate=False))
     lam = np.concatenate([quat.identity((1,)), lam], axis=0)
@@ -248,7 +259,8 @@ def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPre
     return time, error
 
 
-def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, *, steps: int = STEPS, history: int = 0) -> float:
+def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, *, steps: int = STEPS, history: int = 0,
+                      limits: budget.Limits | None = None) -> float:  # fmt: skip
     """Simulated coning drift of ``integrator`` along the cone axis [rad/s], exact minus integrator.
 
     The least-squares slope of the cone-axis component of :func:`attitude_errors`
@@ -269,6 +281,9 @@ def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularP
         Steps of the run.
     history : int, keyword-only
         Samples before a step the integrator reads (sets the warm-up).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -278,18 +293,19 @@ def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularP
     Raises
     ------
     ValueError
-        If the motion is not coning (ε ≠ −1).
+        If the motion is not coning (ε ≠ −1), or the run exceeds ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``steps``).
     """
     if not isinstance(motion, RegularPrecession) or motion.eps != -1.0:
         raise ValueError(f"Expected `motion` to be classical coning, a RegularPrecession with eps = -1, got {motion!r}")
-    time, error = attitude_errors(integrator, samples_per_step, motion, sample_interval, steps, history=history)
+    time, error = attitude_errors(integrator, samples_per_step, motion, sample_interval, steps, history=history, limits=limits)
     axis = -np.array([0.0, math.sin(motion.nutation), math.cos(motion.nutation)])
     return float(drift_rate(time, error) @ axis)
 
 
-def _sculling_run(integrator, n, motion, h, steps, warm):
+def _sculling_run(integrator, n, motion, h, steps, warm, *, limits=None):
     """(rate along e_r × e_a [m/s²], its round-off floor) of one run of whole periods."""
-    dual = motion.grid_increments(h, -warm * n, (warm + steps) * n, dual=True)
+    dual = motion.grid_increments(h, -warm * n, (warm + steps) * n, dual=True, limits=limits)
     out = step_increments(integrator, dual.re, n, dual.du)
     lam = prefix_product(quat.rotvec_to_quat(out.rotation, validate=False))
     lam = np.concatenate([quat.identity((1,)), lam], axis=0)
@@ -307,7 +323,8 @@ def _sculling_run(integrator, n, motion, h, steps, warm):
     return rate, 64 * float(np.finfo(float).eps) * float(np.abs(w_exact).max()) / t_total
 
 
-def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMotion, sample_interval, *, periods: int = PERIODS, history: int = 0) -> float:
+def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMotion, sample_interval, *, periods: int = PERIODS, history: int = 0,
+                  limits: budget.Limits | None = None) -> float:  # fmt: skip
     """Simulated rectification error rate of ``integrator`` along ``e_r × e_a`` [m/s²], exact minus integrator.
 
     A run of whole vibration periods (``ν h = 2π/K``), its velocity increments
@@ -328,6 +345,9 @@ def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMoti
         Vibration periods of the run (times N).
     history : int, keyword-only
         Samples before a step the integrator reads (sets the warm-up).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -337,15 +357,20 @@ def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMoti
     Raises
     ------
     ValueError
-        If ``2π / (ν h)`` is not a whole number.
+        If ``2π / (ν h)`` is not a whole number, or the run exceeds ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``periods``).
     """
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     h = positive(sample_interval, "sample_interval")
     per_period = 2 * math.pi / (motion.nu * h)
     if abs(per_period - round(per_period)) > 1e-9:
         raise ValueError(f"Expected `sample_interval` with 2π/(ν h) a whole number of samples per period, got {per_period:g}")
-    steps = int(round(per_period)) * as_int(periods, "periods", minimum=1)
-    return _sculling_run(integrator, n, motion, h, steps, _warmup(history, n))[0]
+    periods = as_int(periods, "periods", minimum=1)
+    steps = int(round(per_period)) * periods
+    warm = _warmup(history, n)
+    what = f"`periods` = {periods:.3g} vibration periods ({steps:.3g} steps of {n} samples)"
+    budget.check(budget.INTEGRATOR_SAMPLE.estimate(float(warm + steps) * n, what=what, bytes_factor=2.0), limits)  # dual increments: twice the memory
+    return _sculling_run(integrator, n, motion, h, steps, warm, limits=limits)[0]
 
 
 def coning_drift_check(
