@@ -245,7 +245,7 @@ def test_messages_about_several_options_name_those_typed(capsys):
 
 def test_directory_as_algorithm_file(capsys, tmp_path):
     assert cli.main(["derive", "local-error", "--algorithm-file", str(tmp_path)]) == 2
-    assert capsys.readouterr().err == f"strapdown derive local-error: error: argument --algorithm-file: {tmp_path}: is a directory, expected a TOML file\n"
+    assert capsys.readouterr().err == f"strapdown derive local-error: error: argument --algorithm-file: {tmp_path}: is a directory, expected a TOML algorithm file\n"
 
 
 def test_read_only_output(capsys):
