@@ -30,8 +30,8 @@ subpackage         analysis (numerics)                         derivations (SymP
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================
 
-Conventions (stated once, used everywhere in :mod:`analysis` and :mod:`derivations`)
------------------------------------------------------------------------------------
+Conventions (stated once, used everywhere in :mod:`strapdown.analysis` and :mod:`strapdown.derivations`)
+--------------------------------------------------------------------------------------------------------
 Quaternions
     Scalar first, ``(q0, q1, q2, q3)``, stored as arrays of shape ``(..., 4)``.
     The product ``∘`` is Hamilton's (``i*j = k``).

@@ -401,7 +401,7 @@ class ErrorHistory(NamedTuple):
     time : ndarray
         Step ends [s].
     error : ndarray
-        |δφ_I| [rad], the norm of the error rotation vector in frame I.
+        ``|δφ_I|`` [rad], the norm of the error rotation vector in frame I.
     """
 
     algorithm: str
@@ -453,7 +453,7 @@ class LeadingEstimates(NamedTuple):
     transport : float
         ``full − mid_step``: the transport of the weight-5 error [rad/s].
     simulated : float
-        |u*| by parallel computation [rad/s].
+        ``|u*|`` by parallel computation [rad/s].
     small_angle : float
         The ϑ² part of ``full``: ``lim d_7/ϑ² · ϑ² ν⁷ H⁶`` [rad/s].
     """

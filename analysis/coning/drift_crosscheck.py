@@ -4,7 +4,7 @@ For each algorithm and motion, the ratio u*/u_a of the parallel computation
 (:func:`strapdown.analysis.coning.simulator.simulate`) to the leading term of
 the drift series (:func:`strapdown.analysis.coning.drift_theory.asymptotic_drift`)
 tends to 1 as H → 0; the next drift term is two weights higher, so
-|u*/u_a − 1| falls by about 4 per halving of H.
+``|u*/u_a − 1|`` falls by about 4 per halving of H.
 
 References
 ----------
@@ -52,7 +52,7 @@ class DriftRatios(NamedTuple):
 
     @property
     def deviations(self) -> np.ndarray:
-        """|u*/u_a − 1| at each step."""
+        """``|u*/u_a − 1|`` at each step."""
         return np.abs(self.ratios - 1)
 
 

@@ -3,10 +3,10 @@
 * :func:`drift_orders`: the constant drift rate of each algorithm against the
   step H on log–log axes; the slope of the least-squares line is the order of
   the drift.
-* :func:`local_error_exponents`: the exponent of the one-step error |δφ|
+* :func:`local_error_exponents`: the exponent of the one-step error ``|δφ|``
   against H on a motion with no symmetry
   (:class:`strapdown.analysis.coning.local_error.TumblingMotion`): an algorithm
-  of order ρ gives ρ + 1.  Regular precession has |ω| constant, which hides
+  of order ρ gives ρ + 1.  Regular precession has ``|ω|`` constant, which hides
   errors of dot-product terms; :func:`dot_term_study` uses the tumbling motion
   to test the dot-product term of the sixth-order algorithm (2.2).
 
@@ -95,7 +95,7 @@ class LocalErrorExponents(NamedTuple):
     algorithm : str
         Algorithm name.
     exponents : tuple of float
-        Slope of log |δφ| against log H at each instant (ρ + 1 for order ρ).
+        Slope of log ``|δφ|`` against log H at each instant (ρ + 1 for order ρ).
     """
 
     algorithm: str
@@ -140,7 +140,7 @@ class DotTermStudy(NamedTuple):
 
 
 def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None = None, times=(0.3, 1.1, 2.4), steps=(0.2, 0.1, 0.05)) -> LocalErrorExponents:
-    """Exponent of the one-step error |δφ| against H, at each of ``times``.
+    """Exponent of the one-step error ``|δφ|`` against H, at each of ``times``.
 
     Parameters
     ----------

@@ -6,7 +6,7 @@ the axes in the proportions ``pattern`` = (yaw, β, γ)) for which
 
 * the rms azimuth error stays within the budget, and
 * the azimuth error stays within the budget with probability ``level``
-  (a percentile of |error|).
+  (a percentile of ``|error|``).
 
 To first order the rocking term is linear in ``a`` and independent of the
 sensor errors, ``e(a) = e_0 + a u``:
@@ -288,7 +288,7 @@ def _next_hint(fn, hint, floor_sq, a, bracket, cap):
 
 
 def _trial_root(errors, level, budget, lo, hi):
-    """Log of the amplitude where the ``level`` percentile of |error| reaches the budget, each trial's error
+    """Log of the amplitude where the ``level`` percentile of ``|error|`` reaches the budget, each trial's error
     interpolated linearly in ``a^q`` between the amplitudes simulated (``errors``: amplitude → per-trial
     errors, 0 among them; q the exponent of the rocking's part of the rms, from the two smallest nonzero
     amplitudes), searched in ``(lo, hi)`` (above ``hi``/64 without a lower end; up to four times the
@@ -444,7 +444,7 @@ def _amplitude_interval(errors_at, a, lo, hi, budget, cap):
 
 
 def _analytic_percentile(th, budget, level, cap, rocking):
-    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a).
+    """Largest a whose first-order ``|error|`` percentile is within the budget (rocking term linear in a).
 
     With a Gaussian part the percentile reaches the budget where
     ``P(|e| ≤ budget)`` falls to the level: one probability per step of the

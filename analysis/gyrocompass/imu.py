@@ -113,7 +113,7 @@ class Scenario:
     Parameters
     ----------
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     heading : float
         Stable heading ψ0 [rad].
     beta0, gamma0 : float
