@@ -14,18 +14,26 @@ subpackage         analysis (numerics)                         derivations (SymP
 ``coning``         algorithm evaluation (real and dual),       algorithms as data (cross-step
                    regular precession and classical sculling,  indices), the registry of published
                    simulator (numpy and compiled kernels,      algorithms, error series to any
-                   batches, streaming), drift theory, error    weight, drift, coning drift in
-                   against frequency, computational load,      closed form, optimal coning,
-                   the papers' tables reproduced               published data
+                   batches, streaming), local error, drift     weight, drift, coning drift in
+                   theory, error against frequency,            closed form, optimal coning,
+                   computational load, observed orders         published data
+``coning.papers``  the papers' tables and printed formulas     none: their printed numbers are
+                   reproduced with the library above           reference data in ``coning.published``
+                   (Budennyi et al. Tables 1–5, Lebedev &
+                   Panov (1989) section 6, (1.12), (2.2),
+                   (4.7), published coefficients)
 ``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data
                    statistics, readings of section 5
-``gyrocompass``    tilt channel: rocking models, azimuth       azimuth-error series, bounds
-                   Monte Carlo, bound sweeps, finite-sample    (14)–(15), published formulas
-                   statistics of (16); whole system: rocking
-                   base and IMU model, analytic, inertial and
-                   Kalman alignment, admissible rocking
+``gyrocompass``    the tilt channel of Hrechka & Koroliov:     azimuth-error series, bounds
+                   rocking models, azimuth Monte Carlo, bound  (14)–(15), published formulas
+                   sweeps, finite-sample statistics of (16),
+                   admissible rocking
+``alignment``      self-alignment of the whole system: rocking gains of the linearised analytic
+                   base and IMU model, analytic, inertial and  alignment
+                   Kalman alignment, theory of every error
+                   term, admissible rocking per method
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

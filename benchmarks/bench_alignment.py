@@ -24,12 +24,12 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from strapdown.analysis.gyrocompass.alignment_design import admissible_rocking  # noqa: E402
-from strapdown.analysis.gyrocompass.alignment_monte_carlo import alignment_monte_carlo  # noqa: E402
-from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE, kalman_options  # noqa: E402
-from strapdown.analysis.gyrocompass.base_motion import NarrowbandMotion  # noqa: E402
-from strapdown.analysis.gyrocompass.fine_alignment import Disturbance  # noqa: E402
-from strapdown.analysis.gyrocompass.imu import Scenario, simulate_imu  # noqa: E402
+from strapdown.analysis.alignment.base_motion import NarrowbandMotion  # noqa: E402
+from strapdown.analysis.alignment.design import admissible_rocking  # noqa: E402
+from strapdown.analysis.alignment.fine import Disturbance  # noqa: E402
+from strapdown.analysis.alignment.imu import Scenario, simulate_imu  # noqa: E402
+from strapdown.analysis.alignment.monte_carlo import alignment_monte_carlo  # noqa: E402
+from strapdown.analysis.alignment.studies import DESIGN_SCENARIO, NAVIGATION_GRADE, kalman_options  # noqa: E402
 
 AZIMUTH = ["azimuth", "--lat-deg", "60", "--sigma-xi-deg", "1", "--sigma-eta-deg", "1", "--samples", "1000", "--json"]
 ALIGN = ["align", "--method", "analytic", "--lat-deg", "60", "--gyro-bias-deg-per-h", "0,0.01,0", "--duration", "60", "--sample-rate-hz", "10", "--trials", "50", "--json"]

@@ -12,18 +12,18 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from strapdown.analysis.alignment.analytic import analytic_alignment
+from strapdown.analysis.alignment.base_motion import NarrowbandMotion, SineMotion, WhiteMotion, mean_variance
+from strapdown.analysis.alignment.earth import EARTH_RATE, earth_rate_ned, gravity_ned, normal_gravity
+from strapdown.analysis.alignment.imu import Scenario, SensorErrors, simulate_imu
+from strapdown.analysis.alignment.inertial import inertial_alignment, wahba_rotation
+from strapdown.analysis.alignment.monte_carlo import AlignmentKernel, AlignmentOptions, alignment_monte_carlo
+from strapdown.analysis.alignment.preintegration import chain_rotations, preintegrate
+from strapdown.analysis.alignment.theory import analytic_theory
+from strapdown.analysis.alignment.tilt_attitude import attitude_matrix, body_acceleration, body_rate, tilts_from_specific_force
 from strapdown.analysis.core import montecarlo
 from strapdown.analysis.core import quaternion as quat
-from strapdown.analysis.gyrocompass.alignment_monte_carlo import AlignmentKernel, AlignmentOptions, alignment_monte_carlo
-from strapdown.analysis.gyrocompass.alignment_theory import analytic_theory
-from strapdown.analysis.gyrocompass.analytic_alignment import analytic_alignment
 from strapdown.analysis.gyrocompass.azimuth import azimuth_error, second_order_theory
-from strapdown.analysis.gyrocompass.base_motion import NarrowbandMotion, SineMotion, WhiteMotion
-from strapdown.analysis.gyrocompass.earth import EARTH_RATE, earth_rate_ned, gravity_ned, normal_gravity
-from strapdown.analysis.gyrocompass.imu import Scenario, SensorErrors, simulate_imu
-from strapdown.analysis.gyrocompass.inertial_alignment import inertial_alignment, wahba_rotation
-from strapdown.analysis.gyrocompass.preintegration import chain_rotations, preintegrate
-from strapdown.analysis.gyrocompass.tilt_attitude import attitude_matrix, body_acceleration, body_rate, tilts_from_specific_force
 
 R = np.radians
 B_001 = R(0.01) / 3600.0  # 0.01 deg/h [rad/s]
@@ -84,7 +84,8 @@ def test_rocking_statistics():
     m = NarrowbandMotion([0.01, 0.02, 0.03], 8.0, 0.1)
     (a,) = m.draw(2, 1000, 3, 0.1).evaluate(1, derivatives=0)
     # Gaussian coefficients: the value at an instant is N(0, σ²); SE of a std from 1000 draws ≈ 2.2 %
-    np.testing.assert_allclose(m.spectrum(3, 0.1).sigma, m.sigma, rtol=1e-12)
+    # the trapezoidal sum of the density: σ² up to the band edge between grid points (the density there is 1/225 of its low end)
+    np.testing.assert_allclose(m.spectrum(3, 0.1).sigma, m.sigma, rtol=1e-7)
     np.testing.assert_allclose(a[:, 0].std(axis=0), m.sigma, rtol=0.08)
     w = WhiteMotion(0.01)
     x = w.draw(3, 200, 400, 0.01).evaluate(400, derivatives=0)[0][:, :, 1]
@@ -101,7 +102,7 @@ def test_compiled_sensor_loops_equal_the_numpy_reference(motion, lever_arm, in_g
     """The fused increments and the compiled preintegration against their numpy forms, to round-off."""
     from dataclasses import replace
 
-    from strapdown.analysis.gyrocompass.imu import ideal_increments
+    from strapdown.analysis.alignment.imu import ideal_increments
 
     sc = Scenario(R(60.0), heading=0.5, beta0=0.02, gamma0=-0.01, motion=motion, lever_arm=lever_arm, sample_rate=10.0, duration=20.0, rocking_in_gyros=in_gyros)
     m = sc.motion.draw(np.random.default_rng(7), 3, sc.n_samples + 1, sc.dt)
@@ -124,11 +125,15 @@ def test_scaled_draws_share_their_evaluations_and_equal_the_direct_sum(model):
     """The same draw at another amplitude (common random numbers) shares the unit evaluations; the values are a fresh evaluation's and the direct sum's."""
     from dataclasses import replace
 
-    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+    from strapdown.analysis.alignment.base_motion import MotionRealisation
 
     r1 = model.draw(np.random.default_rng(3), 4, 301, 0.1)
-    r2 = replace(model, amplitude=3.0 * model.amplitude).draw(np.random.default_rng(3), 4, 301, 0.1)
-    assert r1.unit[0] == r2.unit[0]  # one key: the same normals and the same unit model
+    r2 = r1.rescaled(replace(model, amplitude=3.0 * model.amplitude))
+    assert r2.unit is r1.unit  # one draw, passed on: its evaluations are shared
+    fresh = replace(model, amplitude=3.0 * model.amplitude).draw(np.random.default_rng(3), 4, 301, 0.1)
+    assert np.array_equal(fresh.coefficients, r2.coefficients)  # the same numbers as a draw from the same state
+    with pytest.raises(ValueError, match="amplitudes only"):
+        r1.rescaled(replace(model, amplitude=model.amplitude, **({"period": 3.0} if hasattr(model, "period") else {"bandwidth": 1.0})))
     t = 0.03 + 0.1 * np.arange(300)
     direct = np.real(np.einsum("nam,km->nka", r2.coefficients, np.exp(1j * np.outer(t, r2.spectrum.omega))))
     for r, scale in ((r1, 1.0), (r2, 3.0)):
@@ -141,12 +146,12 @@ def test_scaled_draws_share_their_evaluations_and_equal_the_direct_sum(model):
 def test_unit_evaluation_times_its_scale_is_the_evaluation_and_the_compiled_loop_applies_it():
     """A scaled draw hands its shared unit arrays and amplitudes to the compiled loop, which scales them itself:
     the same increments as the loop on the multiplied-out rocking (the same products), to the last bit."""
-    from strapdown.analysis.gyrocompass import alignment_kernels as k
+    from strapdown.analysis.alignment import kernels as k
 
     sc = Scenario(R(60.0), heading=0.5, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
     m = NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1).draw(np.random.default_rng(2), 3, sc.n_samples + 1, sc.dt)
     parts, scale = m.unit_evaluation(sc.n_samples, 0.02)
-    assert not parts[0].flags.writeable and np.array_equal(scale, m.unit[2])  # the kept unit evaluation
+    assert not parts[0].flags.writeable and np.array_equal(scale, m.scale)  # the kept unit evaluation
     for a, b in zip(m.evaluate(sc.n_samples, 0.02), parts):
         assert np.array_equal(a, scale * b)
     W, g, fixed = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude), np.zeros(3)
@@ -161,8 +166,8 @@ def test_unit_evaluation_times_its_scale_is_the_evaluation_and_the_compiled_loop
 @pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
 def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
     """No rocking (a still base, or a draw at zero amplitude): one trial computed, the same for all, equal to a computation per trial."""
-    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
-    from strapdown.analysis.gyrocompass.imu import ideal_increments
+    from strapdown.analysis.alignment.base_motion import MotionRealisation
+    from strapdown.analysis.alignment.imu import ideal_increments
 
     sc = Scenario(R(60.0), heading=0.5, beta0=0.01, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=5.0)
     for m in (SineMotion(0.0, 7.0).draw(1, 4, sc.n_samples + 1, sc.dt), sc.motion.draw(1, 4, sc.n_samples + 1, sc.dt)):
@@ -184,7 +189,7 @@ def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
 def test_rocking_at_a_few_instants_is_the_record_there(model):
     """The direct sum at a few sample instants against the evaluation of the whole record: the same sums for
     sinusoids, round-off of the FFT for the Gaussian models."""
-    from strapdown.analysis.gyrocompass.base_motion import MotionRealisation
+    from strapdown.analysis.alignment.base_motion import MotionRealisation
 
     r = model.draw(np.random.default_rng(5), 3, 301, 0.1)
     idx = np.array([0, 7, 300])
@@ -304,10 +309,7 @@ def test_paper_tilt_channel_is_the_special_case():
     tilts = np.stack([est.beta - b0, est.gamma - g0])
     np.testing.assert_allclose(est.heading_error, azimuth_error(tilts[0], tilts[1], latitude=lat, beta0=b0, gamma0=g0), atol=1e-12)
     mc = alignment_monte_carlo(sc, method="analytic", n_trials=800, rng=7, options=AlignmentOptions(formula="paper"))
-    s = motion.spectrum(sc.n_samples, sc.dt)
-    T = sc.n_samples * sc.dt
-    mean = (np.exp(1j * s.omega * T) - 1) / (1j * s.omega * T)
-    sd = np.sqrt(s.covariance(mean))  # standard deviation of the continuous mean per axis
+    sd = np.sqrt(mean_variance(motion, sc.n_samples * sc.dt, sc.dt))  # standard deviation of the continuous mean per axis
     th = second_order_theory(lat, b0, g0, sd[1], sd[2])
     assert _inside(mc.result.rms_ci, th.rms)
     assert mc.theory.rocking == pytest.approx(th.rms_first_order, rel=1e-9)
@@ -344,7 +346,7 @@ def test_inertial_alignment_integrates_the_rocking_out():
 
 # ---------------------------------------------------------------- Kalman fine alignment
 def _kalman_options(gb, ab, **kw):
-    from strapdown.analysis.gyrocompass.fine_alignment import FilterTuning
+    from strapdown.analysis.alignment.fine import FilterTuning
 
     return AlignmentOptions(tuning=FilterTuning(epoch=0.2, prior_heading=R(0.5), gyro_bias=gb, accel_bias=ab, **kw))
 
@@ -374,8 +376,8 @@ def test_compiled_filter_loop_equals_the_numpy_reference(shaping, lever_arm_know
     itself by about 6e-11 relative, so the two loops agree to 1e-9 and not to 1e-15."""
     from dataclasses import replace
 
-    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
-    from strapdown.analysis.gyrocompass.fine_alignment import Disturbance, fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment.fine import Disturbance, fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment.studies import kalman_options
 
     sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 2.0, 2.0])), 10.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=40.0)
     e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
@@ -391,8 +393,8 @@ def test_compiled_filter_loop_equals_the_numpy_reference(shaping, lever_arm_know
 
 
 def test_fine_alignment_with_its_model_given_is_the_same_run():
-    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
-    from strapdown.analysis.gyrocompass.fine_alignment import filter_model, fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment.fine import filter_model, fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment.studies import kalman_options
 
     sc = Scenario(R(60.0), heading=R(30.0), sample_rate=10.0, duration=20.0)
     e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0)
@@ -405,33 +407,41 @@ def test_fine_alignment_with_its_model_given_is_the_same_run():
         fine_alignment(rec, tuning, model=model.F)
 
 
-def test_epoch_records_of_the_same_trials_come_from_memory_with_the_generator_where_a_simulation_leaves_it():
+def test_explicit_draws_give_the_trials_of_the_stream_at_any_amplitude():
+    """Common random numbers passed explicitly: a run on drawn numbers equals the run from the stream, bit for bit,
+    in the drawn scenario and in one that differs by the rocking amplitudes."""
     from dataclasses import replace
 
-    from strapdown.analysis.gyrocompass import fine_alignment as fa
+    from strapdown.analysis.alignment import fine as fa
+    from strapdown.analysis.alignment.monte_carlo import alignment_draws
+    from strapdown.analysis.alignment.studies import kalman_options
 
     sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 1.0, 1.0])), 8.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
-    e = SensorErrors(gyro_bias_sigma=B_001, gyro_noise=R(0.002) / 60.0)
-    g1, g2 = np.random.default_rng(8), np.random.default_rng(8)
-    a = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g1, chunk=2)
-    b = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=g2, chunk=2)
-    assert b.increments.velocity is a.increments.velocity and not b.truth_angles.flags.writeable  # served, read-only
-    assert g1.random() == g2.random()  # both generators where the simulation left them
-    fa._RECORDS._items.clear()
-    fa._RECORDS._bytes = 0
-    c = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)  # made again
+    e = SensorErrors(gyro_bias_sigma=B_001, gyro_noise=R(0.002) / 60.0, accel_quantum=1e-4)
+    a = fa.simulate_epoch_record(sc, e, 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)
+    b = fa.simulate_epoch_record(sc, e, 5, draws=fa.draw_epoch_record(sc, e, n_trials=5, rng=np.random.default_rng(8), chunk=2))
     for name in ("rotation", "velocity", "moment"):
-        assert np.array_equal(getattr(c.increments, name), getattr(a.increments, name))
-    assert np.array_equal(c.truth_velocity, a.truth_velocity) and c.increments.epoch == a.increments.epoch == 0.5
-    d = fa.simulate_epoch_record(sc, replace(e, gyro_noise=2.0 * e.gyro_noise), 5, n_trials=5, rng=np.random.default_rng(8), chunk=2)
-    assert not np.array_equal(d.increments.rotation, a.increments.rotation)  # other inputs: simulated
+        assert np.array_equal(getattr(b.increments, name), getattr(a.increments, name))
+    assert np.array_equal(b.truth_velocity, a.truth_velocity)
+    with pytest.raises(ValueError, match="accel_start"):  # numbers drawn for other errors
+        fa.simulate_epoch_record(sc, e, 5, draws=fa.draw_epoch_record(sc, replace(e, accel_quantum=0.0), n_trials=2, rng=1))
+    opts = kalman_options(sc, e)
+    sc2 = replace(sc, motion=replace(sc.motion, amplitude=3.0 * sc.motion.amplitude))
+    for method, options in (("analytic", None), ("kalman", opts)):
+        draws = alignment_draws(sc, e, method=method, n_trials=6, rng=3, options=options, trials_per_block=4)
+        for scenario in (sc, sc2):
+            from_stream = alignment_monte_carlo(scenario, e, method=method, n_trials=6, rng=3, options=options, trials_per_block=4)
+            from_draws = alignment_monte_carlo(scenario, e, method=method, n_trials=6, options=options, draws=draws)
+            assert from_draws.result.rms == from_stream.result.rms and from_draws.result.aux_mean == from_stream.result.aux_mean
+    with pytest.raises(ValueError, match="amplitudes only"):
+        alignment_monte_carlo(replace(sc, motion=replace(sc.motion, period=5.0)), e, method="analytic", n_trials=6, draws=alignment_draws(sc, e, method="analytic", n_trials=6, rng=3))
 
 
 @pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
 def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled):
-    from strapdown.analysis.gyrocompass import alignment_kernels as k
-    from strapdown.analysis.gyrocompass.alignment_studies import kalman_options
-    from strapdown.analysis.gyrocompass.fine_alignment import fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment import kernels as k
+    from strapdown.analysis.alignment.fine import fine_alignment, simulate_epoch_record
+    from strapdown.analysis.alignment.studies import kalman_options
 
     sc = Scenario(R(60.0), heading=R(30.0), motion=NarrowbandMotion(R(np.array([0.0, 2.0, 2.0])), 10.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=20.0)
     e = SensorErrors(gyro_bias_sigma=B_001, accel_bias_sigma=1e-4, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
@@ -451,7 +461,7 @@ def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled)
         fine_alignment(ends, tuning, rng=5)
     with pytest.raises(ValueError, match="`truth` in"):
         simulate_epoch_record(sc, e, 5, n_trials=4, rng=4, truth="start")
-    from strapdown.analysis.gyrocompass.fine_alignment import epoch_record
+    from strapdown.analysis.alignment.fine import epoch_record
 
     with pytest.raises(ValueError, match="truth at its start and at the end of its last epoch"):
         epoch_record(simulate_imu(sc, e, n_trials=2, rng=1, truth_stride=5), 5, truth="ends")
@@ -484,9 +494,11 @@ def test_alignment_statistics_do_not_depend_on_chunking():
 # ---------------------------------------------------------------- the designer's answer
 @pytest.mark.parametrize("power", [1.0, 2.0, 3.5, 6.0])
 @pytest.mark.parametrize("root", [R(0.02), R(3.0), R(15.0)])
-def test_amplitude_search_brackets_the_root_in_few_evaluations(power, root):
-    """The search of the admissible amplitude on fn² = floor² + (u a)^p: the root inside a bracket of 1 + rtol, in few runs."""
-    from strapdown.analysis.gyrocompass.alignment_design import _search
+@pytest.mark.parametrize("start", [R(1.0), "near"])
+def test_amplitude_search_finds_the_root_in_few_evaluations(power, root, start):
+    """The root search of the admissible amplitude on fn² = floor² + (u a)^p: within rtol/2 of the root, in few runs,
+    fewer from the previous frequency's root."""
+    from strapdown.analysis.alignment.design import _root
 
     budget, floor, rtol, cap = 1.0, 0.45, 0.1, R(20.0)
     u = math.sqrt(budget**2 - floor**2) ** (2.0 / power) / root
@@ -496,64 +508,16 @@ def test_amplitude_search_brackets_the_root_in_few_evaluations(power, root):
         calls.append(a)
         return math.sqrt(floor**2 + (u * a) ** power)
 
-    a, (lo, hi) = _search(fn, budget, R(1.0), cap, rtol)
-    assert a == lo <= root * (1.0 + 1e-12) and root <= hi * (1.0 + 1e-12) and hi <= lo * (1.0 + rtol)
-    assert fn(lo) <= budget < fn(hi)
-    assert len(set(calls)) <= 9, calls  # bisection from ×4 brackets took about 7 after the bracket
-    again = []
-    b, _ = _search(lambda x: again.append(x) or fn(x), budget, R(1.0), cap, rtol, known=tuple(calls))
-    assert b == a and not set(again) - set(calls)  # the known points suffice: nothing new to simulate
-
-
-@pytest.mark.parametrize("power", [1.0, 2.0, 3.5, 6.0])
-@pytest.mark.parametrize("ratio", [0.7, 1.4])
-def test_amplitude_search_from_the_previous_root_closes_in_three_runs(power, ratio):
-    """Started near the root with the slope of the curve (the previous frequency's root and slope), the search
-    needs the start and two more runs: one past the estimated root, one a bracket width from it."""
-    from strapdown.analysis.gyrocompass.alignment_design import _search
-
-    budget, floor, rtol, cap, root = 1.0, 0.45, 0.1, R(20.0), R(3.0)
-    u = math.sqrt(budget**2 - floor**2) ** (2.0 / power) / root
-    calls = []
-
-    def fn(a):
-        calls.append(a)
-        return math.sqrt(floor**2 + (u * a) ** power)
-
-    a, (lo, hi) = _search(fn, budget, ratio * root, cap, rtol, exponent=power)
-    assert lo <= root * (1.0 + 1e-12) and root <= hi * (1.0 + 1e-12) and hi <= lo * (1.0 + rtol)
-    assert len(set(calls) - {0.0}) <= 3, calls
-
-
-@pytest.mark.parametrize("q", [1.0, 2.5])
-def test_percentile_search_places_its_runs_by_the_trials_errors(q):
-    """Trials whose rocking part grows as a power of the amplitude: the percentile where each trial's error,
-    interpolated between the amplitudes simulated, crosses the budget is the root, and two runs close the bracket."""
-    from strapdown.analysis.gyrocompass.alignment_design import _search, _trial_root
-
-    rng = np.random.default_rng(3)
-    e0, u = 0.3 * rng.standard_normal(200), rng.standard_normal(200)
-    budget, level, rtol, cap = 1.0, 0.95, 0.1, 100.0
-    cache = {}
-
-    def pct(a):
-        if a not in cache:
-            cache[a] = e0 + u * a**q
-        return float(np.quantile(np.abs(cache[a]), level))
-
-    for a in (0.0, 4.0, 5.0, 6.5):  # the rms search's runs, all above the percentile's root
-        pct(a)
-    known = set(cache)
-    a, (lo, hi) = _search(pct, budget, 1.0, cap, rtol, known=tuple(cache), estimate=lambda lo, hi: _trial_root(cache, level, budget, lo, hi))
-    assert pct(lo) <= budget < pct(hi) and hi <= lo * (1.0 + rtol)
-    assert len(set(cache) - known) <= 2, sorted(set(cache) - known)
-    assert _trial_root({0.0: e0, 4.0: e0 + 4.0 * u}, level, budget, 0.0, 4.0) is None  # two amplitudes: no exponent
+    a, (lo, hi) = _root(fn, budget, 1.3 * root if start == "near" else start, cap, rtol)
+    assert abs(math.log(a / root)) <= 0.5 * math.log(1.0 + rtol)
+    assert fn(lo) <= budget < fn(hi) and lo <= root <= hi
+    assert len(set(calls)) <= (7 if start == "near" else 11), calls
 
 
 @pytest.mark.parametrize("n_steps", [2, 3, 300])
 def test_coverage_study_samples_xi_as_the_model_does(n_steps):
     """The coverage study filters only ξ's rows of the narrow-band model's draws: the model's own ξ, to the bit."""
-    from strapdown.analysis.gyrocompass.alignment_studies import _xi_sample
+    from strapdown.analysis.alignment.studies import _xi_sample
     from strapdown.analysis.gyrocompass.rocking import NarrowbandRocking
 
     m = NarrowbandRocking(0.02, 0.01, 8.0, 0.1)
@@ -562,11 +526,11 @@ def test_coverage_study_samples_xi_as_the_model_does(n_steps):
 
 
 def test_amplitude_search_ends():
-    from strapdown.analysis.gyrocompass.alignment_design import _search
+    from strapdown.analysis.alignment.design import _root
 
-    assert _search(lambda a: 2.0, 1.0, 0.1, 1.0, 0.1) == (0.0, (0.0, 0.0))  # the sensors alone exceed the budget
-    assert _search(lambda a: 0.5 + 0.1 * a, 1.0, 0.1, 1.0, 0.1) == (1.0, (1.0, 1.0))  # the cap is admissible
-    assert _search(lambda a: 0.5 + 1e15 * a, 1.0, 0.1, 1.0, 0.1)[0] < 1e-9  # below any resolution: 0
+    assert _root(lambda a: 2.0, 1.0, 0.1, 1.0, 0.1) == (0.0, (0.0, 0.0))  # the sensors alone exceed the budget
+    assert _root(lambda a: 0.5 + 0.1 * a, 1.0, 0.1, 1.0, 0.1) == (1.0, (1.0, 1.0))  # the cap is admissible
+    assert _root(lambda a: 0.5 + 1e15 * a, 1.0, 0.1, 1.0, 0.1)[0] < 1e-9  # below any resolution: 0
 
 
 def test_admissible_rocking_meets_the_budget():
@@ -574,7 +538,7 @@ def test_admissible_rocking_meets_the_budget():
     Monte Carlo at its root is within the budget and one bracket step above it is not."""
     from dataclasses import replace
 
-    from strapdown.analysis.gyrocompass.alignment_design import admissible_rocking
+    from strapdown.analysis.alignment.design import admissible_rocking
 
     sc = Scenario(R(60.0), heading=R(30.0), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=60.0)
     e = SensorErrors(gyro_noise=R(0.002) / 60.0)
@@ -628,8 +592,8 @@ def test_analytic_percentile_amplitude_puts_the_percentile_on_the_budget(rocking
 
     from scipy.optimize import brentq
 
-    from strapdown.analysis.gyrocompass.alignment_design import _analytic_percentile, _motion
-    from strapdown.analysis.gyrocompass.alignment_studies import DESIGN_SCENARIO, NAVIGATION_GRADE
+    from strapdown.analysis.alignment.design import _analytic_percentile, _motion
+    from strapdown.analysis.alignment.studies import DESIGN_SCENARIO, NAVIGATION_GRADE
     from strapdown.analysis.gyrocompass.error_distribution import abs_error_quantile
 
     budget, cap = R(0.3), R(20.0)
@@ -647,8 +611,8 @@ def test_analytic_percentile_amplitude_puts_the_percentile_on_the_budget(rocking
 
 def test_compiled_loops_refuse_wrong_shapes_and_outputs():
     """The loops index without bounds checks: every shape is checked first, with the argument named."""
-    from strapdown.analysis.gyrocompass import alignment_kernels as k
-    from strapdown.analysis.gyrocompass.imu import ideal_increments
+    from strapdown.analysis.alignment import kernels as k
+    from strapdown.analysis.alignment.imu import ideal_increments
 
     a, out = np.zeros((2, 5, 3)), np.zeros((2, 5, 3))
     v = np.zeros(3)
@@ -670,38 +634,3 @@ def test_compiled_loops_refuse_wrong_shapes_and_outputs():
         )  # fmt: skip
     with pytest.raises(TypeError, match="`motion` to be a MotionRealisation"):
         ideal_increments(Scenario(R(45.0), duration=1.0), np.zeros((1, 10, 3)))
-
-
-def test_repeated_draws_and_memo_refuse_bad_input():
-    from strapdown.analysis.core import repeated_draws
-    from strapdown.analysis.core.memo import BoundedMemo
-
-    with pytest.raises(TypeError, match="`rng` to be a numpy.random.Generator"):
-        repeated_draws.standard_normal(np.random.RandomState(1), (3,))
-    with pytest.raises(ValueError, match="`shape` >= 0"):
-        repeated_draws.standard_normal(np.random.default_rng(1), (3, -1))
-    with pytest.raises(ValueError, match="`max_bytes` >= 0"):
-        BoundedMemo(-1)
-
-
-def test_scaled_repeated_draws_are_the_scaled_draw_and_advance_the_stream_alike():
-    from strapdown.analysis.core import repeated_draws
-
-    a, b, c = np.random.default_rng(9), np.random.default_rng(9), np.random.default_rng(9)
-    z = b.standard_normal((4, 5))
-    x = repeated_draws.standard_normal(a, (4, 5), scale=0.25)
-    assert np.array_equal(x, 0.25 * z) and not x.flags.writeable
-    y = repeated_draws.standard_normal(c, (4, 5), scale=0.25)  # served: the same product, the same state after
-    assert y is x and a.random() == b.random() == c.random()
-    with pytest.raises(ValueError, match="`scale`"):
-        repeated_draws.standard_normal(a, (2,), scale=math.inf)
-
-
-def test_memo_counts_and_freezes_every_array_of_a_tuple():
-    from strapdown.analysis.core.memo import BoundedMemo
-
-    memo = BoundedMemo(100)
-    v = memo.get("a", lambda: (np.zeros(5), np.ones(5), "state"))
-    assert memo._bytes == 80 and not v[0].flags.writeable and not v[1].flags.writeable
-    memo.get("b", lambda: np.zeros(4))  # 112 bytes > 100: "a" is dropped
-    assert list(memo._items) == ["b"] and memo._bytes == 32

@@ -7,9 +7,14 @@
   ``--option`` in the text of an exception raised outside the CLI and the
   reports.
 * Radians inside the library: no parameter or attribute named ``*_deg`` or
-  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage,gyrocompass}``
+  ``*_deg_per_h``, or documented in degrees, in ``analysis/{core,coning,multistage,gyrocompass,alignment}``
   and ``derivations`` (the printed data of ``published.py`` keep the paper's
   units, with names that say so).
+* No import cycle: the graph of imports between the modules of the package
+  (imports inside functions included) has no cycle.
+* The tool apart from its validation: the reproductions of the papers
+  (``analysis/coning/papers``) use the library, and only they, the CLI and the
+  reports import them.
 
 The checks walk the syntax trees of the source files, so they see every module,
 imported or not.
@@ -134,7 +139,7 @@ def test_the_flag_check_can_fail():
 
 
 # --------------------------------------------------------------------------- units
-UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "analysis/gyrocompass", "derivations")
+UNIT_FOLDERS = ("analysis/core", "analysis/coning", "analysis/multistage", "analysis/gyrocompass", "analysis/alignment", "derivations")
 DEGREE_NAME = re.compile(r"(^|_)deg(_per_h)?$")
 #: A numpydoc entry "name : type" and its indented description.
 DOC_ENTRY = re.compile(r"^(\s*)([A-Za-z_][\w, ]*) : [^\n]*\n((?:\1\s+[^\n]*\n?)*)", re.M)
@@ -211,3 +216,100 @@ def test_the_published_unit_check_can_fail():
 @pytest.mark.parametrize("folder", sorted(PACKAGES))
 def test_the_checks_see_the_package(folder):
     assert sum(1 for _ in _sources(folder)) > 20
+
+
+# --------------------------------------------------------------------------- import graph
+def _modules(*folders) -> dict:
+    return {_module_name(rel): (rel, tree) for rel, tree in _sources(*folders)}
+
+
+def import_graph(modules: dict) -> dict:
+    """Module → the modules of ``modules`` it imports (at the top or inside a function)."""
+    graph = {name: set() for name in modules}
+    for name, (rel, tree) in modules.items():
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                target = _target(rel, node)
+                found = [f"{target}.{a.name}" for a in node.names if f"{target}.{a.name}" in modules]
+                graph[name].update(found or ([target] if target in modules else []))
+            elif isinstance(node, ast.Import):
+                graph[name].update(a.name for a in node.names if a.name in modules)
+        graph[name].discard(name)
+    return graph
+
+
+def import_cycles(graph: dict) -> list:
+    """The strongly connected components of more than one module (Tarjan), each sorted."""
+    index, low, stack, on_stack, cycles = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                cycles.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return cycles
+
+
+def test_no_import_cycle():
+    cycles = import_cycles(import_graph(_modules(*PACKAGES)))
+    assert cycles == [], "\n".join(" <-> ".join(c) for c in cycles)
+
+
+def test_the_cycle_check_can_fail():
+    modules = {
+        "strapdown.analysis.coning.simulator": ("analysis/coning/simulator.py", ast.parse("from .batch import compiled_series\n")),
+        "strapdown.analysis.coning.batch": ("analysis/coning/batch.py", ast.parse("def f():\n    from .simulator import simulate\n")),
+        "strapdown.analysis.coning.kernels": ("analysis/coning/kernels.py", ast.parse("from . import streaming\n")),
+    }
+    assert import_cycles(import_graph(modules)) == [["strapdown.analysis.coning.batch", "strapdown.analysis.coning.simulator"]]
+
+
+PAPERS = "strapdown.analysis.coning.papers"
+#: Who may import the reproductions of the papers: themselves, the command line and the reports.
+PAPER_USERS = ("analysis/coning/papers/", "analysis/cli/", "analysis/report/")
+
+
+def paper_imports(modules: dict) -> list:
+    """Modules outside :data:`PAPER_USERS` that import from ``strapdown.analysis.coning.papers``."""
+    graph = import_graph(modules)
+    return sorted(
+        f"{modules[name][0]} imports {target}"
+        for name, targets in graph.items()
+        if not modules[name][0].startswith(PAPER_USERS)
+        for target in targets
+        if target == PAPERS or target.startswith(PAPERS + ".")
+    )
+
+
+def test_the_library_does_not_import_the_paper_reproductions():
+    modules = _modules(*PACKAGES)
+    assert any(name.startswith(PAPERS + ".") for name in modules)
+    found = paper_imports(modules)
+    assert found == [], "\n".join(found)
+
+
+def test_the_paper_check_can_fail():
+    modules = {
+        "strapdown.analysis.coning.simulator": ("analysis/coning/simulator.py", ast.parse("from .papers.budennyi_table3 import simulated_drift\n")),
+        "strapdown.analysis.coning.papers.budennyi_table3": ("analysis/coning/papers/budennyi_table3.py", ast.parse("from ..simulator import simulate\n")),
+    }
+    assert paper_imports(modules) == ["analysis/coning/simulator.py imports strapdown.analysis.coning.papers.budennyi_table3"]

@@ -15,11 +15,12 @@ import pytest
 import sympy as sp
 
 from strapdown.analysis.cli import main
-from strapdown.analysis.coning import budennyi_table3 as T3
-from strapdown.analysis.coning import lebedev_panov_table as LP
 from strapdown.analysis.coning.drift_crosscheck import drift_ratios
-from strapdown.analysis.coning.formula_one import assignment_scores, column_2_estimates, column_2_readings, table2_fits
-from strapdown.analysis.coning.order_study import dot_term_study, drift_orders
+from strapdown.analysis.coning.order_study import drift_orders
+from strapdown.analysis.coning.papers import budennyi_table3 as T3
+from strapdown.analysis.coning.papers import lebedev_panov_table as LP
+from strapdown.analysis.coning.papers.formula_one import assignment_scores, column_2_estimates, column_2_readings, table2_fits
+from strapdown.analysis.coning.papers.lebedev_panov_dot_term import dot_term_study
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.core.units import deg_per_h
 from strapdown.derivations.coning import drift as D

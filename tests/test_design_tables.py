@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 from strapdown.analysis.cli import main
-from strapdown.analysis.coning.budennyi_loads import explain_misses, per_sample_fit, printed_consistency, reproduce_loads
 from strapdown.analysis.coning.computational_load import (
     LoadModel,
     OperationCount,
@@ -27,6 +26,7 @@ from strapdown.analysis.coning.computational_load import (
     step_load,
     truncation_error,
 )
+from strapdown.analysis.coning.papers.budennyi_loads import explain_misses, per_sample_fit, printed_consistency, reproduce_loads
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.core.units import rad, rad_per_s
 from strapdown.derivations.coning import published as P

@@ -13,8 +13,8 @@ import pytest
 from strapdown.analysis.cli import main
 from strapdown.analysis.coning.algorithm_summary import summarize
 from strapdown.analysis.coning.evaluation import increment
+from strapdown.analysis.coning.papers.published_check import coefficient_checks, coning_coefficient, coning_coefficient_checks, coning_drift_orders
 from strapdown.analysis.coning.precession import RegularPrecession
-from strapdown.analysis.coning.published_check import coefficient_checks, coning_coefficient, coning_coefficient_checks, coning_drift_orders
 from strapdown.analysis.coning.simulator import sample_increments, simulate, step_windows, window_index
 from strapdown.analysis.core import quaternion as quat
 from strapdown.derivations.coning.algorithms import Algorithm, load_toml, second_order_defect

@@ -23,6 +23,7 @@ def _same(a, b):
     assert (a.mean, a.mse, a.rms_ci, a.mean_ci, a.minimum, a.maximum) == (b.mean, b.mse, b.rms_ci, b.mean_ci, b.minimum, b.maximum)
     np.testing.assert_array_equal(a.histogram[1], b.histogram[1])
     assert list(a.quantiles.values()) == list(b.quantiles.values())
+    assert list(a.quantile_intervals.values()) == list(b.quantile_intervals.values())
 
 
 def test_block_seed_is_spawn():
@@ -54,9 +55,52 @@ def test_statistics_of_a_standard_normal():
     assert r.n_samples == 200_000
     assert r.rms_ci[0] < 1.0 < r.rms_ci[1]
     assert r.mean_ci[0] < 0.0 < r.mean_ci[1]
-    # histogram quantiles (bin width 0.005) against the normal quantiles; SE of a quantile ≈ 0.003-0.006
+    # order statistics of 200 000 samples against the normal quantiles (SE of a quantile ≈ 0.003-0.006);
+    # the samples of a trial are independent here too, so the trial-clustered interval should cover
     for level, q in r.quantiles.items():
+        lo, hi = r.quantile_intervals[level]
         assert q == pytest.approx(stats.norm.ppf(level), abs=0.03)
+        assert lo <= q <= hi and hi - lo < 0.08
+    covered = [lo <= stats.norm.ppf(level) <= hi for level, (lo, hi) in r.quantile_intervals.items()]
+    assert sum(covered) >= len(covered) - 1  # nine 95 % intervals: one miss is within chance (p ≈ 0.07)
+
+
+def test_identical_trials_have_their_common_value_as_every_quantile():
+    r = montecarlo.run(lambda n, g: np.full((n, 1), 0.125), 10, rng=1, trials_per_block=3)
+    assert set(r.quantiles.values()) == {0.125}
+    for lo, hi in r.quantile_intervals.values():
+        assert lo == 0.125 or math.isnan(lo)
+        assert hi == 0.125 or math.isnan(hi)
+    assert math.isnan(r.quantile_intervals[0.995][1])  # ten trials do not reach the upper end of that interval
+
+
+def test_quantiles_are_order_statistics_with_binomial_intervals():
+    from strapdown.analysis.core.quantiles import sample_quantiles
+
+    x = np.arange(1.0, 101.0)[::-1]  # 100 independent trials, values 1 … 100
+    (median, tail) = sample_quantiles(x[:, None], [0.5, 0.95])
+    assert median.value == 50.0 and tail.value == 95.0  # x_(⌈pM⌉)
+    # ranks of the distribution-free 95 % interval: P(l ≤ B < u) ≥ 0.95, B ~ Bin(100, p)
+    assert stats.binom.cdf(median.high - 1, 100, 0.5) - stats.binom.cdf(median.low - 1, 100, 0.5) >= 0.95
+    assert (median.low, median.high) == (40.0, 61.0)
+    # coverage of the interval of the median of a skewed law, 2000 repetitions of 31 trials
+    g = np.random.default_rng(8)
+    truth = stats.expon.ppf(0.5)
+    hits = sum(q.low <= truth <= q.high for q in (sample_quantiles(g.exponential(size=(31, 1)), [0.5])[0] for _ in range(2000)))
+    assert 0.95 - 3.5 * math.sqrt(0.05 * 0.95 / 2000) <= hits / 2000
+
+
+def test_bad_quantile_inputs():
+    from strapdown.analysis.core.quantiles import sample_quantiles
+
+    with pytest.raises(ValueError, match="errors"):
+        sample_quantiles(np.zeros((0, 1)), [0.5])
+    with pytest.raises(ValueError, match="finite"):
+        sample_quantiles(np.array([[np.nan]]), [0.5])
+    with pytest.raises(ValueError, match="levels"):
+        sample_quantiles(np.zeros((3, 1)), [1.0])
+    with pytest.raises(ValueError, match="levels"):
+        montecarlo.run(_normal_kernel, 4, rng=1, quantiles=(0.0,))
 
 
 def test_ci_width_matches_standard_error():
@@ -113,20 +157,3 @@ def test_components_match_direct_trigonometry_over_all_angles():
     A, B = tilt_components(beta, gamma, sphi, cphi)
     np.testing.assert_allclose(A, cphi * np.cos(gamma) + sphi * np.cos(beta) * np.sin(gamma), rtol=0, atol=2e-15)
     np.testing.assert_allclose(B, sphi * np.sin(beta), rtol=0, atol=1e-15)
-
-
-def test_repeated_draws_are_the_generators_own_and_advance_it_alike():
-    """A draw served from memory is bit for bit the generator's, and leaves the stream where a fresh draw would."""
-    from strapdown.analysis.core import repeated_draws
-
-    fresh, first, again = (np.random.default_rng(np.random.SeedSequence(11, spawn_key=(3,))) for _ in range(3))
-    expected = fresh.standard_normal((4, 5, 3))
-    a = repeated_draws.standard_normal(first, (4, 5, 3))
-    b = repeated_draws.standard_normal(again, (4, 5, 3))  # same state and shape: from memory
-    assert b is a and not b.flags.writeable
-    np.testing.assert_array_equal(a, expected)
-    tail = fresh.random(3)
-    np.testing.assert_array_equal(first.random(3), tail)
-    np.testing.assert_array_equal(again.random(3), tail)
-    other = repeated_draws.standard_normal(np.random.default_rng(12), (4, 5, 3))  # another state: another draw
-    assert not np.array_equal(other, a)

@@ -152,7 +152,7 @@ def test_printed_4_5_and_4_6(motion):
 
 def test_printed_4_7_needs_nu_dual_in_last_row():
     """(4.7) holds with ν° in its last row; the printed 'Λ°' is a misprint (errata)."""
-    from strapdown.analysis.coning.biquaternion_checks import printed_formula_checks
+    from strapdown.analysis.coning.papers.biquaternion_checks import printed_formula_checks
 
     checks = printed_formula_checks(0)
     assert checks.u_inertial_error < 1e-10

@@ -11,14 +11,14 @@ import math
 import numpy as np
 import pytest
 
-from strapdown.analysis.coning import budennyi_loads as L45
-from strapdown.analysis.coning import budennyi_table3 as T3
-from strapdown.analysis.coning.biquaternion_checks import CHECK_MOTION, printed_formula_checks
 from strapdown.analysis.coning.computational_load import quaternion_update_count
 from strapdown.analysis.coning.drift_theory import coning_drift_function
-from strapdown.analysis.coning.formula_one import assignment_scores, best_alternative
 from strapdown.analysis.coning.frequency_response import coning_frequency_response, finite_angle_check
-from strapdown.analysis.coning.published_check import coning_drift_orders, largest_difference, sculling_error_curve, sculling_simulation_checks
+from strapdown.analysis.coning.papers import budennyi_loads as L45
+from strapdown.analysis.coning.papers import budennyi_table3 as T3
+from strapdown.analysis.coning.papers.biquaternion_checks import CHECK_MOTION, printed_formula_checks
+from strapdown.analysis.coning.papers.formula_one import assignment_scores, best_alternative
+from strapdown.analysis.coning.papers.published_check import coning_drift_orders, largest_difference, sculling_error_curve, sculling_simulation_checks
 from strapdown.analysis.core import units
 from strapdown.analysis.multistage.composition import yaw_study
 from strapdown.analysis.multistage.readings import (

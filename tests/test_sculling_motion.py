@@ -11,8 +11,8 @@ from scipy.integrate import quad, solve_ivp
 
 from strapdown.analysis.cli import main
 from strapdown.analysis.coning.evaluation import increment
+from strapdown.analysis.coning.papers.published_check import sculling_error_curve, sculling_simulation_checks
 from strapdown.analysis.coning.precession import exact_state
-from strapdown.analysis.coning.published_check import sculling_error_curve, sculling_simulation_checks
 from strapdown.analysis.coning.sculling_motion import ScullingMotion, rectification_error
 from strapdown.analysis.coning.simulator import simulate
 from strapdown.analysis.core import quaternion as quat

@@ -148,8 +148,8 @@ def test_budennyi_table_3_u_star(number, eps, printed):
 
 def test_budennyi_table_1_column_2_as_printed_does_not_reproduce_table_3():
     """Erratum evidence: 4/3 (p1×p3 + p2×p4) (printed column 2) misses both Table 3 cells by far."""
-    from strapdown.analysis.coning.budennyi_table3 import simulated_drift
-    from strapdown.analysis.coning.formula_one import printed_column_2
+    from strapdown.analysis.coning.papers.budennyi_table3 import simulated_drift
+    from strapdown.analysis.coning.papers.formula_one import printed_column_2
     from strapdown.analysis.core.units import deg_per_h
 
     drift = simulated_drift(printed_column_2(), duration=20.0)

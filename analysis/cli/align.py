@@ -97,10 +97,10 @@ def _amplitude(text, flag: str, rocking: str, b0: float, g0: float):
 def _scenario(args):
     import numpy as np
 
+    from ..alignment.base_motion import motion_model
+    from ..alignment.imu import Scenario
     from ..core.units import rad
     from ..core.validation import as_float, in_open_interval, positive
-    from ..gyrocompass.base_motion import motion_model
-    from ..gyrocompass.imu import Scenario
 
     lat = rad(in_open_interval(args.lat_deg, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
     heading = rad(as_float(args.heading_deg, "--heading-deg"))
@@ -130,9 +130,9 @@ def _scenario(args):
 def _errors(args):
     import numpy as np
 
+    from ..alignment.imu import SensorErrors
     from ..core import units
     from ..core.validation import nonnegative
-    from ..gyrocompass.imu import SensorErrors
 
     return SensorErrors(
         gyro_bias=units.rad_per_s(_triple(args.gyro_bias_deg_per_h, "--gyro-bias-deg-per-h")),
@@ -151,11 +151,11 @@ def _errors(args):
 def _options(args, scenario, errors):
     import numpy as np
 
+    from ..alignment.base_motion import motion_model
+    from ..alignment.fine import Disturbance, FilterTuning, assumed_disturbance
+    from ..alignment.monte_carlo import AlignmentOptions
     from ..core.units import rad
     from ..core.validation import as_float, positive
-    from ..gyrocompass.alignment_monte_carlo import AlignmentOptions
-    from ..gyrocompass.base_motion import motion_model
-    from ..gyrocompass.fine_alignment import Disturbance, FilterTuning, assumed_disturbance
 
     if args.method != "kalman":
         return AlignmentOptions(formula=args.formula or "levelled", observation=args.observation or "position", inertial_epoch=positive(1.0 if args.epoch is None else args.epoch, "--epoch"))
@@ -198,9 +198,9 @@ def _options(args, scenario, errors):
 def _align(args) -> Result:
     import math
 
+    from ..alignment.monte_carlo import alignment_monte_carlo
     from ..core.units import deg
     from ..core.validation import as_int
-    from ..gyrocompass.alignment_monte_carlo import alignment_monte_carlo
 
     _check_options(args)
     scenario = _scenario(args)
@@ -237,6 +237,8 @@ def _align(args) -> Result:
         "azimuth_error_rms_deg": deg(r.rms),
         "azimuth_error_rms_ci_deg": [deg(r.rms_ci[0]), deg(r.rms_ci[1])],
         "azimuth_error_quantiles_deg": {f"{level:g}": deg(v) for level, v in r.quantiles.items()},
+        # the 95 % interval of each quantile (order statistics); null where the trials do not reach
+        "azimuth_error_quantile_intervals_deg": {f"{level:g}": [deg(x) if math.isfinite(x) else None for x in ci] for level, ci in r.quantile_intervals.items()},
         "tilt_error_rms_deg": [deg(x) for x in mc.tilt_rms],
         "theory_gyro_bias_floor_deg": deg(mc.bias_floor[0]),
         "theory_accel_bias_floor_deg": deg(mc.bias_floor[1]),

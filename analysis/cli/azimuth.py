@@ -101,8 +101,9 @@ def _azimuth(args) -> Result:
         "theory_rms_first_order_deg": deg(th.rms_first_order),
         "theory_rms_second_order_deg": deg(th.rms),
         "theory_bias_deg": deg(th.bias),
-        # a quantile outside the histogram is unknown: null in JSON, never NaN
-        "quantiles_deg": {f"{level:g}": (deg(v) if math.isfinite(v) else None) for level, v in r.quantiles.items()},
+        "quantiles_deg": {f"{level:g}": deg(v) for level, v in r.quantiles.items()},
+        # the 95 % interval of each quantile (order statistics, trials as clusters); null where the samples do not reach
+        "quantile_intervals_deg": {f"{level:g}": [deg(x) if math.isfinite(x) else None for x in ci] for level, ci in r.quantile_intervals.items()},
         "bound14_holds": r.covers(mc.bound14),
         "bound15_holds": r.covers(mc.bound15),
         "samples": r.n_samples,

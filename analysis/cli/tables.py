@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ..coning.budennyi_table3 import reproduce_u_star
-from ..coning.lebedev_panov_table import reproduce_table
+from ..coning.papers.budennyi_table3 import reproduce_u_star
+from ..coning.papers.lebedev_panov_table import reproduce_table
 from ..core.units import deg_per_h
 from . import Result
 

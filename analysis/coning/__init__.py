@@ -1,5 +1,9 @@
 """Coning and sculling algorithms: evaluation, motions with exact solutions, simulation, drift.
 
+The general tool.  The reproductions of the papers' tables and printed
+formulas that validate it live apart, in :mod:`strapdown.analysis.coning.papers`
+(they import this library; it never imports them).
+
 Modules
 -------
 evaluation
@@ -15,10 +19,9 @@ simulator
     (cross-step algorithms included).
 algorithm_summary
     An algorithm at a glance: terms, window, second-order defect, order, source.
-published_check
-    Published figures of the algorithm library beside our exact and simulated values.
 kernels
-    Fused compiled simulator kernels generated from an algorithm's terms (numba).
+    Fused compiled simulator kernels generated from an algorithm's terms (numba),
+    and the chunked run of a batch of points through them.
 streaming
     Drift fit and error statistics from running sums (memory independent of the run).
 batch
@@ -33,16 +36,10 @@ frequency_response
 computational_load
     Operation counts, the largest step for a drift budget and the computational
     load (Budennyi, Kalinovsky, Panov et al., eq. (6)).
-budennyi_table3, budennyi_loads
-    Table 3 (drift u*, u_a) and Tables 4–5 (loads) of Budennyi, Kalinovsky, Panov et al.
-formula_one
-    Evidence for the reconstruction of their formula (1) and Table 1 (Tables 2–3).
-lebedev_panov_table
-    The table of Lebedev & Panov (1989), section 6: runs, convergence, asymptotic theory.
 order_study
     Observed orders of the drift and of the local error.
 drift_crosscheck
     u*/u_a over a grid of steps.
-biquaternion_checks
-    The printed (1.12) and (4.7) of Lebedev & Panov (1989) against the package.
+papers
+    The papers' tables and printed formulas reproduced (subpackage).
 """

@@ -3,19 +3,19 @@
 :func:`simulate_batch` runs one algorithm against the exact solution of the
 regular precession (4.1) (or its dual analogue (4.2), with ν° and ϑ°) at every
 point of broadcast parameter arrays (Lebedev & Panov 1989, section 4), in the
-fused compiled kernel of :mod:`strapdown.analysis.coning.kernels`.  By default
-it keeps only the streaming statistics (:mod:`strapdown.analysis.coning.streaming`):
-memory is a few hundred bytes per point whatever the number of steps; the full
-error series are kept on request (``series=True``).
-
-:func:`compiled_series` is the same kernel behind
-:func:`strapdown.analysis.coning.simulator.simulate`'s compiled engine.
+fused compiled kernel of :mod:`strapdown.analysis.coning.kernels`
+(:func:`~strapdown.analysis.coning.kernels.run_batch`, the same run behind
+:func:`strapdown.analysis.coning.simulator.simulate`'s compiled engine).  By
+default it keeps only the streaming statistics
+(:mod:`strapdown.analysis.coning.streaming`): memory is a few hundred bytes per
+point whatever the number of steps; the full error series are kept on request
+(``series=True``).  Its numpy engine, the slow reference, is the simulator
+itself, point by point.
 """
 
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,9 +23,11 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm
 from ..core.validation import as_array, as_int, as_quaternion, as_vector
 from . import kernels
+from .precession import RegularPrecession
+from .simulator import simulate
 from .streaming import ErrorStatistics, accumulate, empty_sums, statistics
 
-__all__ = ["BatchResult", "simulate_batch", "compiled_series"]
+__all__ = ["BatchResult", "simulate_batch"]
 
 
 @dataclass(frozen=True)
@@ -104,70 +106,6 @@ def _step_counts(samples: int, h, duration, steps, shape):
         i = int(np.argmin(n))
         raise ValueError(f"Expected `duration` >= one step H = {samples} × `sample_interval` = {samples} × {h[i]:g} s = {samples * h[i]:g} s, got {d[i]:g}")
     return n
-
-
-def _progress(total: int, enabled: bool):
-    if not enabled or not sys.stderr.isatty():
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, leave=False)
-
-
-def _run_compiled(algorithm, par, theta, n_steps, *, velocity: bool, series: bool, progress: bool = False):
-    """Advance every point to its end in time chunks; the accumulators and the series if asked."""
-    run = kernels.kernel(algorithm, velocity=velocity)
-    sums = empty_sums(par.shape[0])
-    last = int(n_steps.max())
-    keep = None
-    if series:
-        # Unused series get one contiguous placeholder, so that the kernel's signature never changes.
-        unused = np.zeros((1, 1, 3))
-        keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
-    chunk = kernels.chunk_steps(par.shape[0])
-    bar = _progress(last * par.shape[0], progress)
-    for k0 in range(0, last, chunk):
-        k1 = min(last, k0 + chunk)
-        kernels.advance(run, par, theta, n_steps, sums, k0, k1, keep)
-        if bar is not None:
-            bar.update((k1 - k0) * par.shape[0])
-    if bar is not None:
-        bar.close()
-    return sums, keep
-
-
-def compiled_series(algorithm: Algorithm, motions, sample_interval: float, steps: int, attitude0, w_inertial0, *, velocity: bool):
-    """Error series of a batch of regular precessions from the compiled kernel.
-
-    Parameters
-    ----------
-    algorithm : Algorithm
-        The algorithm as data.
-    motions : sequence of RegularPrecession
-        The parameter points.
-    sample_interval : float
-        Sample interval h [s].
-    steps : int
-        Steps n of every run.
-    attitude0 : ndarray, shape (4,)
-        Λ(0), unit quaternion.
-    w_inertial0 : ndarray, shape (3,)
-        W_I(0) [m/s].
-    velocity : bool, keyword-only
-        Biquaternion run.
-
-    Returns
-    -------
-    error : ndarray, shape (len(motions), steps + 1, 3)
-        Attitude error ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)``, frame I [rad].
-    dw_body, dw_inertial : ndarray, shape (len(motions), steps + 1, 3), or None
-        ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I`` [m/s] (velocity runs).
-    """
-    count = len(motions)
-    columns = [np.array([getattr(m, k) for m in motions], dtype=float) for k in ("eps", "nu", "nutation", "nu_dual", "nutation_dual")]
-    par, theta = kernels.parameter_rows(*columns, np.full(count, float(sample_interval)), attitude0, w_inertial0, velocity=velocity)
-    _, keep = _run_compiled(algorithm, par, theta, np.full(count, steps, dtype=np.int64), velocity=velocity, series=True)
-    return (keep[0], keep[1], keep[2]) if velocity else (keep[0], None, None)
 
 
 def simulate_batch(
@@ -273,7 +211,7 @@ def simulate_batch(
     big_h = algorithm.samples * p["sample_interval"]
     if compiled:
         par, theta = kernels.parameter_rows(p["eps"], p["nu"], p["nutation"], p["nu_dual"], p["nutation_dual"], p["sample_interval"], lam0, w0, velocity=velocity)
-        sums, keep = _run_compiled(algorithm, par, theta, n, velocity=velocity, series=series, progress=progress)
+        sums, keep = kernels.run_batch(algorithm, par, theta, n, velocity=velocity, series=series, progress=progress)
     else:
         sums, keep = _run_numpy(algorithm, p, n, lam0, w0, velocity=velocity, series=series)
     stats = statistics(sums, n, big_h, velocity=velocity, shape=shape)
@@ -289,9 +227,6 @@ def simulate_batch(
 
 def _run_numpy(algorithm, p, n, lam0, w0, *, velocity: bool, series: bool):
     """The reference: the numpy simulator point by point (each point's series is held while it runs)."""
-    from .precession import RegularPrecession
-    from .simulator import simulate
-
     size = n.shape[0]
     sums = empty_sums(size)
     keep = [[], [], []]

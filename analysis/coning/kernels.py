@@ -45,9 +45,22 @@ from ...derivations.coning.algorithms import Algorithm
 from ..core import quaternion as quat
 from ..core.dual import Dual
 from . import _kernel_template as template
-from .streaming import N_SUMS
+from .streaming import N_SUMS, empty_sums
 
-__all__ = ["ENGINES", "AUTO_MIN_WORK", "available", "use_compiled", "increment_source", "kernel_source", "kernel", "parameter_rows", "advance", "chunk_steps"]
+__all__ = [
+    "ENGINES",
+    "AUTO_MIN_WORK",
+    "available",
+    "use_compiled",
+    "increment_source",
+    "kernel_source",
+    "kernel",
+    "parameter_rows",
+    "advance",
+    "chunk_steps",
+    "run_batch",
+    "compiled_series",
+]
 
 #: Values of the ``engine`` argument of the simulators.
 ENGINES = ("auto", "numpy", "compiled")
@@ -470,3 +483,93 @@ def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> No
         run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False)
     else:
         run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True)
+
+
+def _progress(total: int, enabled: bool):
+    if not enabled or not sys.stderr.isatty():
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, leave=False)
+
+
+def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, series: bool, progress: bool = False):
+    """Advance every point of a batch to its own end, in time chunks of :func:`chunk_steps`.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data (its kernel is compiled on first use, :func:`kernel`).
+    par, theta : ndarray, shapes (P, 14) and (P, 8)
+        From :func:`parameter_rows`; ``theta`` is advanced in place.
+    n_steps : ndarray of int64, shape (P,)
+        Steps of each run.
+    velocity : bool, keyword-only
+        Biquaternion run.
+    series : bool, keyword-only
+        Keep the error series (every point then runs ``max(n_steps)`` steps of storage).
+    progress : bool, keyword-only
+        Progress bar on stderr (only when it is a terminal).
+
+    Returns
+    -------
+    sums : ndarray, shape (P, 18)
+        Accumulators of :mod:`strapdown.analysis.coning.streaming`.
+    series : tuple of three ndarray, shape (P, max(n_steps) + 1, 3), or None
+        δφ_I, ΔW_E, ΔW_I (exact minus algorithm) at every step end; the last two
+        are placeholders of shape (1, 1, 3) in an attitude run (``series=True`` only).
+    """
+    run = kernel(algorithm, velocity=velocity)
+    sums = empty_sums(par.shape[0])
+    last = int(n_steps.max())
+    keep = None
+    if series:
+        # Unused series get one contiguous placeholder, so that the kernel's signature never changes.
+        unused = np.zeros((1, 1, 3))
+        keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
+    chunk = chunk_steps(par.shape[0])
+    bar = _progress(last * par.shape[0], progress)
+    for k0 in range(0, last, chunk):
+        k1 = min(last, k0 + chunk)
+        advance(run, par, theta, n_steps, sums, k0, k1, keep)
+        if bar is not None:
+            bar.update((k1 - k0) * par.shape[0])
+    if bar is not None:
+        bar.close()
+    return sums, keep
+
+
+def compiled_series(algorithm: Algorithm, motions, sample_interval: float, steps: int, attitude0, w_inertial0, *, velocity: bool):
+    """Error series of a batch of regular precessions from the compiled kernel.
+
+    The compiled engine of :func:`strapdown.analysis.coning.simulator.simulate`.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    motions : sequence of RegularPrecession
+        The parameter points.
+    sample_interval : float
+        Sample interval h [s].
+    steps : int
+        Steps n of every run.
+    attitude0 : ndarray, shape (4,)
+        Λ(0), unit quaternion.
+    w_inertial0 : ndarray, shape (3,)
+        W_I(0) [m/s].
+    velocity : bool, keyword-only
+        Biquaternion run.
+
+    Returns
+    -------
+    error : ndarray, shape (len(motions), steps + 1, 3)
+        Attitude error ``δφ_I = rotvec(Λ_exact ∘ Λ̄_alg)``, frame I [rad].
+    dw_body, dw_inertial : ndarray, shape (len(motions), steps + 1, 3), or None
+        ``ΔW_E = W_E* − W_E``, ``ΔW_I = W_I* − W_I`` [m/s] (velocity runs).
+    """
+    count = len(motions)
+    columns = [np.array([getattr(m, k) for m in motions], dtype=float) for k in ("eps", "nu", "nutation", "nu_dual", "nutation_dual")]
+    par, theta = parameter_rows(*columns, np.full(count, float(sample_interval)), attitude0, w_inertial0, velocity=velocity)
+    _, keep = run_batch(algorithm, par, theta, np.full(count, steps, dtype=np.int64), velocity=velocity, series=True)
+    return (keep[0], keep[1], keep[2]) if velocity else (keep[0], None, None)

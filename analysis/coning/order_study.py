@@ -7,12 +7,13 @@
   against H on a motion with no symmetry
   (:class:`strapdown.analysis.coning.local_error.TumblingMotion`): an algorithm
   of order ρ gives ρ + 1.  Regular precession has ``|ω|`` constant, which hides
-  errors of dot-product terms; :func:`dot_term_study` uses the tumbling motion
-  to test the dot-product term of the sixth-order algorithm (2.2).
+  errors of dot-product terms; the tumbling motion does not
+  (:mod:`strapdown.analysis.coning.papers.lebedev_panov_dot_term` uses it on
+  the printed sixth-order algorithm (2.2)).
 
 References
 ----------
-Lebedev & Panov (1989), eqs. (2.2), (2.4).
+Lebedev & Panov (1989), eq. (2.4).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from .local_error import TumblingMotion, local_error
 from .precession import RegularPrecession
 from .simulator import simulate
 
-__all__ = ["DriftOrder", "drift_orders", "LocalErrorExponents", "local_error_exponents", "DotTermStudy", "dot_term_study"]
+__all__ = ["DriftOrder", "drift_orders", "LocalErrorExponents", "local_error_exponents"]
 
 
 class DriftOrder(NamedTuple):
@@ -112,33 +113,6 @@ class LocalErrorExponents(NamedTuple):
         return self.local_order - 1
 
 
-class DotTermStudy(NamedTuple):
-    """Local-error exponents of (2.2) at orders 2, 4, 6, and of order 6 without its dot-product term.
-
-    Attributes
-    ----------
-    rows : tuple of LocalErrorExponents
-        ``lebedev-panov-2``, ``-4``, ``-6`` and ``lebedev-panov-6 without (p2·p3) term``.
-    """
-
-    rows: tuple
-
-    @property
-    def printed(self) -> LocalErrorExponents:
-        """(2.2) of order 6 as printed, with its dot-product term."""
-        return self.rows[2]
-
-    @property
-    def without_dot(self) -> LocalErrorExponents:
-        """(2.2) of order 6 without the ``(p2·p3)`` part of its last term."""
-        return self.rows[3]
-
-    @property
-    def printed_is_sixth_order(self) -> bool:
-        """True when the printed form has a local error O(H⁷): the order the paper states."""
-        return self.printed.order == 6
-
-
 def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None = None, times=(0.3, 1.1, 2.4), steps=(0.2, 0.1, 0.05)) -> LocalErrorExponents:
     """Exponent of the one-step error ``|δφ|`` against H, at each of ``times``.
 
@@ -164,28 +138,3 @@ def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None
         e = np.array([np.linalg.norm(local_error(algorithm, motion, t, H)) for H in big_h])
         exps.append(float(np.polyfit(np.log(big_h), np.log(e), 1)[0]))
     return LocalErrorExponents(algorithm.name, tuple(exps))
-
-
-def dot_term_study(**kwargs) -> DotTermStudy:
-    """Local-error exponents of (2.2) at orders 2, 4, 6, and of order 6 without its dot-product term.
-
-    The last term of (2.2), ``−64/45 (1 − p2·p3) p2 × p3``, carries a dot
-    product; removing its ``(p2·p3)`` part tests whether the printed form is
-    the sixth-order one.
-
-    Parameters
-    ----------
-    **kwargs
-        Passed to :func:`local_error_exponents` (``motion``, ``times``, ``steps``).
-
-    Returns
-    -------
-    DotTermStudy
-
-    References
-    ----------
-    Lebedev & Panov (1989), eq. (2.2).
-    """
-    printed = get("lebedev-panov-6")
-    no_dot = Algorithm("lebedev-panov-6 without (p2·p3) term", 4, tuple(t for t in printed.terms if not t.dots))
-    return DotTermStudy(tuple(local_error_exponents(alg, **kwargs) for alg in (get("lebedev-panov-2"), get("lebedev-panov-4"), printed, no_dot)))

@@ -45,7 +45,6 @@ from ..core import quaternion as quat
 from ..core.dual import Dual
 from ..core.validation import as_quaternion, as_vector, positive
 from . import kernels
-from .batch import compiled_series
 from .evaluation import increment
 from .precession import RegularPrecession, exact_state, initial_biquaternion
 from .sculling_motion import ScullingMotion
@@ -467,7 +466,7 @@ def simulate(
     theta0 = initial_biquaternion(lam0, w0) if velocity else lam0
     supported = all(type(m) is RegularPrecession for m in motions)
     if kernels.use_compiled(engine, supported=supported, algorithm=algorithm, work=len(motions) * steps):
-        error, dw_body, dw_inertial = compiled_series(algorithm, motions, h, steps, lam0, w0, velocity=velocity)
+        error, dw_body, dw_inertial = kernels.compiled_series(algorithm, motions, h, steps, lam0, w0, velocity=velocity)
         if not batched:
             error, dw_body, dw_inertial = (None if a is None else a[0] for a in (error, dw_body, dw_inertial))
         return SimulationResult(algorithm, h, step, time, error, drift_rate(time, error), dw_body, dw_inertial)

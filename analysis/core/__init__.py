@@ -1,4 +1,4 @@
-"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, repeated draws, Kalman adapter.
+"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, quadrature, quantiles, Kalman adapter.
 
 Modules
 -------
@@ -12,10 +12,10 @@ units
     Every unit factor (degrees, deg/h, ...) used at the edges of the package.
 montecarlo
     Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
-memo
-    A bounded memo of arrays (least recently used out past a memory bound).
-repeated_draws
-    Normal draws repeated from the same generator state (common random numbers), served from memory.
+quadrature
+    Integrals of smooth or oscillatory vector functions (composite Gauss–Legendre, halved to a tolerance).
+quantiles
+    Quantiles of Monte Carlo errors as order statistics, with their 95 % intervals.
 kalman
     Thin adapter over filterpy, the only module that imports it.
 budget

@@ -5,7 +5,8 @@ The unit of randomness is a *block* of trials.  Block ``i`` draws from the
 ``SeedSequence.spawn`` would give, built directly from the spawn key), and
 contributes one row of sums to the result.  Chunks are only groups of whole
 blocks handed to a worker, and the rows are combined with the exactly rounded
-:func:`math.fsum` and integer histogram counts, so the result is bit-identical
+:func:`math.fsum`, integer histogram counts and the errors themselves (whose
+order statistics are the quantiles, :mod:`.quantiles`), so the result is bit-identical
 for any chunk size, any number of workers and any executor (serial,
 :class:`concurrent.futures.ProcessPoolExecutor`, or a ``dask.distributed``
 ``Client``).
@@ -26,9 +27,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .quantiles import sample_quantiles
 from .validation import as_array, as_int, positive
 
-__all__ = ["MonteCarloResult", "run", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
+__all__ = ["MonteCarloResult", "run", "summarise", "block_output", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
 
 #: normal quantile of the two-sided 95 % interval
 Z95 = 1.959963984540054
@@ -61,16 +63,19 @@ class MonteCarloResult:
     rms_ci : tuple of float
         95 % interval of the rms, ``√`` of the interval of ``mse`` [error units].
     quantiles : dict
-        Level → error quantile [error units] (NaN if it falls outside the histogram).
+        Level → error quantile [error units]: the order statistic of the errors
+        (:func:`strapdown.analysis.core.quantiles.sample_quantiles`).
     minimum, maximum : float
         Extreme errors [error units].
     aux_mean : tuple of float
         Per-trial side quantities averaged over trials.
     histogram : tuple
-        ``(edges, counts, underflow, overflow)``.
+        ``(edges, counts, underflow, overflow)``: for display (quantiles come from the errors themselves).
     aux_std_error : tuple of float
         Standard error of each entry of ``aux_mean`` (from the per-trial values,
         which are independent across trials).
+    quantile_intervals : dict
+        Level → ``(low, high)``, the 95 % interval of the quantile (NaN where the samples do not reach).
     """
 
     n_trials: int
@@ -87,6 +92,7 @@ class MonteCarloResult:
     aux_mean: tuple = ()
     histogram: tuple = field(default=(), repr=False, compare=False)
     aux_std_error: tuple = ()
+    quantile_intervals: dict = field(default_factory=dict)
 
     def covers(self, bound: float) -> str:
         """Classify ``bound`` against the rms.
@@ -162,7 +168,7 @@ def block_seed(root: np.random.SeedSequence, index: int) -> np.random.SeedSequen
 
 @dataclass(frozen=True)
 class _Chunk:
-    """Work item: blocks ``[first, last)`` of a run (picklable for process pools and dask)."""
+    """Work item: the kernel's outputs on blocks ``[first, last)`` of a run (picklable for process pools and dask)."""
 
     kernel: Callable
     entropy: object
@@ -172,34 +178,42 @@ class _Chunk:
     trials_per_block: int
     first: int
     last: int
-    scale: float
-    half_width: float
-    n_bins: int
 
     def __call__(self):
         root = np.random.SeedSequence(self.entropy, spawn_key=self.spawn_key, pool_size=self.pool_size)
-        rows, aux_rows, aux_squares = [], [], []
-        counts = np.zeros(self.n_bins + 2, dtype=np.int64)
-        lo, hi = math.inf, -math.inf
+        out = []
         for b in range(self.first, self.last):
             n = min(self.trials_per_block, self.n_trials - b * self.trials_per_block)
-            out = self.kernel(n, np.random.default_rng(block_seed(root, b)))
-            errors, aux = out if isinstance(out, tuple) else (out, None)
-            errors = np.asarray(errors, dtype=float).reshape(n, -1)
-            m = errors.mean(axis=1)
-            ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
-            rows.append((m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum()))
-            if aux is not None:
-                aux = np.asarray(aux, dtype=float).reshape(n, -1)
-                aux_rows.append(aux.sum(axis=0))
-                aux_squares.append(np.einsum("ij,ij->j", aux, aux))
-            lo, hi = min(lo, float(errors.min())), max(hi, float(errors.max()))
-            u = errors.ravel() * (self.n_bins / (2.0 * self.half_width * self.scale))
-            u += self.n_bins / 2.0 + 1.0
-            idx = np.clip(u, 0.0, self.n_bins + 1.0).astype(np.int64)
-            counts += np.bincount(idx, minlength=self.n_bins + 2)[: self.n_bins + 2]
-        aux_arr = np.concatenate([np.array(aux_rows), np.array(aux_squares)], axis=1) if aux_rows else None
-        return np.array(rows), aux_arr, counts, lo, hi
+            out.append(block_output(self.kernel(n, np.random.default_rng(block_seed(root, b))), n))
+        return out
+
+
+def block_output(output, n_trials: int) -> tuple:
+    """A kernel's output on one block as ``(errors, aux)``: ``(n, n_steps)`` and ``(n, k)`` or None.
+
+    Parameters
+    ----------
+    output : array_like or tuple
+        ``errors`` or ``(errors, aux)`` as a kernel returns them.
+    n_trials : int
+        Trials of the block [count].
+
+    Returns
+    -------
+    tuple
+    """
+    errors, aux = output if isinstance(output, tuple) else (output, None)
+    errors = np.asarray(errors, dtype=float).reshape(n_trials, -1)
+    return errors, (None if aux is None else np.asarray(aux, dtype=float).reshape(n_trials, -1))
+
+
+def _block_rows(errors: np.ndarray, aux):
+    """The sums a block contributes: statistics of the per-trial means, and of the auxiliaries."""
+    m = errors.mean(axis=1)
+    ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
+    row = (m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum())
+    aux_row = None if aux is None else np.concatenate([aux.sum(axis=0), np.einsum("ij,ij->j", aux, aux)])
+    return row, aux_row
 
 
 def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, desc: str = "Monte Carlo") -> list:
@@ -344,26 +358,62 @@ def run(
     n_bins = as_int(n_bins, "n_bins", minimum=2)
     scale = positive(scale, "scale")
     half_width = positive(half_width, "half_width")
+    for level in quantiles:
+        if not 0.0 < float(level) < 1.0:
+            raise ValueError(f"Expected quantile levels in (0, 1), got {level}")
     root = root_seed_sequence(rng)
     n_blocks = -(-n_trials // trials_per_block)
     tasks = [
-        _Chunk(kernel, root.entropy, tuple(root.spawn_key), root.pool_size, n_trials, trials_per_block, first, min(first + blocks_per_chunk, n_blocks), scale, half_width, n_bins)
+        _Chunk(kernel, root.entropy, tuple(root.spawn_key), root.pool_size, n_trials, trials_per_block, first, min(first + blocks_per_chunk, n_blocks))
         for first in range(0, n_blocks, blocks_per_chunk)
     ]
-    parts = map_tasks(executor, tasks, progress=progress)
-    rows = np.concatenate([p[0] for p in parts])
-    counts = np.sum([p[2] for p in parts], axis=0)
-    lo = min(p[3] for p in parts)
-    hi = max(p[4] for p in parts)
+    blocks = [block for part in map_tasks(executor, tasks, progress=progress) for block in part]
+    return summarise(blocks, scale=scale, half_width=half_width, n_bins=n_bins, quantiles=quantiles)
+
+
+def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: int = 8000, quantiles: Sequence[float] = QUANTILES) -> MonteCarloResult:
+    """Statistics of a kernel's outputs on consecutive blocks of trials.
+
+    :func:`run` ends here; a caller that evaluates the same draws with several
+    kernels (common random numbers, passed explicitly) summarises each
+    kernel's outputs the same way.
+
+    Parameters
+    ----------
+    blocks : sequence of tuple
+        ``(errors, aux)`` per block, in block order (:func:`block_output`).
+    scale, half_width, n_bins : float, float, int, keyword-only
+        The histogram (for display), as in :func:`run`.
+    quantiles : sequence of float, keyword-only
+        Levels in (0, 1).
+
+    Returns
+    -------
+    MonteCarloResult
+
+    Raises
+    ------
+    ValueError
+        For fewer than two trials.
+    """
+    errors = np.concatenate([e for e, _ in blocks])
+    n_trials = errors.shape[0]
+    if n_trials < 2:
+        raise ValueError(f"Expected at least 2 trials, got {n_trials}")
+    rows, aux_rows = zip(*(_block_rows(e, a) for e, a in blocks))
+    rows = np.array(rows)
     sums = [math.fsum(rows[:, k]) for k in range(rows.shape[1])]
-    aux_parts = [p[1] for p in parts if p[1] is not None]
+    u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)
+    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
     aux_mean, aux_se = (), ()
-    if aux_parts:
-        aux = np.concatenate(aux_parts)
+    if aux_rows[0] is not None:
+        aux = np.array(aux_rows)
         k = aux.shape[1] // 2
         aux_mean = tuple(math.fsum(aux[:, j]) / n_trials for j in range(k))
         aux_se = tuple(math.sqrt(max(math.fsum(aux[:, k + j]) / n_trials - m * m, 0.0) / (n_trials - 1)) for j, m in enumerate(aux_mean))
-    return replace(_summarise(n_trials, sums, counts, lo, hi, scale, half_width, n_bins, quantiles, aux_mean), aux_std_error=aux_se)
+    q = sample_quantiles(errors, quantiles)
+    summary = _summarise(n_trials, sums, counts, float(errors.min()), float(errors.max()), scale, half_width, n_bins, aux_mean)
+    return replace(summary, aux_std_error=aux_se, quantiles={x.level: x.value for x in q}, quantile_intervals={x.level: (x.low, x.high) for x in q})
 
 
 @dataclass(frozen=True)
@@ -652,7 +702,7 @@ def controlled(result: MonteCarloResult, *, offsets, mean_column: int = 0, squar
     )
 
 
-def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_mean) -> MonteCarloResult:
+def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, aux_mean) -> MonteCarloResult:
     s_m, s_m2, s_ms, s_ms2, _ = sums
     mean = s_m / n
     mse = s_ms / n
@@ -663,17 +713,6 @@ def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_m
     edges = np.linspace(-half_width * scale, half_width * scale, n_bins + 1)
     inner = counts[1:-1]
     total = int(counts.sum())
-    cdf = np.concatenate([[counts[0]], counts[0] + np.cumsum(inner)]) / total
-    q = {}
-    for level in levels:
-        if not 0.0 < level < 1.0:
-            raise ValueError(f"Expected quantile levels in (0, 1), got {level}")
-        if level <= cdf[0] or level > cdf[-1]:
-            q[float(level)] = math.nan
-            continue
-        i = int(np.searchsorted(cdf, level, side="left"))  # cdf[i-1] < level <= cdf[i]
-        frac = (level - cdf[i - 1]) / (cdf[i] - cdf[i - 1])
-        q[float(level)] = float(edges[i - 1] + frac * (edges[i] - edges[i - 1]))
     n_samples = total
     return MonteCarloResult(
         n_trials=n,
@@ -684,7 +723,7 @@ def _summarise(n, sums, counts, lo, hi, scale, half_width, n_bins, levels, aux_m
         mse_std_error=se_mse,
         rms=math.sqrt(mse),
         rms_ci=(math.sqrt(mse_lo), math.sqrt(mse_hi)),
-        quantiles=q,
+        quantiles={},
         minimum=lo,
         maximum=hi,
         aux_mean=aux_mean,

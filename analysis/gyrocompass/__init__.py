@@ -1,7 +1,11 @@
-"""Gyrocompass azimuth error on a rocking base (Hrechka & Koroliov), and self-alignment of the whole system.
+"""Gyrocompass azimuth error on a rocking base: the tilt channel of Hrechka & Koroliov.
 
-Tilt channel (the paper's setting)
-----------------------------------
+The paper's setting: the azimuth from two horizontal gyros by formula (2), the
+stable tilts estimated from the accelerometers by the sample means (16), the
+rocking in the tilts.  The whole system (rocking in every sensor, sensor errors,
+three alignment methods) is :mod:`strapdown.analysis.alignment`, which builds on
+this package.
+
 rocking
     Tilt rocking models: Gaussian, sinusoidal, narrow-band; exact statistics of their means.
 azimuth
@@ -20,35 +24,4 @@ error_distribution
     Percentiles of errors made of random-phase sinusoids and Gaussian noise.
 studies
     The tilt-channel studies of the report.
-
-Whole system
-------------
-earth
-    Earth rate and normal gravity (WGS-84), NED.
-tilt_attitude
-    The attitude in the paper's angles (ψ, β, γ) and its kinematics.
-base_motion
-    Rocking in three axes as smooth random functions (sine, sum of sines, narrow-band, white).
-imu
-    Kinematically consistent gyro and accelerometer increments with lever arm and sensor errors.
-preintegration
-    Epoch increments (coning and sculling compensated).
-alignment_kernels
-    Compiled loops of the self-alignment Monte Carlo (sensor increments, preintegration, the filter's epochs).
-alignment_estimate
-    What an alignment method returns.
-analytic_alignment
-    Formula (2) with the averaged outputs and the estimates (16), or levelled.
-inertial_alignment
-    Inertial-frame (coarse) alignment: Wahba's problem on integrated specific force.
-fine_alignment
-    Kalman fine alignment with NEES and NIS, and the rocking model it assumes.
-alignment_theory
-    First-order theory of every error term; the Kalman filter's own prediction.
-alignment_monte_carlo
-    Monte Carlo of each method against its theory.
-alignment_design
-    The admissible rocking amplitude against frequency for each method.
-alignment_studies
-    The whole-system studies of the report.
 """

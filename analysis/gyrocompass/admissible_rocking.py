@@ -6,7 +6,7 @@ by ``σ(β̂0, γ̂0)``; the gyros see the stable position only (the paper's
 setting).  The rocking that remains in the means makes the alignment error
 ``Δ = σ(β̂0, γ̂0) − σ(β0, γ0)``.  Given a budget on Δ, the latitude and T,
 find the largest rocking amplitude ``a`` at each rocking frequency f.
-(:mod:`strapdown.analysis.gyrocompass.alignment_design` answers the same
+(:mod:`strapdown.analysis.alignment.design` answers the same
 question for the whole system, with the rocking in the gyros.)
 
 Model.  Both tilts rock with amplitude ``a`` (standard deviation ``a/√2``)

@@ -1,9 +1,9 @@
 """Report section ``algorithms.md``: drift and apparent-velocity error of every algorithm.
 
 Formatting only.  The numbers come from the library: Table 3 of Budennyi,
-Kalinovsky, Panov et al. (:mod:`strapdown.analysis.coning.budennyi_table3`),
-the reconstruction of their formula (1) (:mod:`strapdown.analysis.coning.formula_one`),
-the table of Lebedev & Panov (1989) (:mod:`strapdown.analysis.coning.lebedev_panov_table`)
+Kalinovsky, Panov et al. (:mod:`strapdown.analysis.coning.papers.budennyi_table3`),
+the reconstruction of their formula (1) (:mod:`strapdown.analysis.coning.papers.formula_one`),
+the table of Lebedev & Panov (1989) (:mod:`strapdown.analysis.coning.papers.lebedev_panov_table`)
 and the orders of convergence (:mod:`strapdown.analysis.coning.order_study`);
 the printed numbers come from :mod:`strapdown.derivations.coning.published`.
 """
@@ -15,11 +15,12 @@ import math
 from ...derivations.coning import published as P
 from ...derivations.coning.printed_checks import table2_checks
 from ...derivations.coning.registry import names
-from ..coning import budennyi_table3 as T3
-from ..coning import lebedev_panov_table as LP
-from ..coning.formula_one import assignment_scores, best_alternative, column_2_readings, table2_fits
 from ..coning.local_error import BUDENNYI_BASIS
-from ..coning.order_study import dot_term_study, drift_orders
+from ..coning.order_study import drift_orders
+from ..coning.papers import budennyi_table3 as T3
+from ..coning.papers import lebedev_panov_table as LP
+from ..coning.papers.formula_one import assignment_scores, best_alternative, column_2_readings, table2_fits
+from ..coning.papers.lebedev_panov_dot_term import dot_term_study
 from ..coning.precession import RegularPrecession
 from ..core.units import ARCSEC_PER_RAD, deg_per_h, rad
 from . import Erratum, Section

@@ -5,8 +5,8 @@ methods, the admissible rocking.  :func:`alignment_lines` returns the Markdown
 (and writes the figures); :func:`alignment_errata` the interpretations it
 finds.  Formatting only:
 every number and curve comes from :mod:`strapdown.analysis.gyrocompass` (the
-studies of :mod:`strapdown.analysis.gyrocompass.alignment_studies`, the design
-of :mod:`strapdown.analysis.gyrocompass.alignment_design`).
+studies of :mod:`strapdown.analysis.alignment.studies`, the design
+of :mod:`strapdown.analysis.alignment.design`).
 """
 
 from __future__ import annotations
@@ -384,14 +384,14 @@ def alignment_lines(ctx) -> list:
     -------
     list of str
     """
-    from ..gyrocompass import alignment_studies as st
+    from ..alignment import studies as st
+    from ..alignment.base_motion import NarrowbandMotion
+    from ..alignment.design import admissible_rocking, design_check
+    from ..alignment.fine import Disturbance
+    from ..alignment.imu import Scenario
+    from ..alignment.monte_carlo import alignment_monte_carlo
     from ..gyrocompass.admissible_rocking import admissible_amplitude
-    from ..gyrocompass.alignment_design import admissible_rocking, design_check
-    from ..gyrocompass.alignment_monte_carlo import alignment_monte_carlo
-    from ..gyrocompass.base_motion import NarrowbandMotion
-    from ..gyrocompass.fine_alignment import Disturbance
     from ..gyrocompass.finite_sample import required_averaging
-    from ..gyrocompass.imu import Scenario
     from ..gyrocompass.rocking import NarrowbandRocking, SineRocking
 
     q = ctx.quick
@@ -493,8 +493,8 @@ def alignment_errata(ctx) -> list:
     -------
     list of Erratum
     """
-    from ..gyrocompass.analytic_alignment import analytic_alignment
-    from ..gyrocompass.imu import Scenario, simulate_imu
+    from ..alignment.analytic import analytic_alignment
+    from ..alignment.imu import Scenario, simulate_imu
 
     lat, b0, g0 = rad(60.0), rad(1.0), rad(-0.5)
     err = {}

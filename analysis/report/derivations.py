@@ -4,9 +4,9 @@ Formatting only.  The series and their checks against print come from
 :mod:`strapdown.derivations.coning.series_summary`,
 :mod:`strapdown.derivations.coning.printed_checks` and
 :mod:`strapdown.derivations.coning.leading_drift`; Table 3 from
-:mod:`strapdown.analysis.coning.budennyi_table3`, the u*/u_a check from
+:mod:`strapdown.analysis.coning.papers.budennyi_table3`, the u*/u_a check from
 :mod:`strapdown.analysis.coning.drift_crosscheck`, Tables 4–5 from
-:mod:`strapdown.analysis.coning.budennyi_loads`; the printed numbers from
+:mod:`strapdown.analysis.coning.papers.budennyi_loads`; the printed numbers from
 :mod:`strapdown.derivations.coning.published`.
 """
 
@@ -25,12 +25,12 @@ from ...derivations.coning.leading_drift import optimal_coning, same_transport, 
 from ...derivations.coning.printed_checks import eq_2_4_check, structure_function_checks, table2_checks
 from ...derivations.coning.registry import get, names
 from ...derivations.coning.series_summary import drift_coefficients, exact_increment, local_error_summary, structure_summary
-from ..coning import budennyi_loads as L45
-from ..coning.budennyi_table3 import drift_estimates, leading_estimates, table3_agreement
 from ..coning.computational_load import quaternion_update, quaternion_update_count
 from ..coning.drift_crosscheck import drift_ratios
 from ..coning.drift_theory import algorithm_key
-from ..coning.formula_one import column_2_estimates
+from ..coning.papers import budennyi_loads as L45
+from ..coning.papers.budennyi_table3 import drift_estimates, leading_estimates, table3_agreement
+from ..coning.papers.formula_one import column_2_estimates
 from ..coning.precession import RegularPrecession
 from ..core.cache import derived
 from ..core.units import deg_per_h, rad
@@ -479,7 +479,7 @@ def _load_model_text(model) -> list:
         "## 9. Computational load (Tables 4–5)",
         "",
         "Every printed load is recomputed from operation counts, with one model for both motions and both budgets and",
-        "no constant fitted to the printed loads (`strapdown.analysis.coning.budennyi_loads.reproduce_loads`). One step is",
+        "no constant fitted to the printed loads (`strapdown.analysis.coning.papers.budennyi_loads.reproduce_loads`). One step is",
         "the increment algorithm followed by one quaternion update; an operation is an addition and a multiplication",
         f"counts as m = {m:g} additions, $\\sigma = s + m u$ (eq. (6)).",
         "",

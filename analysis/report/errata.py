@@ -3,13 +3,13 @@
 Every entry is produced by a check that runs when the report is built; the
 section gathers the ``errata(ctx)`` lists of all report sections, plus the
 checks of the printed biquaternion formulas of Lebedev & Panov (1989)
-(:func:`strapdown.analysis.coning.biquaternion_checks.printed_formula_checks`).
+(:func:`strapdown.analysis.coning.papers.biquaternion_checks.printed_formula_checks`).
 Formatting only.
 """
 
 from __future__ import annotations
 
-from ..coning.biquaternion_checks import printed_formula_checks
+from ..coning.papers.biquaternion_checks import printed_formula_checks
 from . import Erratum, Section
 from .rendering import at_round_off
 

@@ -1,7 +1,7 @@
 """Report section ``published-algorithms.md``: the library of published algorithms and their error figures.
 
 Formatting only: every number comes from
-:mod:`strapdown.analysis.coning.published_check` and the registry; printed
+:mod:`strapdown.analysis.coning.papers.published_check` and the registry; printed
 figures are quoted from :mod:`strapdown.derivations.coning.published`.
 """
 
@@ -13,7 +13,7 @@ import numpy as np
 
 from ...derivations.coning.registry import get, names
 from ..coning.algorithm_summary import summarize
-from ..coning.published_check import (
+from ..coning.papers.published_check import (
     SIMULATION_TOLERANCE,
     coefficient_checks,
     coning_coefficient_checks,

@@ -10,7 +10,7 @@ states the alternatives: every assignment of a1 … a4 to those four
 combinations (:func:`basis_assignments`), and the algorithm that a column of
 constants gives under an assignment (:func:`algorithm_from_constants`).  The
 numeric side scores them against Table 3
-(:mod:`strapdown.analysis.coning.formula_one`).
+(:mod:`strapdown.analysis.coning.papers.formula_one`).
 
 References
 ----------

@@ -24,7 +24,7 @@ discretised exactly (Van Loan), with the measurement ``z = v_INS = δv + L θ_r'
 The model does not depend on the trial, so filterpy computes the gains and
 covariances once (:func:`strapdown.analysis.core.kalman.filter_sequence`) and
 they are applied to every trial at once; the navigator integrates the epoch
-increments of :mod:`strapdown.analysis.gyrocompass.preintegration`, one Python
+increments of :mod:`strapdown.analysis.alignment.preintegration`, one Python
 step per epoch vectorised over trials.  After every update the attitude and
 velocity estimates are fed back and the bias estimates compensate the sensors.
 
@@ -47,12 +47,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import kalman
-from ..core.memo import BoundedMemo
-from ..core.validation import as_array, as_float, nonnegative, positive
-from . import alignment_kernels as kernels
-from .alignment_estimate import AlignmentEstimate
+from ..core.validation import as_array, as_float, as_int, nonnegative, positive
+from ..gyrocompass.rocking import as_generator
+from . import kernels
 from .earth import earth_rate_ned, gravity_ned
-from .imu import ImuRecord, Scenario, SensorErrors, simulate_imu
+from .estimate import AlignmentEstimate
+from .imu import ImuRecord, Scenario, SensorErrors, draw_imu, simulate_imu
 from .preintegration import EpochIncrements, preintegrate
 from .tilt_attitude import angles_from_matrix, attitude_matrix, euler_rate_matrix
 
@@ -64,6 +64,9 @@ __all__ = [
     "EpochRecord",
     "epoch_record",
     "simulate_epoch_record",
+    "draw_epoch_record",
+    "FilterDraws",
+    "draw_filter",
     "filter_model",
     "fine_alignment",
     "lever_velocity_sigma",
@@ -214,7 +217,7 @@ class FineAlignmentModel:
 
 
 def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel:
-    """Discretise the error model of :mod:`strapdown.analysis.gyrocompass.fine_alignment` for a scenario.
+    """Discretise the error model of :mod:`strapdown.analysis.alignment.fine` for a scenario.
 
     Parameters
     ----------
@@ -303,12 +306,12 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     """Standard deviation of the lever-arm velocity per NED axis [m/s], to first order in the rocking.
 
     ``v = C0 (J0 θ_r' × r)`` with C0 the stable attitude and J0 the Euler-rate
-    matrix there; the rate variances come from the motion's spectrum.
+    matrix there; the rate variances come from the motion's spectral density.
 
     Parameters
     ----------
     motion : rocking model
-        From :mod:`strapdown.analysis.gyrocompass.base_motion`.
+        From :mod:`strapdown.analysis.alignment.base_motion`.
     scenario : Scenario
         Stable attitude, lever arm and sampling.
 
@@ -317,8 +320,7 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     ndarray
         ``(3,)``.
     """
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    rate_var = np.sum(s.power * s.omega**2, axis=1)
+    rate_var = motion.rate_variance(scenario.dt)
     L = lever_matrix(scenario)
     return np.sqrt((L * L) @ rate_var)
 
@@ -343,9 +345,8 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     """
     if kind == "none" or not np.any(lever_velocity_sigma(motion, scenario)):
         return Disturbance("none")
-    s = motion.spectrum(scenario.n_samples, scenario.dt)
-    sigma = s.sigma
-    rate = np.sqrt(np.sum(s.power * s.omega**2, axis=1))
+    sigma = motion.sigma
+    rate = np.sqrt(motion.rate_variance(scenario.dt))
     # the period whose oscillator has the rate variance of the rocking
     period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
     damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))
@@ -474,19 +475,35 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int, *, truth: str = "epo
     return EpochRecord(sc, ep, *(x[:, : E + 1] for x in fields), rate, record.gyro_bias, record.accel_bias)
 
 
-#: Epoch records simulated recently, by their inputs and the generator's state before them.
-_RECORDS = BoundedMemo(32 * 2**20)
+def draw_epoch_record(scenario: Scenario, errors: SensorErrors | None, *, n_trials: int, rng=None, chunk: int = 32) -> tuple:
+    """The random numbers of :func:`simulate_epoch_record`: one :class:`.imu.ImuDraws` per chunk of trials.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The configuration.
+    errors : SensorErrors or None
+        Sensor errors.
+    n_trials : int
+        Trials.
+    rng : Generator | SeedSequence | int | None
+        Random stream (consumed chunk after chunk).
+    chunk : int
+        Trials per chunk.
+
+    Returns
+    -------
+    tuple of ImuDraws
+    """
+    g = as_generator(rng)
+    n, chunk = as_int(n_trials, "n_trials", minimum=1), as_int(chunk, "chunk", minimum=1)
+    return tuple(draw_imu(scenario, errors, n_trials=min(chunk, n - k), rng=g) for k in range(0, n, chunk))
 
 
 def simulate_epoch_record(
-    scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int, rng=None, chunk: int = 32, truth: str = "epochs"
+    scenario: Scenario, errors: SensorErrors | None, samples_per_epoch: int, *, n_trials: int | None = None, rng=None, draws=None, chunk: int = 32, truth: str = "epochs"
 ) -> EpochRecord:
     """Simulate ``n_trials`` records in chunks and keep only their epoch increments (bounded memory).
-
-    Filters compared on the same trials (common random numbers) ask for the
-    same records from the same generator state again: a record made recently
-    from the same inputs and state is served from memory (read-only arrays),
-    with the generator left in the state the simulation would leave it in.
 
     Parameters
     ----------
@@ -497,9 +514,11 @@ def simulate_epoch_record(
     samples_per_epoch : int
         M.
     n_trials : int
-        Trials.
+        Trials (with ``rng``).
     rng : Generator | SeedSequence | int | None
         Random stream (consumed chunk after chunk).
+    draws : tuple of ImuDraws, optional
+        The random numbers drawn before (:func:`draw_epoch_record`), instead of ``n_trials`` and ``rng``.
     chunk : int
         Trials simulated at once.
     truth : str
@@ -509,33 +528,55 @@ def simulate_epoch_record(
     -------
     EpochRecord
     """
-    import hashlib
-    import pickle
-
-    from .rocking import as_generator
-
-    g = as_generator(rng)
-    M, n, chunk = int(samples_per_epoch), int(n_trials), int(chunk)
-    bits = g.bit_generator
     if truth not in TRUTHS:
         raise ValueError(f"Expected `truth` in {TRUTHS}, got {truth!r}")
-    inputs = hashlib.blake2b(pickle.dumps((scenario, errors, M, n, chunk, truth), protocol=5), digest_size=16).digest()
+    M = as_int(samples_per_epoch, "samples_per_epoch", minimum=1)
+    if draws is None:
+        draws = draw_epoch_record(scenario, errors, n_trials=n_trials, rng=rng, chunk=chunk)
+    parts = [epoch_record(simulate_imu(scenario, errors, draws=d, truth_stride=M if truth == "epochs" else None), M, truth=truth) for d in draws]
+    cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+    inc = EpochIncrements(*(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment")), parts[0].increments.epoch, M)
+    return EpochRecord(scenario, inc, *(cat(f) for f in _RECORD_FIELDS))
 
-    def simulate():
-        parts = []
-        left = n
-        while left > 0:
-            k = min(chunk, left)
-            rec = simulate_imu(scenario, errors, n_trials=k, rng=g, truth_stride=M if truth == "epochs" else None)
-            parts.append(epoch_record(rec, M, truth=truth))
-            left -= k
-        cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
-        inc = tuple(np.concatenate([getattr(p.increments, f) for p in parts]) for f in ("rotation", "velocity", "moment"))
-        return (*inc, *(cat(f) for f in _RECORD_FIELDS), parts[0].increments.epoch, bits.state)
 
-    *arrays, epoch, after = _RECORDS.get((inputs, type(bits).__name__, repr(bits.state)), simulate)
-    bits.state = after  # served from memory: the state a simulation would leave
-    return EpochRecord(scenario, EpochIncrements(*arrays[:3], epoch, M), *arrays[3:])
+@dataclass(frozen=True)
+class FilterDraws:
+    """The filter's random numbers for ``n`` trials of E epochs (standard normal).
+
+    Attributes
+    ----------
+    attitude : ndarray
+        ``(n, 3)`` initial attitude errors, per unit of the prior's standard deviations.
+    measurement : ndarray
+        ``(n, E, 3)`` noise of the zero-velocity reference, per unit of its standard deviation.
+    velocity : ndarray
+        ``(n, 3)`` initial velocity errors, per unit of the prior's.
+    """
+
+    attitude: np.ndarray
+    measurement: np.ndarray
+    velocity: np.ndarray
+
+
+def draw_filter(n_trials: int, n_epochs: int, rng=None) -> FilterDraws:
+    """Draw the filter's random numbers, in the order :func:`fine_alignment` consumes them.
+
+    Parameters
+    ----------
+    n_trials : int
+        Trials.
+    n_epochs : int
+        Epochs E.
+    rng : Generator | SeedSequence | int | None
+        Random stream.
+
+    Returns
+    -------
+    FilterDraws
+    """
+    g = as_generator(rng)
+    n, E = as_int(n_trials, "n_trials", minimum=1), as_int(n_epochs, "n_epochs", minimum=1)
+    return FilterDraws(g.standard_normal((n, 3)), g.standard_normal((n, E, 3)), g.standard_normal((n, 3)))
 
 
 _RECORD_FIELDS = ("truth_angles", "truth_velocity", "truth_rates", "end_rate", "gyro_bias", "accel_bias")
@@ -546,6 +587,7 @@ def fine_alignment(
     tuning: FilterTuning | None = None,
     *,
     rng=None,
+    draws: FilterDraws | None = None,
     velocity_noise: float | None = None,
     sequence=None,
     model: FineAlignmentModel | None = None,
@@ -564,6 +606,8 @@ def fine_alignment(
     rng : Generator | SeedSequence | int | None
         Stream of the initial attitude errors (drawn from the prior) and of the
         measurement noise.
+    draws : FilterDraws, optional
+        Those random numbers drawn before (:func:`draw_filter`), instead of ``rng``.
     velocity_noise : float, optional
         True standard deviation of the zero-velocity reference [m/s] (default:
         the filter's ``measurement_noise``, a filter that knows it).
@@ -596,8 +640,6 @@ def fine_alignment(
     TypeError
         If ``record`` or ``model`` is of the wrong type.
     """
-    from .rocking import as_generator
-
     tuning = FilterTuning() if tuning is None else tuning
     sc = record.scenario
     if model is None:
@@ -615,7 +657,10 @@ def fine_alignment(
     n, E = record.n_trials, ep.n_epochs
     seq = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, E) if sequence is None else sequence
     noise = tuning.measurement_noise if velocity_noise is None else nonnegative(velocity_noise, "velocity_noise")
-    g = as_generator(rng)
+    if draws is None:
+        draws = draw_filter(n, E, rng)
+    elif draws.measurement.shape != (n, E, 3):
+        raise ValueError(f"Expected `draws` for {n} trials of {E} epochs, got shape {draws.measurement.shape}")
     W, gn = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude)
     Wx = _skew(W)
     E_earth = _rodrigues(-W * D)
@@ -639,10 +684,10 @@ def fine_alignment(
         rock_true = np.zeros((n, E + 1, 2 * len(ax)))
     r = sc.lever_arm
     w_end = record.end_rate[:, 1:]  # gyro rate at each epoch end
-    phi0 = g.standard_normal((n, 3)) * np.sqrt(np.diag(model.P0)[0:3])
-    meas_noise = noise * g.standard_normal((n, E, 3))
+    phi0 = draws.attitude * np.sqrt(np.diag(model.P0)[0:3])
+    meas_noise = noise * draws.measurement
     C = _rodrigues(-phi0) @ C_true[:, 0]  # C̃ = (I − [φ×]) C
-    v = tuning.prior_velocity * g.standard_normal((n, 3))  # the zero-velocity start, its error drawn from the prior
+    v = tuning.prior_velocity * draws.velocity  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
     Sinv, Pinv = (np.linalg.inv(seq.innovation), np.linalg.inv(seq.posterior)) if score else (None, None)

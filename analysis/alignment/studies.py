@@ -16,15 +16,15 @@ import numpy as np
 from ..core import montecarlo
 from ..core.units import DEG_PER_RT_H_TO_RAD_PER_RT_S, M_S_PER_RT_H_TO_M_S_PER_RT_S, rad, rad_per_s
 from ..core.validation import as_array, as_int
-from .alignment_monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_monte_carlo
-from .alignment_theory import analytic_theory
-from .azimuth import second_order_theory
-from .base_motion import NarrowbandMotion, SineMotion
+from ..gyrocompass.azimuth import second_order_theory
+from ..gyrocompass.finite_sample import mean_interval, sample_mean_statistics
+from ..gyrocompass.rocking import NarrowbandRocking, SineRocking
+from .base_motion import NarrowbandMotion, SineMotion, mean_variance
 from .earth import EARTH_RATE, normal_gravity
-from .fine_alignment import Disturbance, FilterTuning, assumed_disturbance
-from .finite_sample import mean_interval, sample_mean_statistics
+from .fine import Disturbance, FilterTuning, assumed_disturbance
 from .imu import Scenario, SensorErrors
-from .rocking import NarrowbandRocking, SineRocking
+from .monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_draws, alignment_monte_carlo
+from .theory import analytic_theory
 
 __all__ = [
     "NAVIGATION_GRADE",
@@ -339,15 +339,16 @@ def rocking_channel_study(*, latitude: float = rad(70.0), beta0: float = rad(2.0
     rows = []
     opts = AlignmentOptions(formula="paper")
     for k, (label, make) in enumerate(cases):
+        draws = None
         for gyros, amplitude in ((False, 1.0), (True, 0.001)):
             motion = make(amplitude)
             sc = Scenario(latitude, beta0=beta0, gamma0=gamma0, motion=motion, sample_rate=10.0, duration=30.0, rocking_in_gyros=gyros)
-            mc = alignment_monte_carlo(sc, method="analytic", n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opts)
+            if draws is None:  # the trials of the first case, passed to the second (scaled)
+                draws = alignment_draws(sc, method="analytic", n_trials=n_trials, rng=montecarlo.block_seed(root, k), options=opts)
+            mc = alignment_monte_carlo(sc, method="analytic", n_trials=n_trials, options=opts, draws=draws)
             second = math.nan
             if not gyros:
-                s = motion.spectrum(sc.n_samples, sc.dt)
-                T = sc.n_samples * sc.dt
-                sd = np.sqrt(s.covariance((np.exp(1j * s.omega * T) - 1) / (1j * s.omega * T)))
+                sd = np.sqrt(mean_variance(motion, sc.n_samples * sc.dt, sc.dt))
                 second = second_order_theory(latitude, beta0, gamma0, sd[1], sd[2], kappa_xi=motion.kappa, kappa_eta=motion.kappa).rms
             rows.append(RockingRow(label, gyros, rad(amplitude), mc, mc.theory.rocking, second))
     return tuple(rows)
@@ -403,11 +404,13 @@ def mismatch_study(scenario: Scenario, errors: SensorErrors, *, period_ratios=(0
         models.append((f"shaping, period × {float(r):g}", d))
     models.append(("white (lever-arm velocity as noise)", assumed_disturbance(motion, scenario, kind="white")))
     models.append(("none (rocking ignored)", Disturbance("none")))
-    seed = montecarlo.root_seed_sequence(rng)
+    # one draw of the trials for every filter (common random numbers, passed explicitly): the same records,
+    # simulated once and kept with the draws, and the same initial errors and measurement noise
+    draws = alignment_draws(scenario, errors, method="kalman", n_trials=n_trials, rng=rng, options=kalman_options(scenario, errors, epoch=epoch))
     rows = []
     for label, d in models:
         opts = kalman_options(scenario, errors, epoch=epoch, disturbance=d)
-        rows.append(MismatchRow(label, d, alignment_monte_carlo(scenario, errors, method="kalman", n_trials=n_trials, rng=seed, options=opts)))
+        rows.append(MismatchRow(label, d, alignment_monte_carlo(scenario, errors, method="kalman", n_trials=n_trials, options=opts, draws=draws)))
     return tuple(rows)
 
 

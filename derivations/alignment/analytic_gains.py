@@ -13,7 +13,7 @@ computes the heading from the mean gyro rate ``ω̄`` and the tilt estimates
     exact for any heading, where (2) is exact at ψ = 0 only.
 
 The attitude is ``C_b^n = R_z(ψ) R_x(−β) R_y(γ)`` (NED), as in
-:mod:`strapdown.analysis.gyrocompass.tilt_attitude`, so that at ψ = 0 the two
+:mod:`strapdown.analysis.alignment.tilt_attitude`, so that at ψ = 0 the two
 horizontal gyros read ``Ω (A, B)``.  Everything is differentiated at the
 stable state ``(ψ0, β0, γ0)`` with ideal sensors:
 

@@ -12,14 +12,14 @@ computed once by filterpy.
 The result carries the theory that applies to the method:
 
 ``analytic``
-    :func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`,
+    :func:`strapdown.analysis.alignment.theory.analytic_theory`,
     term by term;
 ``inertial``
-    the first-order bias floors (:func:`strapdown.analysis.gyrocompass.alignment_theory.bias_floor`);
+    the first-order bias floors (:func:`strapdown.analysis.alignment.theory.bias_floor`);
 ``kalman``
     the bias floors, the linear filter's own response to the fixed biases and
     its posterior standard deviation
-    (:func:`strapdown.analysis.gyrocompass.alignment_theory.kalman_theory`),
+    (:func:`strapdown.analysis.alignment.theory.kalman_theory`),
     with the NEES and NIS averaged over trials at a few epochs against their χ²
     bands.
 """
@@ -33,13 +33,14 @@ import numpy as np
 
 from ..core import kalman, montecarlo
 from ..core.validation import as_int
-from .alignment_theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
-from .analytic_alignment import analytic_alignment
-from .fine_alignment import FilterTuning, filter_model, fine_alignment, simulate_epoch_record
+from ..gyrocompass.rocking import as_generator
+from .analytic import analytic_alignment
+from .fine import FilterDraws, FilterTuning, draw_epoch_record, draw_filter, filter_model, fine_alignment, simulate_epoch_record
 from .imu import Scenario, SensorErrors, simulate_imu
-from .inertial_alignment import inertial_alignment
+from .inertial import inertial_alignment
+from .theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
 
-__all__ = ["METHODS", "AlignmentOptions", "AlignmentKernel", "KalmanConsistency", "AlignmentMonteCarlo", "alignment_monte_carlo"]
+__all__ = ["METHODS", "AlignmentOptions", "AlignmentKernel", "AlignmentDraws", "alignment_draws", "KalmanConsistency", "AlignmentMonteCarlo", "alignment_monte_carlo"]
 
 METHODS = ("analytic", "inertial", "kalman")
 
@@ -112,29 +113,117 @@ class AlignmentKernel:
     model: object = None
     score: bool = True
 
-    def __call__(self, n_trials: int, rng):
+    def _model(self):
+        return filter_model(self.scenario, self.options.tuning) if self.model is None else self.model
+
+    def draw(self, n_trials: int, rng) -> AlignmentDraws:
+        """The random numbers of ``n_trials`` trials, in the order :meth:`__call__` consumes them.
+
+        Parameters
+        ----------
+        n_trials : int
+            Trials.
+        rng : Generator | SeedSequence | int | None
+            Random stream.
+
+        Returns
+        -------
+        AlignmentDraws
+        """
+        g = as_generator(rng)
+        imu = draw_epoch_record(self.scenario, self.errors, n_trials=n_trials, rng=g, chunk=self.chunk)
+        filt = None
         if self.method == "kalman":
-            model = filter_model(self.scenario, self.options.tuning) if self.model is None else self.model
+            filt = draw_filter(n_trials, self.scenario.n_samples // self._model().samples_per_epoch, g)
+        return AlignmentDraws(imu, filt)
+
+    def evaluate(self, draws: AlignmentDraws):
+        """Errors and side quantities of the trials of ``draws`` (see Notes).
+
+        Parameters
+        ----------
+        draws : AlignmentDraws
+            From :meth:`draw` of a kernel whose scenario differs from this one at most by the rocking amplitudes.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``(errors, aux)``.
+        """
+        if self.method == "kalman":
+            model = self._model()
             truth = "epochs" if self.score else "ends"  # unscored: the truth at the start and the end suffices
-            rec = simulate_epoch_record(self.scenario, self.errors, model.samples_per_epoch, n_trials=n_trials, rng=rng, chunk=self.chunk, truth=truth)
-            res = fine_alignment(rec, self.options.tuning, rng=rng, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model, score=self.score)
+            rec = draws.epoch_record(self.scenario, self.errors, model.samples_per_epoch, truth)
+            res = fine_alignment(rec, self.options.tuning, draws=draws.filter, velocity_noise=self.options.velocity_noise, sequence=self.sequence, model=model, score=self.score)
             est = res.estimate
             idx = list(self.check_epochs)
             aux = [est.tilt_error**2, res.nees[:, idx], res.nis[:, idx], res.nis.mean(axis=1, keepdims=True)]
             return est.heading_error[:, None], np.concatenate(aux, axis=1)
         parts = []
-        left = int(n_trials)
-        while left > 0:
-            k = min(self.chunk, left)
-            rec = simulate_imu(self.scenario, self.errors, n_trials=k, rng=rng)
+        for d in draws.imu:
+            rec = simulate_imu(self.scenario, self.errors, draws=d)
             if self.method == "analytic":
                 parts.append(analytic_alignment(rec, formula=self.options.formula))
             else:
                 parts.append(inertial_alignment(rec, epoch=self.options.inertial_epoch, observation=self.options.observation))
-            left -= k
         e = np.concatenate([p.heading_error for p in parts])
         t = np.concatenate([p.tilt_error for p in parts])
         return e[:, None], t**2
+
+    def __call__(self, n_trials: int, rng):
+        return self.evaluate(self.draw(n_trials, rng))
+
+
+class AlignmentDraws:
+    """The random numbers of a block of alignment trials: common random numbers passed explicitly.
+
+    The same draws evaluated by kernels whose scenarios differ by the rocking
+    amplitudes (a search over the amplitude) or whose filters differ (a
+    comparison of filters) give the same trials.  The epoch records the filter
+    reads are made once per scenario and kept with the draws.
+
+    Parameters
+    ----------
+    imu : tuple of ImuDraws
+        The sensor records' numbers, chunk by chunk.
+    filter : FilterDraws or None
+        The Kalman filter's numbers.
+    """
+
+    def __init__(self, imu: tuple, filter: FilterDraws | None = None):
+        self.imu, self.filter = tuple(imu), filter
+        self._records: dict = {}
+
+    @property
+    def n_trials(self) -> int:
+        """Trials."""
+        return sum(d.n_trials for d in self.imu)
+
+    def epoch_record(self, scenario: Scenario, errors: SensorErrors, samples_per_epoch: int, truth: str):
+        """The epoch record of these trials in ``scenario`` (made once, kept with the draws).
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The configuration (its rocking amplitudes may differ from the drawn ones).
+        errors : SensorErrors
+            Sensor errors.
+        samples_per_epoch : int
+            M.
+        truth : str
+            ``"epochs"`` or ``"ends"``.
+
+        Returns
+        -------
+        EpochRecord
+        """
+        import hashlib
+        import pickle
+
+        key = hashlib.blake2b(pickle.dumps((scenario, errors, int(samples_per_epoch), truth), protocol=5), digest_size=16).digest()
+        if key not in self._records:
+            self._records[key] = simulate_epoch_record(scenario, errors, samples_per_epoch, draws=self.imu, truth=truth)
+        return self._records[key]
 
 
 @dataclass(frozen=True)
@@ -223,6 +312,51 @@ class AlignmentMonteCarlo:
     kalman_theory: KalmanTheory | None = None
 
 
+def _per_block(method: str, n_trials: int, trials_per_block) -> int:
+    per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else (128 if method == "kalman" else 32)
+    return min(per_block, n_trials)
+
+
+def alignment_draws(
+    scenario: Scenario, errors: SensorErrors | None = None, *, method: str, n_trials: int, rng=None, options: AlignmentOptions | None = None, trials_per_block: int | None = None
+) -> tuple:
+    """The random numbers of every block of :func:`alignment_monte_carlo`, drawn once to be passed again.
+
+    Block ``i`` draws from the ``i``-th child of the root SeedSequence, as the
+    Monte Carlo does: a run on these draws equals a run from ``rng``.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The configuration.
+    errors : SensorErrors, optional
+        Sensor errors (default ideal).
+    method : str
+        ``"analytic"``, ``"inertial"`` or ``"kalman"``.
+    n_trials : int
+        Trials, at least 2.
+    rng : Generator | SeedSequence | int | None
+        Root of the block streams.
+    options : AlignmentOptions, optional
+        Method options (the Kalman filter's epoch).
+    trials_per_block : int, optional
+        Trials per block.
+
+    Returns
+    -------
+    tuple of AlignmentDraws
+    """
+    if method not in METHODS:
+        raise ValueError(f"Expected `method` in {METHODS}, got {method!r}")
+    errors = SensorErrors() if errors is None else errors
+    options = AlignmentOptions() if options is None else options
+    n_trials = as_int(n_trials, "n_trials", minimum=2)
+    per_block = _per_block(method, n_trials, trials_per_block)
+    root = montecarlo.root_seed_sequence(rng)
+    kernel = AlignmentKernel(scenario, errors, method, options)
+    return tuple(kernel.draw(min(per_block, n_trials - b * per_block), np.random.default_rng(montecarlo.block_seed(root, b))) for b in range(-(-n_trials // per_block)))
+
+
 def _check_epochs(n_epochs: int, k: int = 8) -> tuple:
     e = np.unique(np.round(np.geomspace(1, n_epochs, k)).astype(int)) - 1
     return tuple(int(x) for x in e)
@@ -239,6 +373,7 @@ def alignment_monte_carlo(
     executor=None,
     progress: bool = False,
     trials_per_block: int | None = None,
+    draws=None,
 ) -> AlignmentMonteCarlo:
     """Monte Carlo of the azimuth error of one alignment method.
 
@@ -262,6 +397,11 @@ def alignment_monte_carlo(
         tqdm bar on stderr.
     trials_per_block : int, optional
         Trials per block (the unit of randomness; default 32, Kalman 128).
+    draws : sequence of AlignmentDraws, optional
+        The random numbers of every block, drawn before (:func:`alignment_draws`)
+        instead of from ``rng``: the same trials as another run on these draws
+        (common random numbers), here in a scenario that may differ by the rocking
+        amplitudes, or for another filter.
 
     Returns
     -------
@@ -300,12 +440,18 @@ def alignment_monte_carlo(
         sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, n_epochs)
         checks = _check_epochs(n_epochs)
     kernel = AlignmentKernel(scenario, errors, method, options, checks, sequence, model=model)
-    per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else (128 if method == "kalman" else 32)
-    per_block = min(per_block, n_trials)
-    # histogram scale from a pilot block on its own stream (not one of the run's blocks)
-    pilot, _ = kernel(min(8, n_trials), np.random.default_rng(montecarlo.block_seed(root, 2**31)))
-    scale = float(np.sqrt(np.mean(pilot**2))) or 1e-12
-    result = montecarlo.run(kernel, n_trials, rng=root, trials_per_block=per_block, blocks_per_chunk=1, executor=executor, scale=2.0 * scale, progress=progress)
+    if draws is None:
+        per_block = _per_block(method, n_trials, trials_per_block)
+        # histogram scale from a pilot block on its own stream (not one of the run's blocks)
+        pilot, _ = kernel(min(8, n_trials), np.random.default_rng(montecarlo.block_seed(root, 2**31)))
+        scale = float(np.sqrt(np.mean(pilot**2))) or 1e-12
+        result = montecarlo.run(kernel, n_trials, rng=root, trials_per_block=per_block, blocks_per_chunk=1, executor=executor, scale=2.0 * scale, progress=progress)
+    else:
+        if sum(d.n_trials for d in draws) != n_trials:
+            raise ValueError(f"Expected `draws` of {n_trials} trials (n_trials), got {sum(d.n_trials for d in draws)}")
+        blocks = [montecarlo.block_output(kernel.evaluate(d), d.n_trials) for d in draws]
+        scale = float(np.sqrt(np.mean(blocks[0][0] ** 2))) or 1e-12  # the histogram's scale (display only)
+        result = montecarlo.summarise(blocks, scale=2.0 * scale)
     aux = np.asarray(result.aux_mean)
     tilt_rms = np.sqrt(aux[:2])
     consistency, kth = None, None

@@ -23,16 +23,16 @@ from fractions import Fraction
 from functools import cache
 from typing import NamedTuple
 
-from ...derivations.coning import published as P
-from ...derivations.coning import series as S
-from ...derivations.coning.algorithms import Algorithm, second_order_defect
-from ...derivations.coning.formula_one import BasisAssignment, algorithm_from_constants, basis_assignments
-from ...derivations.coning.registry import PANOV_TABLE_1, get
-from ..core.units import deg_per_h
-from ..core.validation import positive
+from ....derivations.coning import published as P
+from ....derivations.coning import series as S
+from ....derivations.coning.algorithms import Algorithm, second_order_defect
+from ....derivations.coning.formula_one import BasisAssignment, algorithm_from_constants, basis_assignments
+from ....derivations.coning.registry import PANOV_TABLE_1, get
+from ...core.units import deg_per_h
+from ...core.validation import positive
+from ..drift_theory import asymptotic_drift
+from ..local_error import error_coefficients
 from .budennyi_table3 import Table3Conditions, Table3Drift, simulated_drift, table3_conditions
-from .drift_theory import asymptotic_drift
-from .local_error import error_coefficients
 
 __all__ = [
     "printed_column_2",
@@ -84,7 +84,7 @@ def column_2_readings(*, conditions: Table3Conditions | None = None, duration: f
     Parameters
     ----------
     conditions : Table3Conditions, keyword-only, optional
-        Default :func:`strapdown.analysis.coning.budennyi_table3.table3_conditions`.
+        Default :func:`strapdown.analysis.coning.papers.budennyi_table3.table3_conditions`.
     duration : float, keyword-only
         Length of each run [s].
 
@@ -120,7 +120,7 @@ def column_2_estimates(*, conditions: Table3Conditions | None = None) -> Column2
     Parameters
     ----------
     conditions : Table3Conditions, keyword-only, optional
-        Default :func:`strapdown.analysis.coning.budennyi_table3.table3_conditions`.
+        Default :func:`strapdown.analysis.coning.papers.budennyi_table3.table3_conditions`.
 
     Returns
     -------
@@ -193,7 +193,7 @@ def assignment_scores(*, conditions: Table3Conditions | None = None, duration: f
     Parameters
     ----------
     conditions : Table3Conditions, keyword-only, optional
-        Default :func:`strapdown.analysis.coning.budennyi_table3.table3_conditions`.
+        Default :func:`strapdown.analysis.coning.papers.budennyi_table3.table3_conditions`.
     duration : float, keyword-only
         Length of each run [s].
     tolerance : float, keyword-only

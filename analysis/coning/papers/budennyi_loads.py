@@ -31,13 +31,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...derivations.coning import published as P
-from ...derivations.coning.registry import get
-from ..core.units import RAD_PER_S_TO_DEG_PER_H
-from ..core.validation import positive
+from ....derivations.coning import published as P
+from ....derivations.coning.registry import get
+from ...core.units import RAD_PER_S_TO_DEG_PER_H
+from ...core.validation import positive
+from ..computational_load import TIME_BASES, DesignRow, LoadModel, design, largest_step, operation_count, quaternion_update_count, step_load
+from ..precession import RegularPrecession
 from .budennyi_table3 import Table3Conditions, drift_estimates, table3_conditions
-from .computational_load import TIME_BASES, DesignRow, LoadModel, design, largest_step, operation_count, quaternion_update_count, step_load
-from .precession import RegularPrecession
 
 __all__ = [
     "required_drifts",
@@ -250,7 +250,7 @@ def reproduce_loads(*, model: LoadModel | None = None, tolerance: float = 0.02, 
     tolerance : float, keyword-only
         Relative difference counted as reproduced.
     conditions : Table3Conditions, keyword-only, optional
-        Default :func:`strapdown.analysis.coning.budennyi_table3.table3_conditions`.
+        Default :func:`strapdown.analysis.coning.papers.budennyi_table3.table3_conditions`.
     simulation_duration : float, keyword-only
         Length of the runs that give u* [s].
 
@@ -517,7 +517,7 @@ def per_sample_fit(*, conditions: Table3Conditions | None = None, simulation_dur
     Parameters
     ----------
     conditions : Table3Conditions, keyword-only, optional
-        Default :func:`strapdown.analysis.coning.budennyi_table3.table3_conditions`.
+        Default :func:`strapdown.analysis.coning.papers.budennyi_table3.table3_conditions`.
     simulation_duration : float, keyword-only
         Length of the runs that give u* [s].
 

@@ -1,7 +1,7 @@
 """Theory of the self-alignment errors, term by term, to first order.
 
 Analytic method (:func:`analytic_theory`).  With the gains of
-:mod:`strapdown.derivations.gyrocompass.alignment_error` (generated once into
+:mod:`strapdown.derivations.alignment.analytic_gains` (generated once into
 numerical code, :func:`strapdown.analysis.core.cache.compiled`), the azimuth
 error of the analytic alignment over a time T is, to first order,
 
@@ -22,8 +22,9 @@ error of the analytic alignment over a time T is, to first order,
   the mean angle θ̄ (through the accelerometers and through the Earth rate the
   rocked gyros see), the angle gained over the window (the body rate averaged
   by the gyros) and the lever-arm acceleration averaged by the accelerometers;
-  its variance over the rocking's discrete spectrum (:meth:`Spectrum.covariance`)
-  is exact for the simulated process.  For a sinusoid the residue of each axis is
+  its variance is the integral of the rocking's continuous spectral density
+  against ``|H_a|²`` (the models' ``covariance``; for sinusoids the sum over
+  their lines), exact for the process the simulation realises.  For a sinusoid the residue of each axis is
   a sinusoid of amplitude ``a_a |H_a|``; its envelope over phase replaces
   ``|H_a(ω, T)|`` by its largest value over alignment times in ``[T, T + 2π/ω]``.
 
@@ -45,8 +46,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.cache import compiled
+from ..gyrocompass.error_distribution import ErrorQuantile, abs_error_quantile
+from .base_motion import mean_transfer
 from .earth import EARTH_RATE, normal_gravity
-from .error_distribution import ErrorQuantile, abs_error_quantile
 from .imu import Scenario, SensorErrors
 
 __all__ = ["AnalyticGainValues", "analytic_gain_values", "AnalyticTheory", "analytic_theory", "rocking_transfer", "quantisation_variance", "KalmanTheory", "kalman_theory", "bias_floor"]
@@ -90,7 +92,7 @@ class AnalyticGainValues:
 
 def _gain_function(formula: str):
     def build():
-        from ...derivations.gyrocompass.alignment_error import gain_expressions
+        from ...derivations.alignment.analytic_gains import gain_expressions
 
         return gain_expressions(formula)
 
@@ -159,8 +161,7 @@ def rocking_transfer(gains: AnalyticGainValues, scenario: Scenario, omega, durat
     rx = np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
     k_rate = gains.G_accel @ (-rx @ gains.J)
     e = np.exp(1j * w * T) - 1.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mean = np.where(w * T > 1e-9, e / (1j * w * T), 1.0)
+    mean = mean_transfer(T)(w)
     return k_mean[:, None] * mean[None, :] + (k_inc[:, None] / T) * e[None, :] + (k_rate[:, None] / T) * (1j * w * e)[None, :]
 
 
@@ -304,7 +305,7 @@ def analytic_theory(scenario: Scenario, errors: SensorErrors | None = None, *, f
     References
     ----------
     Hrechka & Koroliov, eqs. (2), (16) (the method); the gains are derived in
-    :mod:`strapdown.derivations.gyrocompass.alignment_error`.
+    :mod:`strapdown.derivations.alignment.analytic_gains`.
 
     Examples
     --------
@@ -321,20 +322,21 @@ def analytic_theory(scenario: Scenario, errors: SensorErrors | None = None, *, f
     T = scenario.n_samples * scenario.dt
     Ga = G.G_accel
     gw, ga = _norm(G.G_omega), _norm(Ga)
-    spectrum = scenario.motion.spectrum(scenario.n_samples, scenario.dt)
+    motion = scenario.motion
+    gaussian = bool(getattr(motion, "gaussian", False))
+    lines = None if gaussian else motion.spectrum(scenario.n_samples, scenario.dt)
     sine = np.zeros(0)
-    if spectrum.omega.size == 0:
-        rocking = 0.0
+    if lines is not None and envelope and lines.omega.size == 1:
+        # a sinusoid: the envelope over phase, |H| at its worst alignment time in [T, T + period]
+        period = 2.0 * math.pi / lines.omega[0]
+        Ts = T + period * np.arange(envelope_points) / envelope_points
+        mags = np.array([np.abs(rocking_transfer(G, scenario, lines.omega, t))[:, 0] for t in Ts]).max(axis=0)
+        rocking = math.sqrt(float(np.sum(lines.power[:, 0] * mags**2)))
+        sine = np.sqrt(2.0 * lines.power[:, 0]) * mags
     else:
-        H = rocking_transfer(G, scenario, spectrum.omega, T)
-        if envelope and not spectrum.gaussian and spectrum.omega.size == 1:
-            period = 2.0 * math.pi / spectrum.omega[0]
-            Ts = T + period * np.arange(envelope_points) / envelope_points
-            mags = np.array([np.abs(rocking_transfer(G, scenario, spectrum.omega, t))[:, 0] for t in Ts])
-            H = mags.max(axis=0)[:, None].astype(complex)
-        rocking = math.sqrt(float(np.sum(spectrum.covariance(H))))
-        if not spectrum.gaussian and spectrum.omega.size == 1:
-            sine = np.sqrt(2.0 * spectrum.power[:, 0]) * np.abs(H[:, 0])
+        rocking = math.sqrt(float(np.sum(motion.covariance(lambda w: rocking_transfer(G, scenario, w, T), dt=scenario.dt))))
+        if lines is not None and lines.omega.size == 1:
+            sine = np.sqrt(2.0 * lines.power[:, 0]) * np.abs(rocking_transfer(G, scenario, lines.omega, T)[:, 0])
     return AnalyticTheory(
         gyro_bias=float(G.G_omega @ e.gyro_bias),
         accel_bias=float(Ga @ e.accel_bias),
@@ -348,7 +350,7 @@ def analytic_theory(scenario: Scenario, errors: SensorErrors | None = None, *, f
         accel_quantisation=_quantised(Ga, G.f0 + e.accel_bias, e.accel_noise, e.accel_quantum, T),
         rocking=rocking,
         rocking_sine_amplitudes=sine,
-        gaussian_rocking=bool(spectrum.gaussian),
+        gaussian_rocking=gaussian,
     )
 
 

@@ -2,8 +2,8 @@
 
 The rocking centre is fixed on the Earth at latitude φ; the block sits at the
 lever arm ``r`` (body axes) from it.  Its attitude is the stable attitude
-``(ψ0, β0, γ0)`` plus the rocking of :mod:`strapdown.analysis.gyrocompass.base_motion`,
-``C_b^n(t)`` of :mod:`strapdown.analysis.gyrocompass.tilt_attitude`.  The ideal sensors measure
+``(ψ0, β0, γ0)`` plus the rocking of :mod:`strapdown.analysis.alignment.base_motion`,
+``C_b^n(t)`` of :mod:`strapdown.analysis.alignment.tilt_attitude`.  The ideal sensors measure
 
 * gyros: ``ω_ib^b = ω_nb^b + C_n^b ω_ie^n`` (the base does not move over the
   Earth, so the transport rate is zero);
@@ -32,21 +32,33 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core import repeated_draws
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
-from . import alignment_kernels as kernels
-from .azimuth import check_latitude
+from ..gyrocompass.azimuth import check_latitude
+from ..gyrocompass.rocking import as_generator
+from . import kernels
 from .base_motion import StillBase
 from .earth import earth_rate_ned, gravity_ned
-from .rocking import as_generator
 from .tilt_attitude import attitude_matrix, body_acceleration, body_rate
 
-__all__ = ["SensorErrors", "Scenario", "ImuRecord", "simulate_imu", "ideal_increments"]
+__all__ = ["SensorErrors", "Scenario", "ImuRecord", "ImuDraws", "draw_imu", "simulate_imu", "ideal_increments"]
 
 _GAUSS = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))
 
 #: Truth instants up to which the rocking is summed at those instants instead of evaluated over the record.
 _FEW_POINTS = 8
+
+
+def _check_draws(draws, errors, n_samples: int) -> None:
+    """Refuse draws that lack the numbers ``errors`` need, or were drawn for another record length."""
+    e = SensorErrors() if errors is None else errors
+    need = {"gyro_noise": bool(e.gyro_noise), "accel_noise": bool(e.accel_noise), "gyro_start": e.gyro_quantum > 0, "accel_start": e.accel_quantum > 0}
+    for name, needed in need.items():
+        if needed and getattr(draws, name) is None:
+            raise ValueError(f"Expected `draws` with the numbers of `{name}` (draw_imu with these errors), got none")
+    for name in ("gyro_noise", "accel_noise"):
+        x = getattr(draws, name)
+        if x is not None and x.shape[1] != n_samples:
+            raise ValueError(f"Expected `draws` of {n_samples} samples, got {x.shape[1]}")
 
 
 def _vec3(value, name):
@@ -119,7 +131,7 @@ class Scenario:
     beta0, gamma0 : float
         Stable tilts [rad].
     motion : rocking model
-        From :mod:`strapdown.analysis.gyrocompass.base_motion` (default no rocking).
+        From :mod:`strapdown.analysis.alignment.base_motion` (default no rocking).
     lever_arm : array_like
         Position of the sensor block relative to the rocking centre, body axes [m].
     sample_rate : float
@@ -244,9 +256,9 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     scenario : Scenario
         Place, stable attitude, lever arm and sampling.
     motion : MotionRealisation
-        The rocking of n trials (:meth:`strapdown.analysis.gyrocompass.base_motion.SineMotion.draw` and kin).
+        The rocking of n trials (:meth:`strapdown.analysis.alignment.base_motion.SineMotion.draw` and kin).
     compiled : bool or None, keyword-only
-        Fused compiled loop (:mod:`.alignment_kernels`) or the numpy form,
+        Fused compiled loop (:mod:`.kernels`) or the numpy form,
         kept as the reference (equal to round-off); None (default): the loop
         when it pays off (:func:`.alignment_kernels.use_compiled`).
 
@@ -293,17 +305,89 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     return dtheta, dv
 
 
-def _quantise(x, q, g):
-    """Differences of the quantised running sum of ``x`` (along axis 1), random initial residue."""
+def _quantise(x, q, start):
+    """Differences of the quantised running sum of ``x`` (along axis 1), from the initial residue ``start`` [units of x]."""
     if q <= 0:
         return x
-    start = g.random((x.shape[0], 1, x.shape[2])) * q
     acc = np.floor((np.cumsum(x, axis=1) + start) / q)
     first = np.floor(start / q)
     return q * np.diff(np.concatenate([first, acc], axis=1), axis=1)
 
 
-def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, truth_stride: int | None = None) -> ImuRecord:
+@dataclass(frozen=True)
+class ImuDraws:
+    """The random numbers of ``n`` sensor records, drawn once: common random numbers made explicit.
+
+    The same draws give the same trials in another scenario that differs by the
+    rocking amplitudes only (:meth:`strapdown.analysis.alignment.base_motion.MotionRealisation.rescaled`,
+    whose unit evaluations they share), or in the same scenario for another
+    method or filter.
+
+    Attributes
+    ----------
+    rocking : MotionRealisation
+        The rocking of the scenario they were drawn for.
+    gyro_bias, accel_bias : ndarray
+        ``(n, 3)`` standard normal numbers of the turn-on biases.
+    gyro_noise, accel_noise : ndarray or None
+        ``(n, N, 3)`` standard normal numbers of the white noise (None without noise).
+    gyro_start, accel_start : ndarray or None
+        ``(n, 1, 3)`` uniform numbers in [0, 1): the initial residues of the quantised sums (None without quantisation).
+    """
+
+    rocking: object
+    gyro_bias: np.ndarray
+    accel_bias: np.ndarray
+    gyro_noise: np.ndarray | None
+    accel_noise: np.ndarray | None
+    gyro_start: np.ndarray | None
+    accel_start: np.ndarray | None
+
+    @property
+    def n_trials(self) -> int:
+        """Trials."""
+        return self.gyro_bias.shape[0]
+
+
+def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None) -> ImuDraws:
+    """Draw the random numbers of ``n_trials`` records of ``scenario`` with ``errors``.
+
+    The stream is consumed as :func:`simulate_imu` consumes it: the rocking,
+    the turn-on biases, the noise, the quantisation residues.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Place, rocking and sampling.
+    errors : SensorErrors, optional
+        Which errors need numbers (default ideal sensors).
+    n_trials : int
+        Trials.
+    rng : Generator | SeedSequence | int | None
+        Random stream.
+
+    Returns
+    -------
+    ImuDraws
+    """
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
+    e = SensorErrors() if errors is None else errors
+    if not isinstance(e, SensorErrors):
+        raise TypeError(f"Expected `errors` to be SensorErrors, got {type(e).__name__}")
+    n = as_int(n_trials, "n_trials", minimum=1)
+    N, dt = scenario.n_samples, scenario.dt
+    g = as_generator(rng)
+    rocking = scenario.motion.draw(g, n, N + 1, dt)
+    gb, ab = g.standard_normal((n, 3)), g.standard_normal((n, 3))
+    gn = g.standard_normal((n, N, 3)) if e.gyro_noise else None
+    an = g.standard_normal((n, N, 3)) if e.accel_noise else None
+    gs = g.random((n, 1, 3)) if e.gyro_quantum > 0 else None
+    as_ = g.random((n, 1, 3)) if e.accel_quantum > 0 else None
+    return ImuDraws(rocking, gb, ab, gn, an, gs, as_)
+
+
+def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int | None = None, rng=None, draws: ImuDraws | None = None, truth_stride: int | None = None) -> ImuRecord:
     """Sensor increments of ``n_trials`` independent rocking records.
 
     Parameters
@@ -313,9 +397,12 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     errors : SensorErrors, optional
         Sensor errors (default ideal sensors).
     n_trials : int
-        Independent trials.
+        Independent trials (with ``rng``).
     rng : Generator | SeedSequence | int | None
         Random stream (rocking phases and amplitudes, biases, noise, quantisation residues).
+    draws : ImuDraws, optional
+        Those random numbers drawn before (:func:`draw_imu`), instead of ``n_trials`` and ``rng``:
+        the same trials again, at another rocking amplitude if ``scenario`` differs by it.
     truth_stride : int, optional
         Truth every ``truth_stride`` samples (default: at the start and the end only).
 
@@ -343,11 +430,21 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     errors = SensorErrors() if errors is None else errors
     if not isinstance(errors, SensorErrors):
         raise TypeError(f"Expected `errors` to be SensorErrors, got {type(errors).__name__}")
-    n = as_int(n_trials, "n_trials", minimum=1)
     N, dt = scenario.n_samples, scenario.dt
     stride = N if truth_stride is None else as_int(truth_stride, "truth_stride", minimum=1)
-    g = as_generator(rng)
-    motion = scenario.motion.draw(g, n, N + 1, dt)
+    if draws is None:
+        draws = draw_imu(scenario, errors, n_trials=n_trials, rng=rng)
+    elif not isinstance(draws, ImuDraws):
+        raise TypeError(f"Expected `draws` to be ImuDraws, got {type(draws).__name__}")
+    elif n_trials is not None or rng is not None:
+        raise ValueError("Expected either `draws` or `n_trials` and `rng`, got both")
+    n = draws.n_trials
+    motion = draws.rocking
+    if motion.unit is not None:
+        motion = motion.rescaled(scenario.motion)  # the same draw at the scenario's amplitudes (checks the model)
+    elif motion.coefficients.shape[-1] != scenario.motion.spectrum(N + 1, dt).omega.size:
+        raise ValueError("Expected `draws` of the scenario's rocking model, got another")
+    _check_draws(draws, errors, N)
     dtheta, dv = ideal_increments(scenario, motion)
     # truth at the sample instants k·stride
     idx = np.arange(0, N + 1, stride)
@@ -362,19 +459,21 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     C = attitude_matrix(angles)
     velocity = np.einsum("...ij,...j->...i", C, np.cross(body_rate(angles, rate), scenario.lever_arm))
     # sensor errors
-    e = errors
-    gb = np.broadcast_to(e.gyro_bias, (n, 3)) + e.gyro_bias_sigma * g.standard_normal((n, 3))
-    ab = np.broadcast_to(e.accel_bias, (n, 3)) + e.accel_bias_sigma * g.standard_normal((n, 3))
+    e = errors if errors is not None else SensorErrors()
+    gb = np.broadcast_to(e.gyro_bias, (n, 3)) + e.gyro_bias_sigma * draws.gyro_bias
+    ab = np.broadcast_to(e.accel_bias, (n, 3)) + e.accel_bias_sigma * draws.accel_bias
     if np.any(e.gyro_scale):
         dtheta *= 1.0 + e.gyro_scale
     if np.any(e.accel_scale):
         dv *= 1.0 + e.accel_scale
     dtheta += gb[:, None, :] * dt
     dv += ab[:, None, :] * dt
-    if e.gyro_noise:  # the same trials again (common random numbers): the draw from memory, bit for bit
-        dtheta += repeated_draws.standard_normal(g, dtheta.shape, scale=e.gyro_noise * math.sqrt(dt))
+    if e.gyro_noise:
+        dtheta += (e.gyro_noise * math.sqrt(dt)) * draws.gyro_noise
     if e.accel_noise:
-        dv += repeated_draws.standard_normal(g, dv.shape, scale=e.accel_noise * math.sqrt(dt))
-    dtheta = _quantise(dtheta, e.gyro_quantum, g)
-    dv = _quantise(dv, e.accel_quantum, g)
+        dv += (e.accel_noise * math.sqrt(dt)) * draws.accel_noise
+    if e.gyro_quantum > 0:
+        dtheta = _quantise(dtheta, e.gyro_quantum, draws.gyro_start * e.gyro_quantum)
+    if e.accel_quantum > 0:
+        dv = _quantise(dv, e.accel_quantum, draws.accel_start * e.accel_quantum)
     return ImuRecord(scenario, errors, dtheta, dv, idx * dt, angles, velocity, rate, np.ascontiguousarray(gb), np.ascontiguousarray(ab))

@@ -11,7 +11,7 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   (the coning- and sculling-compensated sums of :mod:`.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
-  :mod:`.fine_alignment` over the epochs of every trial, with gains computed
+  :mod:`.fine` over the epochs of every trial, with gains computed
   before (by filterpy), and scores it against the truth (NEES, NIS).
 
 They are compiled with numba on first use (the machine code is cached on disk,
@@ -20,7 +20,7 @@ cached code still costs about half a second per process, more than a small
 run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
-forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine_alignment` as
+forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine` as
 the references the tests compare these loops against (equal to round-off).
 """
 
@@ -198,7 +198,7 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     scale : array_like, optional, keyword-only
         ``(3,)`` factors of the rocking per axis [1] (default ones): the rocking
         is ``scale · angles`` and so on, axis by axis, as
-        :meth:`strapdown.analysis.gyrocompass.base_motion.MotionRealisation.unit_evaluation`
+        :meth:`strapdown.analysis.alignment.base_motion.MotionRealisation.unit_evaluation`
         returns it, so that a shared unit evaluation is not multiplied out first.
 
     Raises
@@ -210,7 +210,7 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
 
     Notes
     -----
-    The rates are those of :func:`strapdown.analysis.gyrocompass.imu.ideal_increments`
+    The rates are those of :func:`strapdown.analysis.alignment.imu.ideal_increments`
     with ``compiled=False`` (the numpy form, the reference of the tests).
     """
     angles = _shaped(angles, "angles", (None, None, 3))
@@ -308,7 +308,7 @@ def preintegrate_loop(dtheta, dv, dt: float, samples_per_epoch: int, n_epochs: i
     tuple of ndarray
         ``(n, E, 4)`` rotations, ``(n, E, 3)`` velocity increments [m/s] and
         moments [m] (the fields of
-        :class:`strapdown.analysis.gyrocompass.preintegration.EpochIncrements`).
+        :class:`strapdown.analysis.alignment.preintegration.EpochIncrements`).
 
     Raises
     ------

@@ -28,13 +28,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...derivations.coning import published as P
-from ...derivations.coning.registry import get
-from ..core.units import deg_per_h, rad
-from ..core.validation import as_int, positive
-from .drift_theory import asymptotic_velocity_error
-from .precession import RegularPrecession, exact_state
-from .simulator import simulate
+from ....derivations.coning import published as P
+from ....derivations.coning.registry import get
+from ...core.units import deg_per_h, rad
+from ...core.validation import as_int, positive
+from ..drift_theory import asymptotic_velocity_error
+from ..precession import RegularPrecession, exact_state
+from ..simulator import simulate
 
 __all__ = [
     "QUANTITIES",

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..core import quaternion as quat
 from ..core.validation import as_int
-from . import alignment_kernels as kernels
+from . import kernels
 
 __all__ = ["EpochIncrements", "preintegrate", "chain_rotations"]
 
@@ -82,7 +82,7 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     samples_per_epoch : int
         M, at least 1.
     compiled : bool or None, keyword-only
-        One compiled loop over trials and samples (:mod:`.alignment_kernels`)
+        One compiled loop over trials and samples (:mod:`.kernels`)
         or the numpy form vectorised over trials and epochs, kept as the
         reference (equal to round-off); None (default): the loop when it pays
         off (:func:`.alignment_kernels.use_compiled`).
@@ -132,7 +132,7 @@ def chain_rotations(start, rotations, *, compiled: bool | None = None) -> np.nda
     rotations : ndarray
         ``(n, E, 4)`` epoch rotations.
     compiled : bool or None, keyword-only
-        One compiled loop (:mod:`.alignment_kernels`) or the numpy loop over
+        One compiled loop (:mod:`.kernels`) or the numpy loop over
         epochs, kept as the reference (equal to round-off); None (default):
         the loop when it pays off (:func:`.alignment_kernels.use_compiled`).
 

@@ -25,11 +25,11 @@ import numpy as np
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
-from ...derivations.coning import published as P
-from ..core import quaternion as quat
-from ..core.dual import Dual
-from ..core.units import rad
-from .precession import RegularPrecession
+from ....derivations.coning import published as P
+from ...core import quaternion as quat
+from ...core.dual import Dual
+from ...core.units import rad
+from ..precession import RegularPrecession
 
 __all__ = ["PrintedFormulaChecks", "printed_formula_checks", "CHECK_POINTS", "CHECK_TIMES", "CHECK_SPAN", "CHECK_MOTION"]
 

@@ -41,8 +41,8 @@ import numpy as np
 
 from ..core import quaternion as quat
 from ..core.validation import positive
-from .alignment_estimate import AlignmentEstimate
 from .earth import earth_rate_ned, gravity_ned
+from .estimate import AlignmentEstimate
 from .imu import ImuRecord
 from .preintegration import chain_rotations, preintegrate
 from .tilt_attitude import angles_from_matrix
@@ -161,7 +161,7 @@ def inertial_alignment(record: ImuRecord, *, epoch: float = 1.0, observation: st
 
     Examples
     --------
-    >>> from strapdown.analysis.gyrocompass.imu import Scenario, simulate_imu
+    >>> from strapdown.analysis.alignment.imu import Scenario, simulate_imu
     >>> rec = simulate_imu(Scenario(math.radians(50), heading=2.0, duration=60.0, sample_rate=20.0), n_trials=1, rng=0)
     >>> abs(float(inertial_alignment(rec).heading_error[0])) < 1e-7
     True

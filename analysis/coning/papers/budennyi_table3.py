@@ -28,16 +28,16 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...derivations.coning import drift as D
-from ...derivations.coning import published as P
-from ...derivations.coning.algorithms import Algorithm
-from ...derivations.coning.leading_drift import leading_drift, small_cone_limit
-from ...derivations.coning.registry import get
-from ..core.units import deg_per_h, rad
-from ..core.validation import positive
-from .drift_theory import asymptotic_drift, asymptotic_order, drift_series
-from .precession import RegularPrecession
-from .simulator import simulate
+from ....derivations.coning import drift as D
+from ....derivations.coning import published as P
+from ....derivations.coning.algorithms import Algorithm
+from ....derivations.coning.leading_drift import leading_drift, small_cone_limit
+from ....derivations.coning.registry import get
+from ...core.units import deg_per_h, rad
+from ...core.validation import positive
+from ..drift_theory import asymptotic_drift, asymptotic_order, drift_series
+from ..precession import RegularPrecession
+from ..simulator import simulate
 
 __all__ = [
     "Table3Conditions",

@@ -15,7 +15,7 @@ heading is then
     first order at ψ = 0.
 
 It estimates the stable attitude (the reference is the stable heading ψ0).
-Its theory is :func:`strapdown.analysis.gyrocompass.alignment_theory.analytic_theory`.
+Its theory is :func:`strapdown.analysis.alignment.theory.analytic_theory`.
 
 References
 ----------
@@ -28,8 +28,8 @@ import math
 
 import numpy as np
 
-from .alignment_estimate import AlignmentEstimate
-from .azimuth import relative_angle, tilt_components
+from ..gyrocompass.azimuth import relative_angle, tilt_components
+from .estimate import AlignmentEstimate
 from .imu import ImuRecord
 from .tilt_attitude import tilts_from_specific_force
 
@@ -64,7 +64,7 @@ def analytic_alignment(record: ImuRecord, *, formula: str = "levelled") -> Align
 
     Examples
     --------
-    >>> from strapdown.analysis.gyrocompass.imu import Scenario, simulate_imu
+    >>> from strapdown.analysis.alignment.imu import Scenario, simulate_imu
     >>> rec = simulate_imu(Scenario(math.radians(50), heading=0.3, beta0=0.01, gamma0=-0.02, duration=10.0), n_trials=1, rng=0)
     >>> est = analytic_alignment(rec)
     >>> abs(float(est.heading_error[0])) < 1e-12

@@ -26,17 +26,17 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
-from ...derivations.coning import drift as D
-from ...derivations.coning.algorithms import Algorithm, second_order_defect
-from ...derivations.coning.polynomial_fit import polynomial_fit_coefficients
-from ...derivations.coning.published import PSINS_TABLE_10_1_N6, PUBLISHED_ALGORITHM_COEFFICIENTS, PUBLISHED_ALGORITHM_ERRORS
-from ...derivations.coning.registry import get
-from ..core.cache import derived
-from ..core.validation import positive
-from .drift_theory import algorithm_key
-from .precession import RegularPrecession
-from .sculling_motion import ScullingMotion, rectification_error
-from .simulator import simulate
+from ....derivations.coning import drift as D
+from ....derivations.coning.algorithms import Algorithm, second_order_defect
+from ....derivations.coning.polynomial_fit import polynomial_fit_coefficients
+from ....derivations.coning.published import PSINS_TABLE_10_1_N6, PUBLISHED_ALGORITHM_COEFFICIENTS, PUBLISHED_ALGORITHM_ERRORS
+from ....derivations.coning.registry import get
+from ...core.cache import derived
+from ...core.validation import positive
+from ..drift_theory import algorithm_key
+from ..precession import RegularPrecession
+from ..sculling_motion import ScullingMotion, rectification_error
+from ..simulator import simulate
 
 __all__ = [
     "FigureCheck",
