@@ -30,10 +30,11 @@ subpackage         analysis (numerics)                         derivations (SymP
                    rocking models, azimuth Monte Carlo, bound  (14)–(15), published formulas
                    sweeps, finite-sample statistics of (16),
                    admissible rocking
-``alignment``      self-alignment of the whole system: rocking gains of the linearised analytic
-                   base and IMU model, analytic, inertial and  alignment
-                   Kalman alignment, theory of every error
-                   term, admissible rocking per method
+``alignment``      self-alignment of the whole system:         gains of the linearised analytic
+                   rocking base and IMU model, analytic,       alignment
+                   inertial and Kalman alignment, theory of
+                   every error term, admissible rocking per
+                   method
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

@@ -336,7 +336,7 @@ def _analytic_percentile(th, budget, level, cap, rocking):
 
     With a Gaussian part the percentile reaches the budget where
     ``P(|e| ≤ budget)`` falls to the level: one probability per step of the
-    root search in a (:func:`.error_distribution.abs_error_probability`), not a
+    root search in a (:func:`~strapdown.analysis.gyrocompass.error_distribution.abs_error_probability`), not a
     percentile (itself a root search); without one, the percentile of the
     phase grid.
     """

@@ -533,7 +533,7 @@ def fine_alignment_loop(
     C0, v0, dR, velocity, moment, noise, end_rate, C_true, v_true, eps_true, acc_true, rock_true,
     earth_turn, earth_rate_skew, gravity, epoch, lever_arm, lever_arm_known, F_rocking, H, gains, posterior_inv, innovation_inv,
 ):  # fmt: skip
-    """The epoch loop of the fine-alignment filter for every trial (the loop of :func:`.fine_alignment.fine_alignment`).
+    """The epoch loop of the fine-alignment filter for every trial (the loop of :func:`~strapdown.analysis.alignment.fine.fine_alignment`).
 
     Parameters
     ----------
