@@ -35,7 +35,7 @@ print("j ∘ i =", quat.multiply(j, i))
 
 # %%
 # The attitude maps the body frame E to the reference frame I
-# ----------------------------------------------------------
+# -----------------------------------------------------------
 # A body turned by 90° about the common z axis: its x axis (in E) points along
 # the y axis of I. The rotation vector of that attitude is ``(0, 0, π/2)``.
 attitude = quat.rotvec_to_quat(np.array([0.0, 0.0, np.pi / 2]))
