@@ -51,7 +51,7 @@ extensions = [
 ]
 
 templates_path = ["_templates"]
-exclude_patterns = ["_build", "examples", "Thumbs.db", ".DS_Store", "**/sg_execution_times.rst"]
+exclude_patterns = ["_build", "examples", "Thumbs.db", ".DS_Store"]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 nitpicky = False
@@ -88,7 +88,7 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "show_signature": False,
     "min_reported_time": 1,
-    "write_computation_times": True,
+    "write_computation_times": False,  # its page would load jQuery from a CDN
     "capture_repr": (),  # output is what the scripts print, not the repr of a last expression
     "image_scrapers": ("matplotlib",),
     "thumbnail_size": (320, 224),

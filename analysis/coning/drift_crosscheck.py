@@ -56,7 +56,7 @@ class DriftRatios(NamedTuple):
         return np.abs(self.ratios - 1)
 
 
-def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 8.0, algorithms=None) -> tuple:
+def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 8.0, algorithms=None, engine: str = "auto") -> tuple:
     """u*/u_a for every algorithm and motion over a grid of steps.
 
     Parameters
@@ -69,6 +69,10 @@ def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 
         Length of each simulated run [s].
     algorithms : sequence of str or Algorithm, keyword-only, optional
         Default: the whole registry.
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -90,7 +94,7 @@ def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 
         for alg in algs:
             ratios = []
             for H in big_h:
-                r = simulate(alg, motion, H / alg.samples, duration)
+                r = simulate(alg, motion, H / alg.samples, duration, engine=engine)
                 ua = float(asymptotic_drift(alg, eps=motion.eps, nu=motion.nu, nutation=motion.nutation, step=H))
                 ratios.append(float(np.linalg.norm(r.drift)) / ua)
             out.append(DriftRatios(alg.name, motion.eps, int(asymptotic_order(alg, motion.eps, motion.nutation)), big_h, np.array(ratios)))

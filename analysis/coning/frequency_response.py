@@ -121,7 +121,7 @@ class SimulatorCheck:
         return self.simulated / (self.cone_angle**2 * self.nu)
 
 
-def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> SimulatorCheck:
+def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto") -> SimulatorCheck:
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
 
     The motion is (4.1) with ε = −1, ϑ = α, ν = ω, the initial attitude the
@@ -142,6 +142,10 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         Coning rate ω [rad/s], > 0.
     periods : int, keyword-only
         Length of the run in coning periods 2π/ω (≥ 1).
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -172,7 +176,7 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         return SimulatorCheck(**common, simulated=None, note="drift below the round-off floor of the run")
     motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, motion, h, duration)
+        run = simulate(algorithm, motion, h, duration, engine=engine)
     except ValueError as exc:
         return SimulatorCheck(**common, simulated=None, note=f"not run by the simulator: {exc}")
     return SimulatorCheck(**common, simulated=float(run.drift @ -motion.precession_axis()))
@@ -284,7 +288,9 @@ class FrequencyResponse:
         return max((abs(c.relative_difference) for c in self.simulated_checks), default=float("nan"))
 
 
-def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> ConingResponse:
+def coning_response(
+    algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto"
+) -> ConingResponse:
     """The coning drift ``D(ωh)`` of one algorithm, with simulator checks.
 
     Parameters
@@ -295,7 +301,7 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
         x = ωh [rad], > 0.
     check_omega_h : sequence of float, keyword-only
         Points x [rad] of the parallel computation.
-    cone_angle, nu, periods : keyword-only
+    cone_angle, nu, periods, engine : keyword-only
         As in :func:`simulator_check`.
 
     Returns
@@ -312,7 +318,7 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
         raise ValueError(f"Expected `omega_h` > 0, got {x[x <= 0].ravel()[0]:g}")
     order, coefficient, q_order, q_coeff = derived(f"coning:leading-coning-terms:v1:{algorithm_key(algorithm)}", lambda: _leading_terms(algorithm))
     values = np.asarray(coning_drift_function(algorithm)(x), dtype=float)
-    checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods) for c in check_omega_h)
+    checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods, engine=engine) for c in check_omega_h)
     return ConingResponse(algorithm, order, coefficient, x, values, checks, q_order, q_coeff)
 
 
@@ -326,7 +332,7 @@ def _leading_terms(algorithm: Algorithm) -> tuple:
 
 
 def coning_frequency_response(
-    algorithms, omega_h=None, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50
+    algorithms, omega_h=None, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto"
 ) -> FrequencyResponse:
     """Coning drift against ωh for several algorithms (see :func:`coning_response`).
 
@@ -338,7 +344,7 @@ def coning_frequency_response(
         x = ωh [rad]; default 200 points from 10⁻² to π/2, log-spaced.
     check_omega_h : sequence of float, keyword-only
         Points x [rad] of the parallel computation.
-    cone_angle, nu, periods : keyword-only
+    cone_angle, nu, periods, engine : keyword-only
         As in :func:`simulator_check`.
 
     Returns
@@ -364,7 +370,7 @@ def coning_frequency_response(
         if not isinstance(a, Algorithm):
             raise TypeError(f"Expected `algorithms` to hold Algorithm objects, got {type(a).__name__}")
     x = np.geomspace(1e-2, math.pi / 2, 200) if omega_h is None else as_array(omega_h, "omega_h")
-    responses = tuple(coning_response(a, x, check_omega_h=check_omega_h, cone_angle=cone_angle, nu=nu, periods=periods) for a in algorithms)
+    responses = tuple(coning_response(a, x, check_omega_h=check_omega_h, cone_angle=cone_angle, nu=nu, periods=periods, engine=engine) for a in algorithms)
     return FrequencyResponse(x, responses)
 
 

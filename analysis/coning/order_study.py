@@ -53,7 +53,7 @@ class DriftOrder(NamedTuple):
     slope: float
 
 
-def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), duration: float = 20.0, algorithms=None) -> tuple:
+def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), duration: float = 20.0, algorithms=None, engine: str = "auto") -> tuple:
     """Drift rate against the step for each algorithm under ``motion``, with the fitted order.
 
     Parameters
@@ -66,6 +66,10 @@ def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), d
         Length of each run [s].
     algorithms : sequence of str or Algorithm, keyword-only, optional
         Default: the whole registry.
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -83,7 +87,7 @@ def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), d
     big_h = np.array([positive(H, "steps") for H in steps])
     out = []
     for alg in (get(a) if isinstance(a, str) else a for a in (algorithms if algorithms is not None else names())):
-        drifts = np.array([float(np.linalg.norm(simulate(alg, motion, H / alg.samples, duration).drift, axis=-1)) for H in big_h])
+        drifts = np.array([float(np.linalg.norm(simulate(alg, motion, H / alg.samples, duration, engine=engine).drift, axis=-1)) for H in big_h])
         out.append(DriftOrder(alg.name, big_h, drifts, float(np.polyfit(np.log(big_h), np.log(drifts), 1)[0])))
     return tuple(out)
 

@@ -24,8 +24,8 @@ import inspect
 import pkgutil
 from pathlib import Path
 
-from sphinx.pycode import ModuleAnalyzer
 from sphinx.errors import PycodeError
+from sphinx.pycode import ModuleAnalyzer
 from sphinx.util import logging
 
 logger = logging.getLogger(__name__)
