@@ -1,4 +1,4 @@
-"""
+r"""
 Conventions: quaternions, frames, rotation vectors, units
 =========================================================
 
@@ -8,12 +8,18 @@ one at work, so that a number printed by the package can be read without
 guessing.
 
 * **Quaternions** are scalar first, ``(q0, q1, q2, q3)``, stored as arrays of
-  shape ``(..., 4)``; the product ``∘`` is Hamilton's (``i ∘ j = k``).
+  shape ``(..., 4)``; the product ∘ is Hamilton's (:math:`i\circ j = k`).
 * **Vectors** are arrays of shape ``(..., 3)``. Leading axes are batch or time.
 * **Frames**: E is the body frame, I the reference (inertial) frame. The
-  attitude quaternion Λ maps E to I, ``v_I = Λ ∘ v_E ∘ Λ̄``, and obeys
-  ``2 Λ' = Λ ∘ ω`` with ω the body rate resolved in E.
-* **Rotation vectors** φ give ``Λ = (cos(|φ|/2), sin(|φ|/2) φ/|φ|)``.
+  attitude quaternion Λ maps E to I and obeys the kinematic equation with the
+  body rate ω resolved in E:
+
+  .. math::
+
+     v_I = \Lambda\circ v_E\circ\bar\Lambda, \qquad 2\dot\Lambda = \Lambda\circ\omega.
+
+* **Rotation vectors** φ give
+  :math:`\Lambda = (\cos\tfrac{|\varphi|}{2},\ \sin\tfrac{|\varphi|}{2}\,\varphi/|\varphi|)`.
 * **Units** are SI, angles in radians; degrees and deg/h appear only at the
   command line and in the reports, through :mod:`strapdown.analysis.core.units`.
 """
@@ -72,6 +78,6 @@ print("|2Λ' − ω∘Λ| =", np.abs(lhs - left).max(), "  (the other order: not
 # -----------------------
 # Inside the library a rate is in rad/s and an angle in radians. The factors
 # live in one module; the command line and the reports convert with them.
-print("1 deg =", units.rad(1.0), "rad")
-print("1e-6 rad/s =", units.deg_per_h(1e-6), "deg/h")
-print("0.1 deg/h =", units.rad_per_s(0.1), "rad/s")
+print(f"1 deg = {units.rad(1.0):.10f} rad")
+print(f"1e-6 rad/s = {units.deg_per_h(1e-6):.6f} deg/h")
+print(f"0.1 deg/h = {units.rad_per_s(0.1):.6e} rad/s")

@@ -1,24 +1,31 @@
-"""
+r"""
 The sign of errors
 ==================
 
 An error has a sign, and the package gives it one convention per kind of
-error (package docstring of :mod:`strapdown.analysis`, "Errors"):
+error (package docstring of :mod:`strapdown.analysis`, "Errors").
 
-* **Errors of an algorithm** against the exact motion (coning, sculling) are
-  *exact minus algorithm*, on the symbolic side and the numeric side alike:
+**Errors of an algorithm** against the exact motion (coning, sculling) are
+*exact minus algorithm*, on the symbolic side and the numeric side alike:
 
-  - the local error of a step is ``δφ = Δφ_exact − Δφ_algorithm``;
-  - the attitude error is the rotation vector of ``Λ_true ∘ Λ̄_computed``,
-    ``δφ_I``, components in frame I, so that ``Λ_true = exp(δφ_I) ∘ Λ_computed``;
-  - apparent-velocity errors are ``ΔW = W_true − W_computed``;
-  - a drift is the slope of these errors and keeps their sign. Under coning,
-    **u > 0 means that the computed attitude lags the coning rotation**; a
-    rectification (sculling) error is positive when the algorithm
-    under-rectifies.
+.. math::
 
-* **Errors of an estimator** against the truth (the corrected attitude stages,
-  the alignment filters) are *estimate minus truth*, as for any estimator.
+   \delta\varphi = \Delta\varphi_{\mathrm{exact}} - \Delta\varphi_{\mathrm{algorithm}},
+   \qquad
+   \Lambda_{\mathrm{true}} = \exp(\delta\varphi_I)\circ\Lambda_{\mathrm{computed}},
+   \qquad
+   \Delta W = W_{\mathrm{true}} - W_{\mathrm{computed}}.
+
+The first is the local error of one step; the second defines the attitude
+error :math:`\delta\varphi_I`, the rotation vector of
+:math:`\Lambda_{\mathrm{true}}\circ\bar\Lambda_{\mathrm{computed}}` with
+components in frame I; the third the apparent-velocity errors (in E or I). A
+drift is the slope of these errors and keeps their sign. Under coning,
+**u > 0 means that the computed attitude lags the coning rotation**; a
+rectification (sculling) error is positive when the algorithm under-rectifies.
+
+**Errors of an estimator** against the truth (the corrected attitude stages,
+the alignment filters) are *estimate minus truth*, as for any estimator.
 
 This page checks the first convention three independent ways on one case:
 the two-sample algorithm under 1° of coning at 10 Hz.

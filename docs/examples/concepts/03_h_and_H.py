@@ -54,9 +54,10 @@ print(f"sample_interval = H by mistake: {deg_per_h(wrong.drift_rate):.1f} deg/h,
 # Coefficients per h and per H
 # ----------------------------
 # The closed-form coning drift is written in the sample interval,
-# ``u = c α² ω (ωh)^m``, because algorithms are compared at the same gyro data
-# rate. Tables of the literature often write it in the step,
-# ``u = c_H α² ω (ωH)^m``, with ``c_H = c / N^m``. Both are exact fractions:
+# :math:`u = c\,\alpha^2\omega(\omega h)^m`, because algorithms are compared at
+# the same gyro data rate. Tables of the literature often write it in the step,
+# :math:`u = c_H\,\alpha^2\omega(\omega H)^m` with :math:`c_H = c/N^m`. Both
+# are exact fractions:
 for name in ("two-sample", "miller-3", "panov-4s-1"):
     d = coning_drift(get(name))
     print(f"{name:>11}: N = {d.samples}, m = {d.order}, c = {d.coefficient}, c_H = {d.step_coefficient}")

@@ -1,4 +1,4 @@
-"""
+r"""
 Three orders
 ============
 
@@ -7,22 +7,27 @@ coning-optimised algorithms of the literature they differ. The package keeps
 them apart and names each:
 
 **Local-error order ρ** — a property of the algorithm alone. Over one step the
-error of the rotation-vector increment is ``O(h^(ρ+1))`` for a *general* motion
-(:func:`strapdown.derivations.coning.series.local_error`; the ``order`` column
-of ``strapdown algorithms list``).
+error of the rotation-vector increment is :math:`O(h^{\rho+1})` for a *general*
+motion (:func:`~strapdown.derivations.coning.series.local_error`; the ``order``
+column of ``strapdown algorithms list``).
 
 **Coning-drift order m** — under classical coning (half-cone angle α, rate ω)
-the drift is ``u = c α² ω (ωh)^m + O(α⁴)``: m is the power of ``ωh`` of the
-leading α² term (:func:`strapdown.derivations.coning.drift.coning_drift`;
-``strapdown derive coning-drift``). Coning-optimised algorithms raise m far
-above ρ.
+the drift is
+
+.. math::
+
+   u = c\,\alpha^2\,\omega\,(\omega h)^m + O(\alpha^4),
+
+and m is the power of ωh of the leading α² term
+(:func:`~strapdown.derivations.coning.drift.coning_drift`; ``strapdown derive
+coning-drift``). Coning-optimised algorithms raise m far above ρ.
 
 **Drift order at a motion** — the power of the step in the drift actually seen
-at a given motion, every power of the angle included: ``u_a = K H^ρ`` with the
-leading nonvanishing term of the drift series
-(:func:`strapdown.analysis.coning.drift_theory.asymptotic_order`; the
-"drift order" that ``strapdown drift`` prints). At a finite cone angle the α⁴
-term has its own, lower power of ``ωh``; below some sample rate it wins.
+at a given motion, every power of the angle included: :math:`u_a = K H^{\rho}`
+with the leading nonvanishing term of the drift series
+(:func:`~strapdown.analysis.coning.drift_theory.asymptotic_order`; the "drift
+order" that ``strapdown drift`` prints). At a finite cone angle the α⁴ term
+has its own, lower power of ωh; below some sample rate it wins.
 """
 
 import matplotlib.pyplot as plt

@@ -1,13 +1,17 @@
-"""
+r"""
 The dual extension: velocity from attitude
 ==========================================
 
 Lebedev & Panov (1989) treat attitude and apparent velocity together with dual
-numbers ``x + s x°``, ``s² = 0``. By the transfer principle
-(Kotelnikov–Study), a formula valid for real arguments stays valid for dual
-ones, and the dual part of ``f(x + s x°)`` is the directional derivative
-``f'(x) x°``: the dual extension of a real formula is forward-mode
-differentiation.
+numbers :math:`x + s\,x^\circ`, :math:`s^2 = 0`. By the transfer principle
+(Kotelnikov–Study) a formula valid for real arguments stays valid for dual
+ones, and
+
+.. math::
+
+   f(x + s\,x^\circ) = f(x) + s\,f'(x)\,x^\circ :
+
+the dual extension of a real formula is forward-mode differentiation.
 
 The package uses this once and everywhere. :class:`~strapdown.analysis.core.dual.Dual`
 is an array type that numpy ufuncs accept, so every routine written with
@@ -15,13 +19,14 @@ ordinary numpy operations evaluates its own dual extension when handed a
 ``Dual``. In particular:
 
 * the **velocity (sculling) algorithm** is the coning algorithm evaluated on
-  dual increments ``q_j = p_j + s b_j`` (gyro and accelerometer increments),
-  eq. (2.5) — no second formula is written;
+  dual increments :math:`q_j = p_j + s\,b_j` (gyro and accelerometer
+  increments), eq. (2.5) — no second formula is written;
 * the **dual regular precession** (4.2)–(4.3) is the real one evaluated at the
-  dual parameters ``ν + s ν°``, ``ϑ + s ϑ°``: its dual part is the apparent
-  acceleration;
-* the **biquaternion** ``θ = Λ + s M`` of a dual rotation vector, (1.12), is the
-  dual extension of the real map from rotation vector to quaternion.
+  dual parameters :math:`\nu + s\,\nu^\circ`, :math:`\vartheta + s\,\vartheta^\circ`:
+  its dual part is the apparent acceleration;
+* the **biquaternion** :math:`\theta = \Lambda + s M` of a dual rotation vector,
+  (1.12), is the dual extension of the real map from rotation vector to
+  quaternion.
 """
 
 import numpy as np
