@@ -48,6 +48,7 @@ extensions = [
     "myst_parser",
     "sphinx_gallery.gen_gallery",
     "api_pages",  # one API page per module, generated from the installed packages (_ext/api_pages.py)
+    "repository_links",  # a link to a repository file outside docs/ shows its path (_ext/repository_links.py)
 ]
 
 templates_path = ["_templates"]
