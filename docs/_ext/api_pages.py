@@ -2,8 +2,9 @@
 
 At ``builder-inited`` the packages named in ``api_packages`` are walked
 (:func:`pkgutil.walk_packages`), and each module gets a page
-``api/generated/<module>.rst``: the module docstring, a summary table and the
-full documentation of every public name.  Nothing is kept by hand: a module
+``api/generated/<module>.rst``: the module docstring, a summary table (unless
+the docstring holds its own ``autosummary`` of the module's API) and the full
+documentation of every public name.  Nothing is kept by hand: a module
 added to the package appears in the reference at the next build.
 
 A module's public names are its ``__all__``; a module without ``__all__``
@@ -121,7 +122,7 @@ def module_page(name: str, submodules: list) -> str:
     documented = _documented_attributes(name) if api["data"] else set()
     # the summary takes a name's first docstring line: undocumented data would show its type's
     listed = api["classes"] + api["functions"] + [n for n in api["data"] if n in documented]
-    if listed:
+    if listed and ".. autosummary::" not in (module.__doc__ or ""):  # a docstring that lists its API needs no second table
         lines += [".. rubric:: Summary", "", ".. autosummary::", "   :nosignatures:", ""]
         lines += [f"   {n}" for n in listed]
         lines.append("")
