@@ -55,6 +55,7 @@ __all__ = [
     "increment_source",
     "kernel_source",
     "kernel",
+    "compiled_module",
     "parameter_rows",
     "advance",
     "chunk_steps",
@@ -384,7 +385,24 @@ def kernel(algorithm: Algorithm, *, velocity: bool):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
     if not available():
         raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
-    text = kernel_source(algorithm, velocity=velocity)
+    return compiled_module(kernel_source(algorithm, velocity=velocity)).run
+
+
+def compiled_module(text: str):
+    """Import the generated module ``text``, written once under the kernel directory by its digest.
+
+    Its ``numba.njit(cache=True)`` functions compile on first use and are
+    loaded from numba's cache afterwards, in any process.
+
+    Parameters
+    ----------
+    text : str
+        Source of the module.
+
+    Returns
+    -------
+    module
+    """
     digest = hashlib.sha256(text.encode()).hexdigest()[:24]
     with _lock:
         if digest in _loaded:
@@ -395,8 +413,8 @@ def kernel(algorithm: Algorithm, *, velocity: bool):
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         spec.loader.exec_module(module)
-        _loaded[digest] = module.run
-        return module.run
+        _loaded[digest] = module
+        return module
 
 
 # --------------------------------------------------------------------------- running

@@ -1,0 +1,101 @@
+"""Vibration environments: the closed-form drift of a 200-point spectrum, and the Monte Carlo's gyro samples per second.
+
+* ``environment_drift`` of a two-sample algorithm in an environment with one
+  spectrum of 200 table frequencies (10 Hz–2 kHz, a coherent coning part),
+  Butterworth-2 analog and digital filters per axis, decimation by 4: wall
+  time of one call, best of ``--repeats`` (target < 1 s), and of the first
+  call in the process (which loads the algorithm's compiled D from the cache);
+* the Monte Carlo (``monte_carlo_drift``), gyro (sensor) samples per second
+  on one core — per second of the process's CPU time (what the core gave it,
+  the figure that does not move with the load of a shared machine) and per
+  wall second — its kernel compiled beforehand (target ≥ 5·10⁶ /s): one
+  coning line through first-order filters (one sinusoid per realisation), the
+  same with the velocity (sculling) channels, and the package's qualification
+  environment (three lines and a spectrum of 16 random sinusoids per
+  realisation).
+
+Run pinned: ``taskset -c 0 python benchmarks/bench_environment.py [--quick]``.
+"""
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import argparse  # noqa: E402
+import math  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from strapdown.analysis.coning.environment import Environment, Spectrum, coning_line, load_environment  # noqa: E402
+from strapdown.analysis.coning.environment_examples import QUALIFICATION  # noqa: E402
+from strapdown.analysis.coning.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter  # noqa: E402
+from strapdown.analysis.coning.vibration_drift import environment_drift  # noqa: E402
+from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift  # noqa: E402
+from strapdown.derivations.coning.registry import get  # noqa: E402
+
+
+def spectrum_environment(points: int = 200) -> Environment:
+    """One spectrum of ``points`` table frequencies, per-axis filters, decimation by 4."""
+    f = np.geomspace(10.0, 2000.0, points)
+    s = 1e-4 * (f / 100.0) ** -0.5
+    g = np.zeros((points, 6, 6), dtype=complex)
+    g[:, 0, 0] = g[:, 1, 1] = s
+    g[:, 2, 2] = 0.5 * s
+    g[:, 0, 1] = -0.4j * s * (1 + 0.1 * np.sin(f / 50.0))
+    g[:, 1, 0] = np.conj(g[:, 0, 1])
+    analog = lambda fc: analog_filter("butterworth", cutoff_hz=fc, order=2)  # noqa: E731
+    dlpf = digital_filter("butterworth", cutoff_hz=184.0, order=2)
+    gyro = Sensor((ChannelFilter(analog(250.0), dlpf), ChannelFilter(analog(270.0), dlpf), ChannelFilter(analog(250.0), dlpf)), 4)
+    return Environment((), (Spectrum(f, g, "200-point spectrum"),), gyro, Sensor(gyro.axes, 4), "bench")
+
+
+def closed_form(repeats: int) -> list:
+    env = spectrum_environment()
+    alg = get("two-sample")
+    t0 = time.perf_counter()
+    environment_drift(alg, env, 1e-3)
+    first = time.perf_counter() - t0
+    best = math.inf
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        environment_drift(alg, env, 1e-3)
+        best = min(best, time.perf_counter() - t0)
+    return [("closed-form drift, 200-point spectrum, first call in the process [s]", f"{first:.3f}", "< 1"), ("closed-form drift, 200-point spectrum, best call [s]", f"{best:.4f}", "< 1")]
+
+
+def monte_carlo(quick: bool) -> list:
+    lp = ChannelFilter(analog_filter("lowpass1", cutoff_hz=100.0))
+    line = Environment((coning_line(10.0, math.radians(1.0)),), (), Sensor((lp,) * 3), Sensor((lp,) * 3))
+    qual = load_environment(QUALIFICATION)
+    cases = [
+        ("one coning line, first-order filters", line, 1e-3, False, 20 if quick else 60, 5.0),
+        ("one coning line, with the velocity channels", line, 1e-3, True, 10 if quick else 30, 5.0),
+        ("qualification environment (3 lines + 16 band sinusoids)", qual, 1e-3, False, 10 if quick else 30, 2.0),
+    ]
+    rows = []
+    for label, env, h, velocity, pairs, duration in cases:
+        monte_carlo_drift(get("two-sample"), env, h, pairs=2, duration=0.05, rng=0, velocity=velocity)  # compile or load the kernel
+        t0, c0 = time.perf_counter(), time.process_time()
+        mc = monte_carlo_drift(get("two-sample"), env, h, pairs=pairs, duration=duration, rng=1, velocity=velocity)
+        dt, dc = time.perf_counter() - t0, time.process_time() - c0
+        rows.append((f"Monte Carlo, {label} [gyro samples per CPU second; per wall second]", f"{mc.sensor_samples / dc:.3g}; {mc.sensor_samples / dt:.3g}", "≥ 5e6"))
+    return rows
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller runs")
+    parser.add_argument("--repeats", type=int, default=5, help="repeats of the closed form (best is kept)")
+    args = parser.parse_args()
+    rows = closed_form(args.repeats) + monte_carlo(args.quick)
+    print("| measurement | value | target |")
+    print("|---|---:|---|")
+    for name, value, target in rows:
+        print(f"| {name} | {value} | {target} |")
+    print(f"\nload average {os.getloadavg()[0]:.2f} (pinned runs share the core with anything else scheduled on it)")
+
+
+if __name__ == "__main__":
+    main()
