@@ -50,8 +50,8 @@ FIGURE_PAGES = (
     "concepts/04_three_orders.html",
     "concepts/05_precession_and_coning.html",
     "tasks/01_algorithm_and_rate.html",
-    "tasks/03_stage_stability.html",
-    "tasks/04_alignment_design.html",
+    "tasks/05_stage_stability.html",
+    "tasks/06_alignment_design.html",
 )
 
 INSPECT = r"""

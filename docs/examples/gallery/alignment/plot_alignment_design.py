@@ -11,7 +11,7 @@ curves are Monte Carlo root searches with common random numbers, with the
 interval of the rms amplitude as a band, and circles are independent Monte
 Carlo checks (:func:`~strapdown.analysis.alignment.design.design_check`).
 The dotted curve is the paper's tilt channel. The task page
-:doc:`../../tasks/04_alignment_design` walks through the same design.
+:doc:`../../tasks/06_alignment_design` walks through the same design.
 
 Report figure ``azimuth-alignment-design.png`` (two frequencies, 16 trials
 and a loose tolerance, as in the quick report; the full report runs six
