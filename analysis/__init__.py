@@ -39,6 +39,11 @@ subpackage         analysis (numerics)                         derivations (SymP
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================
 
+Beside them, ``coning.integrators`` takes algorithms that exist only as code (a
+function, an object updated one sample at a time, a compiled C function, a
+peer's integrator) through one black-box interface, identifies them as exact
+algorithms and runs the ``coning`` machinery on them (``strapdown identify``).
+
 Conventions (stated once, used everywhere in :mod:`strapdown.analysis` and :mod:`strapdown.derivations`)
 --------------------------------------------------------------------------------------------------------
 Quaternions

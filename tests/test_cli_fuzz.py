@@ -19,8 +19,9 @@ from cli_contract import leaf_parsers, options, run, violations, warm_up
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+ROOT = Path(__file__).resolve().parents[1]
 #: The environment file of the environment commands' baselines.
-ENVIRONMENT = str(Path(__file__).resolve().parents[1] / "analysis" / "coning" / "environments" / "coning-10hz.toml")
+ENVIRONMENT = str(ROOT / "analysis" / "coning" / "environments" / "coning-10hz.toml")
 
 #: A valid, fast invocation of every command (the fuzz mutates one option at a time).
 BASELINES = {
@@ -37,6 +38,7 @@ BASELINES = {
     "design-sculling": None,  # needs an environment with sculling: its errors are fuzzed through design-coning's options
     "environment-drift": ["--algorithm", "two-sample", "--environment", ENVIRONMENT, "--sample-interval", "1e-3"],
     "environment-rates": ["--environment", ENVIRONMENT, "--budget-deg-per-h", "25", "--rates", "5", "--tuned-up-to", "2"],
+    "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
     "drift": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"],
     "multistage": ["--duration", "200", "--step", "0.1"],
     "report": None,  # writes files: fuzzed by test_report_output.py and the table below
@@ -95,6 +97,7 @@ _TRIPLE_REFUSED = ["1,2", "a,b,c", "nan,0,0", "1e999,0,0", "", "1,2,3,4"]
 _TRIPLE_EITHER = ["1e300,0,0", "-5,0,1e-300", "-1e300"]
 TEXT_REFUSED = {
     "--algorithm": ["no-such-algorithm", "", "x" * 5000, "../../etc/passwd"],
+    "--integrator": ["", "x" * 5000, "../../etc/passwd", "/etc/passwd:root", str(ROOT / "docs" / "integrator_examples.py"), str(ROOT / "docs") + ":f"],
     "--w0-m-s": _TRIPLE_REFUSED,
     "--attitude0": ["0,0,0,0", "nan,0,0,0", "1,0,0", "inf,0,0,0"],
     "--omega-h-rad": ["", "0", "-1", "a", "nan", "inf", "1,,2", "0.1,-0.1"],

@@ -1,0 +1,186 @@
+"""Peers' integrators as black boxes, fed like for like (``python-ins``, ``smsfusion``: dependencies of the package).
+
+pyins (``python-ins`` on the package index)
+    :func:`pyins_integrator` drives ``pyins.strapdown.Integrator``, the whole
+    strapdown loop (numba compiled): ``compute_increments_from_imu`` forms
+    ``θ_k`` from increment-type samples, and the loop multiplies the
+    body-to-navigation direction-cosine matrices by the step rotations.  Its
+    navigation frame is local-level on a rotating Earth; with the Earth rate
+    ``pyins.earth.RATE`` set to zero before its loop is compiled, the body at
+    rest at the equator (no specific force, ``with_altitude=False``), the
+    transport rate is zero and its frame is inertial: its matrices are our Λ
+    (E → I), multiplied on the right by each step, as ours.  Setting the rate
+    changes pyins's module in this process; its loop, compiled with that rate,
+    is cached by numba (next to pyins's source, or in numba's cache directory)
+    like this package's kernels, so that later processes do not compile it
+    again (pyins used without this adapter neither reads nor writes that
+    cache).  Its "before" sample is zero (the record starts from rest).  The attitude after every
+    N-th sample is its output.
+    :func:`pyins_increments` is its increment function alone
+    (``compute_increments_from_imu``, one sample per step): rotation vector
+    and velocity increment, coning and sculling.
+
+smsfusion
+    :func:`smsfusion_ins` drives ``smsfusion.StrapdownINS``, one sample per
+    ``update`` call, built with ``g = 0`` so that its velocity is the apparent
+    velocity W_I of the inertial frame (it has no Earth rate).  It takes rates
+    and specific forces, not increments: it is given the mean rate and the
+    mean specific force of each sample (``p/h``, ``b/h``), which over its
+    sample period integrate back to the same increments.  Its attitude and
+    velocity after every N-th sample are its output.
+
+Every adapter gives its peer exactly the increments the package's own
+algorithms get; the errors are measured against the same exact solution by
+:mod:`.verification`.
+
+Public API
+----------
+:func:`pyins_integrator`, :func:`pyins_increments`, :func:`smsfusion_ins`.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from ...core.validation import positive
+from .interface import Integrator, IntegratorError, step_increments
+
+__all__ = ["pyins_integrator", "pyins_increments", "smsfusion_ins"]
+
+_GYRO = ["gyro_x", "gyro_y", "gyro_z"]
+_ACCEL = ["accel_x", "accel_y", "accel_z"]
+
+
+def _pyins(sample_interval: float):
+    try:
+        import pyins.earth
+    except ImportError:
+        raise ImportError("pyins is not installed: it is a dependency of strapdown-analysis (the package index name is python-ins)") from None
+    # pyins's loop reads the Earth rate when numba compiles it, once per process: zero then gives an inertial
+    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); it is never
+    # cached to disk, so other processes and other users of the installation see pyins unchanged.
+    pyins.earth.RATE = 0.0
+    import pandas as pd
+    from pyins import strapdown
+
+    def imu(gyro, accel):
+        rows = np.hstack([gyro, accel])
+        rows = np.vstack([np.zeros((1, 6)), rows])  # pyins's "before" sample: the record starts from rest
+        return pd.DataFrame(rows, index=np.arange(rows.shape[0]) * sample_interval, columns=_GYRO + _ACCEL)
+
+    return pd, strapdown, imu
+
+
+def pyins_integrator(*, sample_interval: float = 0.0025) -> Integrator:
+    """pyins's ``Integrator`` (the whole strapdown loop) as a black box, attitude only.
+
+    Parameters
+    ----------
+    sample_interval : float, keyword-only
+        Time between samples [s] given to pyins (its increments do not depend on it).
+
+    Returns
+    -------
+    Integrator
+        Direction-cosine-matrix output.
+
+    Raises
+    ------
+    ImportError
+        If pyins is not installed.
+    IntegratorError
+        If pyins's Earth rate was compiled in before it could be set to zero
+        (its loop compiles once per process, at its first use).
+    """
+    h = positive(sample_interval, "sample_interval")
+    pd, strapdown, imu = _pyins(h)
+    start = pd.Series({"lat": 0.0, "lon": 0.0, "alt": 0.0, "VN": 0.0, "VE": 0.0, "VD": 0.0, "roll": 0.0, "pitch": 0.0, "heading": 0.0})
+
+    def run(gyro, samples_per_step):
+        n = gyro.shape[0]
+        inc = strapdown.compute_increments_from_imu(imu(gyro, np.zeros_like(gyro)), "increment")
+        with warnings.catch_warnings():  # pyins 1.0 passes pandas a keyword that pandas 3 deprecates
+            warnings.filterwarnings("ignore", message="The copy keyword is deprecated")
+            integ = strapdown.Integrator(start, with_altitude=False)
+        integ.integrate(inc)
+        return np.array(integ.mat_nb[1 : n + 1][samples_per_step - 1 :: samples_per_step])
+
+    integrator = Integrator(run, output="dcm", name="pyins Integrator")
+    rest = step_increments(integrator, np.zeros((4, 3)), 1).rotation
+    if np.abs(rest).max() > 0.0:
+        raise IntegratorError(
+            f"pyins's Integrator turns by {np.abs(rest).max():.3g} rad per sample at rest: its Earth rate was compiled in before it could be set "
+            "to zero (create this adapter before any other use of pyins's Integrator in the process)"
+        )
+    return integrator
+
+
+def pyins_increments(*, sample_interval: float = 0.0025) -> Integrator:
+    """pyins's ``compute_increments_from_imu`` (coning and sculling, one sample per step) as a black box.
+
+    Parameters
+    ----------
+    sample_interval : float, keyword-only
+        Time between samples [s] given to pyins (its increments do not depend on it).
+
+    Returns
+    -------
+    Integrator
+        Rotation-vector output with velocity; ``samples_per_step`` must be 1.
+
+    Raises
+    ------
+    ImportError
+        If pyins is not installed.
+    """
+    h = positive(sample_interval, "sample_interval")
+    _, strapdown, imu = _pyins(h)
+
+    def run(gyro, samples_per_step, accel):
+        if samples_per_step != 1:
+            raise ValueError(f"pyins forms one increment per sample: samples_per_step must be 1, got {samples_per_step}")
+        inc = strapdown.compute_increments_from_imu(imu(gyro, accel), "increment")
+        return inc[["theta_x", "theta_y", "theta_z"]].to_numpy(), inc[["dv_x", "dv_y", "dv_z"]].to_numpy()
+
+    return Integrator(run, velocity=True, name="pyins compute_increments_from_imu")
+
+
+def smsfusion_ins(*, sample_interval: float = 0.0025) -> Integrator:
+    """smsfusion's ``StrapdownINS`` as a black box (attitude and velocity, one ``update`` per sample).
+
+    Parameters
+    ----------
+    sample_interval : float, keyword-only
+        Sample period h [s]: smsfusion runs at ``fs = 1/h`` and is given the
+        mean rate ``p/h`` [rad/s] and mean specific force ``b/h`` [m/s²].
+
+    Returns
+    -------
+    Integrator
+        Quaternion output with velocity.
+
+    Raises
+    ------
+    ImportError
+        If smsfusion is not installed.
+    """
+    h = positive(sample_interval, "sample_interval")
+    try:
+        from smsfusion import StrapdownINS
+    except ImportError:
+        raise ImportError("smsfusion is not installed: it is a dependency of strapdown-analysis") from None
+    x0 = np.r_[np.zeros(6), 1.0, 0.0, 0.0, 0.0, np.zeros(6)]
+
+    def run(gyro, samples_per_step, accel):
+        ins = StrapdownINS(1.0 / h, x0, g=0.0)
+        q, v = [], []
+        for k in range(gyro.shape[0]):
+            ins.update(accel[k] / h, gyro[k] / h)
+            if (k + 1) % samples_per_step == 0:
+                q.append(ins.quaternion())
+                v.append(ins.velocity())
+        return np.array(q), np.array(v)
+
+    return Integrator(run, output="quaternion", velocity=True, name="smsfusion StrapdownINS")

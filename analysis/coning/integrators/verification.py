@@ -1,0 +1,556 @@
+"""The integrator itself against the exact solution: coning drift, sculling rate, local-error exponent.
+
+An identified algorithm is a model of an integrator; these checks run the
+integrator, not the model, and compare with the model's closed forms.
+
+Coning drift.  The integrator is fed the exact increments (2.1) of classical
+coning (:class:`~strapdown.analysis.coning.precession.RegularPrecession` with
+ε = −1, half-cone angle α, rate ν), preceded by warm-up steps from the same
+motion so that its memory is in steady state at t = 0; its steps are composed
+(:func:`~strapdown.analysis.coning.simulator.prefix_product`) from the exact
+attitude and compared with the exact attitude, Lebedev & Panov (1989), (4.4):
+``δφ_I = rotvec(Λ* ∘ Λ̄)``, exact minus computed.  The error one step adds,
+seen in frame I, has the same component along the cone axis
+``a = −(0, sin α, cos α)`` every step (the motion is equivariant), so that
+component grows linearly and its least-squares slope is the drift ``u``
+without the periodic bias of a finite run.  ``u = α² ν D(νh) + O(α⁴)``
+(:func:`strapdown.derivations.coning.drift.coning_drift`): the simulated
+``u / (α² ν)`` at the cone angles α_k = α_0 / 2^k is extrapolated to α → 0 by
+Richardson's scheme in α², with an uncertainty (the last two extrapolations'
+difference plus the round-off floor
+:func:`strapdown.analysis.core.roundoff.drift_floor` of each run, propagated
+through the weights), and compared with the closed form ``D(νh)`` of the
+identified algorithm.  A point is *resolved* when that uncertainty is below a
+tenth of the tolerance times ``|D|``; the check holds when every resolved point
+agrees within the tolerance (1e-6 relative by default) and at least one is
+resolved.  Nothing here shares code with the closed form: the truth is the
+exact attitude of the motion.
+
+Sculling rate.  The same under classical sculling
+(:class:`~strapdown.analysis.coning.sculling_motion.ScullingMotion`,
+amplitudes θ₀ and A): the integrator's velocity increments, rotated by its
+own attitude, are summed into ``W_I`` and compared with the exact apparent
+velocity (Jacobi–Anger series).  At ``νh = 2π/K`` a run of whole vibration
+periods makes the mean error rate exact: ``(ΔW_I(T) − ΔW_I(0))·e_n / T``.
+``rate / (θ₀ A)`` is extrapolated to θ₀ → 0 and compared with
+:meth:`~.sculling_terms.ScullingTerms.rectification_error`.
+
+Local-error exponent.  On
+:class:`~strapdown.analysis.coning.local_error.TumblingMotion` (no symmetry),
+the exponent of the one-step error of the integrator against the step, to be
+compared with ρ + 1 of the identified algorithm's series: the remainder
+changes the order only if the exponents part.
+
+Public API
+----------
+:data:`DRIFT_TOLERANCE`, :data:`OMEGA_H`, :data:`CONE_ANGLES`, :data:`SCULLING_PERIOD_SAMPLES`,
+:func:`sculling_points`,
+:data:`ANGLE_AMPLITUDES`, :class:`CheckPoint`, :class:`Check`,
+:func:`attitude_errors`, :func:`coning_drift_rate`, :func:`sculling_rate`,
+:func:`coning_drift_check`, :func:`sculling_check`,
+:func:`local_error_exponent`.
+
+References
+----------
+Lebedev & Panov (1989), eqs. (2.1), (4.1), (4.4); Savage (1998), part 2.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ....derivations.coning.algorithms import Algorithm
+from ...core import quaternion as quat
+from ...core.roundoff import drift_floor
+from ...core.validation import as_int, positive
+from ..drift_theory import coning_drift_function
+from ..local_error import TumblingMotion
+from ..precession import RegularPrecession
+from ..sculling_motion import ScullingMotion
+from ..simulator import drift_rate, prefix_product
+from .interface import Integrator, step_increments
+from .sculling_terms import ScullingTerms
+
+__all__ = [
+    "DRIFT_TOLERANCE",
+    "OMEGA_H",
+    "CONE_ANGLES",
+    "SCULLING_PERIOD_SAMPLES",
+    "sculling_points",
+    "ANGLE_AMPLITUDES",
+    "CheckPoint",
+    "Check",
+    "attitude_errors",
+    "coning_drift_rate",
+    "sculling_rate",
+    "coning_drift_check",
+    "sculling_check",
+    "local_error_exponent",
+]
+
+#: Relative tolerance of the simulated against the closed-form drift [dimensionless].
+DRIFT_TOLERANCE = 1e-6
+#: ωh of the coning check [rad].
+OMEGA_H = (0.25, 0.5, 1.0, 2.0)
+#: Half-cone angles α_k of the extrapolation to α → 0 [rad].
+CONE_ANGLES = (0.04, 0.02, 0.01, 0.005)
+#: Coning rate of the runs [rad/s] (the relative results do not depend on it).
+NU = 2.0 * math.pi
+#: Algorithm steps per coning run.
+STEPS = 200
+#: Samples per vibration period K of the sculling check (νh = 2π/K), before :func:`sculling_points` moves
+#: any that would make ν N h a multiple of π.
+SCULLING_PERIOD_SAMPLES = (24, 12, 6)
+#: Amplitudes θ₀_k of the extrapolation to θ₀ → 0 [rad].
+ANGLE_AMPLITUDES = (0.02, 0.01, 0.005, 0.0025)
+#: Vibration periods per sculling run.
+PERIODS = 16
+
+
+@dataclass(frozen=True)
+class CheckPoint:
+    """One frequency of a check: the integrator's simulated coefficient against the model's closed form.
+
+    Attributes
+    ----------
+    x : float
+        ωh (coning) or νh (sculling) [rad].
+    closed_form : float
+        The identified model's coefficient: ``D(ωh)`` (drift ``u = α² ω D``) or the
+        rectification rate over ``θ₀ A`` [dimensionless].
+    simulated : float
+        The integrator's, extrapolated to zero amplitude [dimensionless].
+    uncertainty : float
+        Of ``simulated``: extrapolation and round-off [dimensionless].
+    raw : tuple of float
+        The simulated coefficient at each amplitude, largest first.
+    tolerance : float
+        Relative tolerance of the agreement [dimensionless].
+    """
+
+    x: float
+    closed_form: float
+    simulated: float
+    uncertainty: float
+    raw: tuple
+    tolerance: float
+
+    @property
+    def relative_difference(self) -> float:
+        """``simulated / closed_form − 1`` (infinite when the closed form vanishes)."""
+        return self.simulated / self.closed_form - 1.0 if self.closed_form else math.inf
+
+    @property
+    def resolved(self) -> bool:
+        """The uncertainty is below a tenth of the tolerance times ``|closed_form|``: the point can decide."""
+        return self.uncertainty <= 0.1 * self.tolerance * abs(self.closed_form)
+
+    @property
+    def agrees(self) -> bool | None:
+        """Agreement within the tolerance (None for a point that is not resolved)."""
+        return abs(self.relative_difference) <= self.tolerance if self.resolved else None
+
+
+@dataclass(frozen=True)
+class Check:
+    """A simulated-against-closed-form check over several frequencies.
+
+    Attributes
+    ----------
+    quantity : str
+        What is compared.
+    points : tuple of CheckPoint
+        One per frequency.
+    amplitudes : tuple of float
+        Amplitudes of the extrapolation (cone angles α or θ₀) [rad].
+    """
+
+    quantity: str
+    points: tuple
+    amplitudes: tuple
+
+    @property
+    def resolved(self) -> tuple:
+        """The points that can decide."""
+        return tuple(p for p in self.points if p.resolved)
+
+    @property
+    def holds(self) -> bool | None:
+        """Every resolved point agrees (None when no point is resolved)."""
+        return all(p.agrees for p in self.resolved) if self.resolved else None
+
+    @property
+    def largest_difference(self) -> float | None:
+        """Largest ``|relative_difference|`` over the resolved points (None without any)."""
+        return max((abs(p.relative_difference) for p in self.resolved), default=None)
+
+
+def _richardson(values, errors):
+    """Extrapolate values at amplitudes halving each time to zero amplitude (errors even in the amplitude)."""
+    table, err = list(values), list(errors)
+    previous = table[-1]
+    m = 1
+    while len(table) > 1:
+        f = 4.0**m
+        previous = table[-1]
+        table = [(f * table[k + 1] - table[k]) / (f - 1) for k in range(len(table) - 1)]
+        err = [(f * err[k + 1] + err[k]) / (f - 1) for k in range(len(err) - 1)]
+        m += 1
+    return table[0], abs(table[0] - previous) + err[0]
+
+
+def _warmup(history: int, samples: int) -> int:
+    return -(-history // samples) + 1
+
+
+def attitude_errors(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, steps, *, history: int = 0):
+    """Run ``integrator`` on the exact increments of ``motion`` and return the attitude error after every step.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box.
+    samples_per_step : int
+        N.
+    motion : RegularPrecession
+        The motion (its exact attitude is the truth).
+    sample_interval : float
+        h [s].
+    steps : int
+        Steps compared (after the warm-up).
+    history : int, keyword-only
+        Samples before a step the integrator reads; ``⌈history/N⌉ + 1`` warm-up
+        steps from the same motion precede t = 0.
+
+    Returns
+    -------
+    time : ndarray, shape (steps + 1,)
+        Step ends [s], from 0.
+    error : ndarray, shape (steps + 1, 3)
+        ``δφ_I = rotvec(Λ* ∘ Λ̄)`` [rad], frame I, with Λ(0) = Λ*(0) = (1, 0, 0, 0).
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    h = positive(sample_interval, "sample_interval")
+    steps = as_int(steps, "steps", minimum=2)
+    warm = _warmup(history, n)
+    inc = motion.grid_increments(h, -warm * n, (warm + steps) * n)
+    rotation = step_increments(integrator, inc, n).rotation[warm:]
+    lam = prefix_product(quat.rotvec_to_quat(rotation, validate=False))
+    lam = np.concatenate([quat.identity((1,)), lam], axis=0)
+    time = np.arange(steps + 1) * n * h
+    # the general solution (1.8) through Λ*(0) = 1: Λ*(t) = Q̄(0) ∘ Q(t)
+    exact = quat.multiply(quat.conjugate(motion.attitude(0.0)), motion.attitude(time))
+    # rotvec(Λ* ∘ Λ̄) = −rotvec(Λ ∘ Λ̄*), as the simulator forms it
+    error = -quat.quat_to_rotvec(quat.multiply(lam, quat.conjugate(exact)), canonical=True, validate=False)
+    return time, error
+
+
+def coning_drift_rate(integrator: Integrator, samples_per_step, motion: RegularPrecession, sample_interval, *, steps: int = STEPS, history: int = 0) -> float:
+    """Simulated coning drift of ``integrator`` along the cone axis [rad/s], exact minus integrator.
+
+    The least-squares slope of the cone-axis component of :func:`attitude_errors`
+    (module docstring); the cone axis of the motion (ε = −1, nutation α) in
+    frame I is ``−(0, sin α, cos α)`` with the run starting at Λ(0) = 1.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box.
+    samples_per_step : int
+        N.
+    motion : RegularPrecession
+        Classical coning (ε = −1).
+    sample_interval : float
+        h [s].
+    steps : int, keyword-only
+        Steps of the run.
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+
+    Returns
+    -------
+    float
+        u [rad/s]; positive when the computed attitude lags the coning rotation.
+
+    Raises
+    ------
+    ValueError
+        If the motion is not coning (ε ≠ −1).
+    """
+    if not isinstance(motion, RegularPrecession) or motion.eps != -1.0:
+        raise ValueError(f"Expected `motion` to be classical coning, a RegularPrecession with eps = -1, got {motion!r}")
+    time, error = attitude_errors(integrator, samples_per_step, motion, sample_interval, steps, history=history)
+    axis = -np.array([0.0, math.sin(motion.nutation), math.cos(motion.nutation)])
+    return float(drift_rate(time, error) @ axis)
+
+
+def _sculling_run(integrator, n, motion, h, steps, warm):
+    """(rate along e_r × e_a [m/s²], its round-off floor) of one run of whole periods."""
+    dual = motion.grid_increments(h, -warm * n, (warm + steps) * n, dual=True)
+    out = step_increments(integrator, dual.re, n, dual.du)
+    lam = prefix_product(quat.rotvec_to_quat(out.rotation, validate=False))
+    lam = np.concatenate([quat.identity((1,)), lam], axis=0)
+    # W_I from t = 0 (the end of the warm-up), in the integrator's frame, and the exact
+    # solution from the same attitude and W_I = 0 at t = 0
+    w_end = np.sum(quat.rotate(lam[warm:-1], out.velocity[warm:]), axis=0)
+    t_total = steps * n * h
+    # the exact solution through the same attitude and W_I = 0 at t = 0 is θ = C ∘ P(t) with
+    # C = Λ(0) ∘ Q̄(0) (Lebedev & Panov 1989, (1.5)): its W_I(T) is C turning the motion's own
+    # apparent velocity W(T) (zero at t = 0), and e_r × e_a of the motion's frame is C e_n in frame I
+    c = quat.multiply(lam[warm], quat.conjugate(motion.attitude(0.0)))
+    w_exact = motion.apparent_velocity(t_total)
+    e_n = np.cross(motion.e_r, motion.e_a)
+    rate = float(w_exact @ e_n - quat.rotate(quat.conjugate(c), w_end) @ e_n) / t_total
+    return rate, 64 * float(np.finfo(float).eps) * float(np.abs(w_exact).max()) / t_total
+
+
+def sculling_rate(integrator: Integrator, samples_per_step, motion: ScullingMotion, sample_interval, *, periods: int = PERIODS, history: int = 0) -> float:
+    """Simulated rectification error rate of ``integrator`` along ``e_r × e_a`` [m/s²], exact minus integrator.
+
+    A run of whole vibration periods (``ν h = 2π/K``), its velocity increments
+    rotated by its own attitude and summed, against the exact apparent velocity
+    (module docstring).
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box (with ``velocity``).
+    samples_per_step : int
+        N.
+    motion : ScullingMotion
+        Classical sculling.
+    sample_interval : float
+        h [s]; ``2π / (ν h)`` must be a whole number.
+    periods : int, keyword-only
+        Vibration periods of the run (times N).
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+
+    Returns
+    -------
+    float
+        Rate [m/s²]; positive when the integrator under-rectifies.
+
+    Raises
+    ------
+    ValueError
+        If ``2π / (ν h)`` is not a whole number.
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    h = positive(sample_interval, "sample_interval")
+    per_period = 2 * math.pi / (motion.nu * h)
+    if abs(per_period - round(per_period)) > 1e-9:
+        raise ValueError(f"Expected `sample_interval` with 2π/(ν h) a whole number of samples per period, got {per_period:g}")
+    steps = int(round(per_period)) * as_int(periods, "periods", minimum=1)
+    return _sculling_run(integrator, n, motion, h, steps, _warmup(history, n))[0]
+
+
+def coning_drift_check(
+    integrator: Integrator,
+    samples_per_step,
+    algorithm: Algorithm,
+    *,
+    omega_h=OMEGA_H,
+    cone_angles=CONE_ANGLES,
+    steps: int = STEPS,
+    tolerance: float = DRIFT_TOLERANCE,
+    history: int | None = None,
+) -> Check:
+    """The integrator's simulated coning drift against the closed form of ``algorithm`` (module docstring).
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box.
+    samples_per_step : int
+        N (``algorithm.samples``).
+    algorithm : Algorithm
+        The identified algorithm; its history sets the warm-up.
+    omega_h : sequence of float, keyword-only
+        ωh [rad] of the points, each in (0, π].
+    cone_angles : sequence of float, keyword-only
+        Half-cone angles α_k, halving [rad].
+    steps : int, keyword-only
+        Steps per run.
+    tolerance : float, keyword-only
+        Relative tolerance [dimensionless].
+    history : int, optional, keyword-only
+        Samples before a step the integrator reads, for the warm-up (default ``algorithm.history``).
+
+    Returns
+    -------
+    Check
+        Coefficients ``D = u / (α² ω)`` [dimensionless].
+
+    Raises
+    ------
+    ValueError
+        An ωh outside (0, π].
+
+    References
+    ----------
+    Lebedev & Panov (1989), eqs. (2.1), (4.4); :func:`strapdown.derivations.coning.drift.coning_drift`.
+    """
+    closed = coning_drift_function(algorithm)
+    history = algorithm.history if history is None else as_int(history, "history", minimum=0)
+    points = []
+    for x in omega_h:
+        x = positive(x, "omega_h")
+        if x > math.pi:
+            raise ValueError(f"Expected `omega_h` in (0, π] (above π per sample the samples alias the coning rate), got {x:g}")
+        h = x / NU
+        values, errors = [], []
+        for alpha in cone_angles:
+            u = coning_drift_rate(integrator, samples_per_step, RegularPrecession(-1.0, NU, alpha), h, steps=steps, history=history)
+            scale = alpha**2 * NU
+            values.append(u / scale)
+            errors.append(drift_floor(NU, -NU) / scale)
+        value, unc = _richardson(values, errors)
+        points.append(CheckPoint(x, float(closed(x)), float(value), float(unc), tuple(values), float(tolerance)))
+    return Check("coning drift D(ωh) = u / (α² ω), along the cone axis, exact minus integrator", tuple(points), tuple(cone_angles))
+
+
+def sculling_points(samples_per_step) -> tuple:
+    """νh of the sculling check for N samples per step: ``2π/K`` for K of :data:`SCULLING_PERIOD_SAMPLES`.
+
+    A K that divides 2N would make ν N h a multiple of π (every step sees the
+    vibration at the same phase, and the error is no constant rate); it is
+    replaced by the next K that does not.
+
+    Parameters
+    ----------
+    samples_per_step : int
+        N.
+
+    Returns
+    -------
+    tuple of float
+        νh [rad].
+
+    Examples
+    --------
+    >>> [round(2 * math.pi / x) for x in sculling_points(6)]
+    [24, 13, 7]
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    out = []
+    for k in SCULLING_PERIOD_SAMPLES:
+        while (2 * n) % k == 0:
+            k += 1
+        out.append(2 * math.pi / k)
+    return tuple(out)
+
+
+def sculling_check(
+    integrator: Integrator,
+    samples_per_step,
+    terms: ScullingTerms,
+    *,
+    history: int = 0,
+    nu_h=None,
+    angle_amplitudes=ANGLE_AMPLITUDES,
+    periods: int = PERIODS,
+    tolerance: float = DRIFT_TOLERANCE,
+) -> Check:
+    """The integrator's simulated rectification error against the closed form of ``terms`` (module docstring).
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box (with ``velocity``).
+    samples_per_step : int
+        N.
+    terms : ScullingTerms
+        The identified sculling part.
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+    nu_h : sequence of float, optional, keyword-only
+        νh [rad], each 2π/K for a whole number K of samples per period (default :func:`sculling_points`).
+    angle_amplitudes : sequence of float, keyword-only
+        θ₀_k, halving [rad].
+    periods : int, keyword-only
+        Vibration periods per run (times N).
+    tolerance : float, keyword-only
+        Relative tolerance [dimensionless].
+
+    Returns
+    -------
+    Check
+        Coefficients ``rate / (θ₀ A)`` [dimensionless].
+
+    Raises
+    ------
+    ValueError
+        A νh that is not 2π/K for a whole K.
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    warm = _warmup(history, n)
+    points = []
+    for x in sculling_points(n) if nu_h is None else nu_h:
+        x = positive(x, "nu_h")
+        per_period = 2 * math.pi / x
+        if abs(per_period - round(per_period)) > 1e-9:
+            raise ValueError(f"Expected `nu_h` = 2π/K for a whole number K of samples per period, got {x:g} (K = {per_period:g})")
+        steps = int(round(per_period)) * as_int(periods, "periods", minimum=1)
+        h = x / NU
+        values, errors, closed = [], [], None
+        for theta0 in angle_amplitudes:
+            motion = ScullingMotion(theta0, 1.0, NU)
+            rate, floor = _sculling_run(integrator, n, motion, h, steps, warm)
+            scale = theta0 * motion.accel_amplitude
+            values.append(rate / scale)
+            errors.append(floor / scale)
+            if closed is None:
+                closed = terms.rectification_error(motion, h)
+        value, unc = _richardson(values, errors)
+        cf = closed.rate / (angle_amplitudes[0] * 1.0)
+        points.append(CheckPoint(x, float(cf), float(value), float(unc), tuple(values), float(tolerance)))
+    return Check("rectification error rate / (θ₀ A) along e_r × e_a, exact minus integrator", tuple(points), tuple(angle_amplitudes))
+
+
+def local_error_exponent(integrator: Integrator, samples_per_step, *, history: int = 0, steps=(0.05, 0.025, 0.0125, 0.00625), times=(0.3, 1.1, 2.4)) -> float:
+    """Exponent of the integrator's one-step error against the step H on :class:`TumblingMotion`.
+
+    The slope of ``log|δφ|`` against ``log H`` over the three smallest steps
+    whose error is above ``1e-13`` (a thousand times the round-off of a step),
+    averaged over the step middles: the asymptotic exponent ρ + 1 where the
+    data reach it.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The black box.
+    samples_per_step : int
+        N.
+    history : int, keyword-only
+        Samples before a step the integrator reads (sets the warm-up).
+    steps : sequence of float, keyword-only
+        Steps H [s], decreasing.
+    times : sequence of float, keyword-only
+        Middles of the step [s].
+
+    Returns
+    -------
+    float
+        ``d log|δφ| / d log H`` (ρ + 1 for an integrator of order ρ); NaN when fewer than two steps are above round-off.
+    """
+    n = as_int(samples_per_step, "samples_per_step", minimum=1)
+    warm = _warmup(history, n)
+    motion = TumblingMotion()
+    exps = []
+    for t_mid in times:
+        errs = []
+        for big_h in steps:
+            h = big_h / n
+            t0 = t_mid - 0.5 * big_h
+            record = motion.increments(t0 - warm * big_h, h, (warm + 1) * n)
+            got = step_increments(integrator, record, n).rotation[-1]
+            exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + big_h)), validate=False)
+            errs.append(float(np.linalg.norm(exact - got)))
+        keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
+        if len(keep) >= 2:
+            exps.append(np.polyfit(np.log(np.array(steps)[keep]), np.log(np.array(errs)[keep]), 1)[0])
+    return float(np.mean(exps)) if exps else math.nan
