@@ -17,7 +17,8 @@ At the command line the same checks are::
 
 Here they are in Python, on a three-sample algorithm and on the same file with
 one coefficient moved to the wrong pair — the kind of slip that survives code
-review.
+review. If your algorithm exists only as code, :doc:`03_check_your_integrator`
+recovers its coefficients first.
 """
 
 import tempfile
