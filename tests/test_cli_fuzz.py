@@ -41,6 +41,7 @@ BASELINES = {
     "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
     "drift": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"],
     "multistage": ["--duration", "200", "--step", "0.1"],
+    "observability": ["--duration", "60", "--epoch", "1"],
     "report": None,  # writes files: fuzzed by test_report_output.py and the table below
     "reproduce tables": [],
     "stability": ["--k", "0.01", "--l", "5e-5"],
@@ -63,6 +64,13 @@ VARIANTS = {
          "--rocking", "narrowband", "--amplitude-deg", "0.3", "--period", "6", "--damping", "0.2", "--lever-arm", "0.5,0,0", "--disturbance", "shaping",
          "--prior-heading-deg", "1", "--prior-tilt-deg", "0.1", "--velocity-noise-m-s", "0.001",
          "--assumed-period", "5", "--assumed-damping", "0.3", "--assumed-amplitude-deg", "0.2"],
+    ],
+    "observability": [
+        ["--model", "rocking", "--duration", "60", "--epoch", "1", "--rocking", "sine", "--amplitude-deg", "0,1,1", "--period", "6", "--damping", "0.2",
+         "--lever-arm", "0.5,0,1", "--prior-heading-deg", "2", "--prior-tilt-deg", "0.2", "--gyro-bias-sigma-deg-per-h", "0.1",
+         "--accel-bias-sigma-m-s2", "1e-4", "--arw-deg-per-rt-h", "0.01", "--vrw-m-s-per-rt-h", "0.01", "--velocity-noise-m-s", "0.01", "--lat-deg", "30"],
+        ["--model", "multi-position", "--duration", "60", "--epoch", "1", "--rotation-times", "20,40", "--rotation-axes", "z,x", "--rotation-angles-deg", "90,180",
+         "--heading-deg", "10", "--beta0-deg", "1", "--gamma0-deg", "-1"],
     ],
     "azimuth": [
         ["--lat-deg", "45", "--sigma-xi-deg", "0.5", "--sigma-eta-deg", "0.5", "--samples", "20000", "--rocking", "narrowband", "--period", "6", "--damping", "0.2", "--workers", "2"],

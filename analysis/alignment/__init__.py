@@ -33,4 +33,24 @@ design
     The admissible rocking amplitude against frequency for each method.
 studies
     The whole-system studies of the report.
+error_model
+    The linear error model of a navigator in continuous time (at rest, rocking, in motion).
+observability
+    Rank, unobservable directions in words and degree of observability; stationary, rocking, multi-position.
+coarse_to_fine
+    The fine filter started from the inertial-frame coarse result and its covariance.
+compass_loop
+    Compass-loop (gyrocompass) alignment with tunable bandwidth and damping, and its linear theory.
+comparison
+    The methods side by side on the same trials, each against its trials' bias floor.
+sensor_models
+    Sensor errors as a data sheet specifies them; Allan deviation (allantools) and its read-back.
+trajectory
+    A manoeuvring vehicle over the rotating Earth: exact kinematics and ideal increments.
+aided
+    GNSS-aided in-motion alignment: navigator, filter, aided floor, Monte Carlo.
+recorded
+    Recorded IMU logs (.npz, .csv): reading, aligning, the observability of their motion, the example log.
+design_studies
+    The studies of the alignment-design report.
 """

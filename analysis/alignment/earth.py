@@ -29,21 +29,25 @@ _K = 0.00193185265241  # Somigliana constant
 _E2 = 0.00669437999013  # first eccentricity squared
 
 
-def normal_gravity(latitude) -> float:
+def normal_gravity(latitude):
     """Normal gravity on the ellipsoid [m/s²] (Somigliana's formula, WGS-84).
 
     Parameters
     ----------
-    latitude : float
+    latitude : float or array_like
         Geodetic latitude φ [rad].
 
     Returns
     -------
-    float
+    float or ndarray
+        A float for a scalar latitude, an array of its shape otherwise.
 
     >>> round(normal_gravity(0.0), 6), round(normal_gravity(math.pi / 2), 6)
     (9.780325, 9.832185)
     """
+    if np.ndim(latitude):
+        s2 = np.sin(np.asarray(latitude, dtype=float)) ** 2
+        return _GAMMA_E * (1.0 + _K * s2) / np.sqrt(1.0 - _E2 * s2)
     s2 = math.sin(as_float(latitude, "latitude")) ** 2
     return _GAMMA_E * (1.0 + _K * s2) / math.sqrt(1.0 - _E2 * s2)
 

@@ -593,6 +593,7 @@ def fine_alignment(
     model: FineAlignmentModel | None = None,
     score: bool = True,
     compiled: bool | None = None,
+    initial_attitude=None,
 ) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
@@ -628,6 +629,10 @@ def fine_alignment(
         round-off); None (default): the loop when it pays off
         (:func:`~strapdown.analysis.alignment.kernels.use_compiled`; an epoch of the filter counts
         as 30 samples).
+    initial_attitude : array_like, optional, keyword-only
+        ``(n, 3, 3)`` attitudes ``C̃_b^n`` the navigator starts from (a coarse
+        alignment's, whose errors the model's prior describes); default the
+        true attitude turned by errors drawn from the prior.
 
     Returns
     -------
@@ -684,9 +689,14 @@ def fine_alignment(
         rock_true = np.zeros((n, E + 1, 2 * len(ax)))
     r = sc.lever_arm
     w_end = record.end_rate[:, 1:]  # gyro rate at each epoch end
-    phi0 = draws.attitude * np.sqrt(np.diag(model.P0)[0:3])
+    if initial_attitude is None:
+        phi0 = draws.attitude * np.sqrt(np.diag(model.P0)[0:3])
+        C = _rodrigues(-phi0) @ C_true[:, 0]  # C̃ = (I − [φ×]) C
+    else:
+        C = np.array(as_array(initial_attitude, "initial_attitude"), dtype=float)
+        if C.shape != (n, 3, 3):
+            raise ValueError(f"Expected `initial_attitude` with shape ({n}, 3, 3), got shape {C.shape}")
     meas_noise = noise * draws.measurement
-    C = _rodrigues(-phi0) @ C_true[:, 0]  # C̃ = (I − [φ×]) C
     v = tuning.prior_velocity * draws.velocity  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))

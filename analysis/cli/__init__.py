@@ -249,6 +249,7 @@ COMMANDS = {
     "environment-drift": ("environment", "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)"),
     "environment-rates": ("environment", "lowest sample rate and load of each algorithm, classical and tuned, for a drift budget in an environment"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, order, drift, remainder, check"),
+    "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
     "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth, index, HTML)"),
     "reproduce tables": ("tables", "Budennyi et al. Table 3 (u*) and the Lebedev & Panov (1989) table: ours next to the printed values"),

@@ -202,6 +202,10 @@ def _align(args) -> Result:
     from ..core.units import deg
     from ..core.validation import as_int
 
+    if args.log is not None:  # one alignment of a recorded log, no Monte Carlo
+        from ._recorded import align_recorded
+
+        return align_recorded(args, _options(args, _scenario(args), _errors(args)))
     _check_options(args)
     scenario = _scenario(args)
     trials = as_int(args.trials, "--trials", minimum=2)
@@ -297,6 +301,7 @@ def register(commands) -> None:
         help="alignment method: analytic (formula (2) on averaged outputs), inertial (inertial frame) or kalman (fine alignment) (required)",
     )
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
+    p.add_argument("--log", default=None, help="recorded IMU log, .npz or .csv (docs/recorded-logs.md): align it once instead of a Monte Carlo [path] (default: none)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="stable heading ψ0 [deg] (default 0: body x north, y east, z down)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 about the body x axis [deg], |β0| < 90 (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 of the body x axis [deg], |γ0| < 90 (default 0)")

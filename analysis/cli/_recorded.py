@@ -1,0 +1,80 @@
+"""``strapdown align --log``: one alignment of a recorded IMU log (the Monte Carlo options do not apply).
+
+The log's format is ``docs/recorded-logs.md`` (:mod:`strapdown.analysis.alignment.recorded`).
+The sensor options describe what the filter assumes about the IMU (its noise and
+bias priors); the options that build a simulation are refused.
+"""
+
+from __future__ import annotations
+
+from . import Result, UsageError
+
+__all__ = ["align_recorded", "SIMULATION_OPTIONS"]
+
+#: Options of ``align`` that build the simulated trials, refused with ``--log``.
+SIMULATION_OPTIONS = (
+    "--heading-deg", "--beta0-deg", "--gamma0-deg", "--rocking", "--amplitude-deg", "--period", "--damping", "--bandwidth-hz", "--lever-arm",
+    "--tilt-channel-only", "--gyro-bias-deg-per-h", "--accel-bias-m-s2", "--gyro-scale-ppm", "--accel-scale-ppm", "--gyro-quantum-arcsec",
+    "--accel-quantum-m-s", "--sample-rate-hz", "--duration", "--trials", "--workers", "--disturbance", "--assumed-period", "--assumed-damping",
+    "--assumed-amplitude-deg", "--lever-arm-known", "--progress",
+)  # fmt: skip
+
+
+def align_recorded(args, options) -> Result:
+    """Align the log ``args.log`` once with ``args.method``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``align``.
+    options : AlignmentOptions
+        The method options built from them (the filter's tuning for ``kalman``).
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    UsageError
+        If a simulation option was given.
+    """
+    from ..alignment.recorded import align_log, read_log
+    from ..core.units import deg, rad
+    from ..core.validation import in_open_interval
+
+    parser = args.parser_
+    actions = {a.option_strings[0]: a for a in parser._actions if a.option_strings}
+    for flag in SIMULATION_OPTIONS:
+        a = actions[flag]
+        value, default = getattr(args, a.dest), getattr(a.default, "value", a.default)
+        if getattr(value, "value", value) != default:
+            raise UsageError(f"{flag} does not apply to a recorded log (--log): it builds the simulated trials")
+    lat = rad(in_open_interval(args.lat_deg, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
+    log = read_log(args.log)
+    r = align_log(
+        log, lat, method=args.method, tuning=options.tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch, rng=args.seed
+    )
+    data = {
+        "log": str(args.log),
+        "method": r.method,
+        "lat_deg": args.lat_deg,
+        "samples": log.n_samples,
+        "sample_rate_hz": 1.0 / log.dt,
+        "duration": r.duration,
+        "reference": "stable attitude" if r.reference == "stable" else "attitude at the end",
+        "heading_deg": deg(r.heading),
+        "beta_deg": deg(r.beta),
+        "gamma_deg": deg(r.gamma),
+        "heading_sigma_deg": None if r.heading_sigma is None else deg(r.heading_sigma),
+        "heading_error_deg": None if r.heading_error is None else deg(r.heading_error),
+    }
+    text = (
+        f"{r.method} alignment of {args.log} ({log.n_samples} samples, {r.duration:g} s): "
+        f"heading {data['heading_deg']:.6g} deg, β {data['beta_deg']:.6g} deg, γ {data['gamma_deg']:.6g} deg ({data['reference']})"
+    )
+    if r.heading_sigma is not None:
+        text += f"\nthe filter's azimuth standard deviation: {data['heading_sigma_deg']:.4g} deg"
+    if r.heading_error is not None:
+        text += f"\nazimuth error against the log's truth: {data['heading_error_deg']:.4g} deg"
+    return Result(data, text)
