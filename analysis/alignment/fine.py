@@ -476,7 +476,7 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int, *, truth: str = "epo
 
 
 def draw_epoch_record(scenario: Scenario, errors: SensorErrors | None, *, n_trials: int, rng=None, chunk: int = 32) -> tuple:
-    """The random numbers of :func:`simulate_epoch_record`: one :class:`.imu.ImuDraws` per chunk of trials.
+    """The random numbers of :func:`simulate_epoch_record`: one :class:`~strapdown.analysis.alignment.imu.ImuDraws` per chunk of trials.
 
     Parameters
     ----------
