@@ -17,8 +17,6 @@ the library works in radians.
 
 import math
 
-import numpy as np
-
 from strapdown.analysis.alignment.design_studies import grade_study, methods_study
 from strapdown.analysis.alignment.fine import FilterTuning
 from strapdown.analysis.alignment.observability import BodyRotation, multi_position_problem, observability, stationary_problem
