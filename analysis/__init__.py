@@ -98,6 +98,27 @@ Steps
     ``h`` is the sample interval, ``H = N h`` the step of an N-sample algorithm
     (public arguments ``sample_interval`` and ``step``); the multistage stages
     take one sample per step, so there ``h = H`` and the argument is ``step``.
+Orders
+    How an algorithm's error scales with the step has one name per meaning,
+    used alike in the library, the command line (and its JSON keys), the docs
+    and the reports:
+
+    - the *weight* w of a series term is its power of h (local error) or of ν
+      and H (drift ``d_w ν^w H^(w−1)``); ``--max-order K`` keeps the weights
+      through K;
+    - the *accuracy order* ρ (``accuracy_order``): the local error is
+      O(h^(ρ+1)) in a general motion, so the error over a fixed time is
+      O(h^ρ); the ρ of Budennyi, Kalinovsky, Panov et al., Table 2;
+    - the *local-error order* ρ + 1 (``local_error_order``): the weight of the
+      leading local error;
+    - the *coning-drift order* m (``coning_drift_order``): under classical
+      coning the drift is ``c α² ω (ωh)^m + O(α⁴)``; m ≥ ρ, and far above it
+      for the algorithms tuned to coning (ignagni-1996-5: ρ = 3, m = 8);
+    - the *drift order* at a motion (``drift_order``): the power of H of the
+      leading term of the drift there (its weight minus one; the ρ of
+      Budennyi et al., Table 3).  At a finite cone angle it can lie below m,
+      through the α⁴ term (ignagni-1996-5 at 1°: 4);
+    - an *observed* order is an exponent measured by halving h.
 Units
     SI throughout; angles in radians inside the code.  Degrees and deg/h appear
     only at the edges (CLI and reports).

@@ -76,6 +76,29 @@ def cost_rows():
         steps = duration / 0.02
         est = budget.multistage(steps, what="")
         rows.append(("multistage cascade", int(steps), seconds, est.seconds, peak, est.memory))
+    from strapdown.analysis.multistage.tilt_loop import StageLoop
+
+    loop = StageLoop(0.01, 5e-5)
+    for horizon in (2e5, 1e6):
+        seconds, peak = measure(lambda horizon=horizon: loop.pulse_response(20.0, 20.0, horizon=horizon))
+        samples = math.ceil(horizon / 20.0) + 1.0
+        est = budget.loop_response(samples, what="")
+        rows.append(("tilt-loop pulse response (horizon / T samples)", int(samples), seconds, est.seconds, peak, est.memory))
+    import subprocess
+    import sys
+
+    for weight in (11, 12, 13):
+        code = (
+            "import resource, sys, time\n"
+            "from strapdown.derivations.coning.registry import get\n"
+            "from strapdown.derivations.coning.series import error_coefficients, local_error\n"
+            "from strapdown.derivations.coning.drift import coning_drift_series\n"
+            f"a = get('savage-1+1'); t = time.perf_counter(); error_coefficients(a, {weight}); local_error(a, {weight}); coning_drift_series(a, {weight})\n"
+            "print(time.perf_counter() - t, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024)\n"
+        )
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+        est = budget.series_derivation(weight, what="")
+        rows.append((f"series through h^{weight} (`derive local-error --max-order`; peak RSS of a child)", weight, float(out[0]), est.seconds, float(out[1]), est.memory))
     return rows
 
 

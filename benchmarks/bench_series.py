@@ -7,8 +7,13 @@ or through ``run_all.py``):
   drift the series implies (what ``strapdown derive local-error --max-order 9``
   computes for each) — in under 10 s;
 * one 6-sample algorithm to h¹³ with ``strapdown derive local-error --max-order 13``
-  in under 60 s;
+  (every weight printed) in under 60 s;
 * asking for h⁷ costs what it cost before the weight became a parameter.
+
+Two more stages time what the quoting of a drift costs from a cold cache: ``strapdown drift``
+raising its series to the weight the quoted value needs (ignagni-1996-5 at α = 1°, 10 Hz,
+h = 1/480 s goes to h¹³) with the exact drift beside it, and ``strapdown derive
+coning-drift`` with the range of its leading term (found against the exact drift) and a case.
 
 Each stage runs in a fresh interpreter with an empty cache of generated code, so
 nothing derived earlier is reused; wall and CPU time (user + system, from
@@ -47,6 +52,9 @@ REGISTRY_TO = IMPORTS + "K = int(sys.argv[1])\nfor n in names():\n    a = get(n)
 DRIFT_TO = REGISTRY_TO + "for n in names(): D.drift_coefficients(get(n), K)\n"
 CLOSED = IMPORTS + "for n in names(): D.coning_drift(get(n))\n"
 CLI_13 = ["-m", "strapdown.analysis", "derive", "local-error", "--algorithm-file", "{toml}", "--max-order", "13", "--json"]
+AUDIT_CASE = ["--algorithm", "ignagni-1996-5", "--half-angle-deg", "1", "--freq-hz", "10", "--sample-interval", repr(1 / 480)]
+CLI_DRIFT = ["-m", "strapdown.analysis", "drift", *AUDIT_CASE, "--duration", "2", "--json"]
+CLI_CONING = ["-m", "strapdown.analysis", "derive", "coning-drift", *AUDIT_CASE, "--json"]
 STAGES = [
     ("h^7, every registry algorithm: local error + coefficients", ["-c", H7], None),
     ("h^9, every registry algorithm: + coning drift series", ["-c", REGISTRY_TO, "9"], 10.0),
@@ -54,6 +62,8 @@ STAGES = [
     ("h^11, every registry algorithm: + coning drift series", ["-c", REGISTRY_TO, "11"], None),
     ("h^13, optimal 6-sample: strapdown derive local-error --max-order 13", CLI_13, 60.0),
     ("closed-form coning drift, every registry algorithm", ["-c", CLOSED], None),
+    ("strapdown drift, ignagni-1996-5 at 1°, 10 Hz, h = 1/480 s: series raised to h^13, exact drift", CLI_DRIFT, None),
+    ("strapdown derive coning-drift, ignagni-1996-5: next term, range of the leading term, the case", CLI_CONING, None),
 ]
 
 

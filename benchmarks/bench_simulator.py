@@ -15,7 +15,11 @@ pair is timed alternately, best of ``--repeats``:
   one step per Python iteration);
 * peak memory of a streaming run of 10⁸ steps, in a child process;
 * the compile time of a kernel on first use, and its load time from numba's
-  cache, each in a fresh interpreter with an empty (then warm) cache.
+  cache, each in a fresh interpreter with an empty (then warm) cache;
+* the data-driven kernel that serves every pairwise algorithm against a
+  straight-line kernel specialised to one algorithm (same bits): time per step
+  and the run length from which compiling the specialised one pays
+  (:data:`strapdown.analysis.coning.kernels.SPECIALISE_MIN_WORK`).
 
 Run: ``python benchmarks/bench_simulator.py [--quick]``; print the machine load
 with the figures.
@@ -35,10 +39,12 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from strapdown.analysis.coning import kernels  # noqa: E402
 from strapdown.analysis.coning.batch import simulate_batch  # noqa: E402
 from strapdown.analysis.coning.evaluation import increment  # noqa: E402
 from strapdown.analysis.coning.precession import RegularPrecession  # noqa: E402
 from strapdown.analysis.coning.simulator import sample_increments, simulate  # noqa: E402
+from strapdown.analysis.coning.streaming import empty_sums  # noqa: E402
 from strapdown.analysis.core import quaternion as quat  # noqa: E402
 from strapdown.derivations.coning.registry import get  # noqa: E402
 
@@ -217,6 +223,33 @@ def main(argv=None) -> int:
         f"velocity kernel {cold[2]:.1f} s; from numba's cache in the next process: {warm[1]:.2f} s and {warm[2]:.2f} s "
         f"(imports before the first call: {warm[0]:.2f} s)."
     )
+    # ------------------------------------------------------------------ data-driven against specialised kernels
+    print()
+    print("**Data-driven kernel (every pairwise algorithm) against one specialised to the algorithm** (one point, same bits):")
+    print()
+    print("| algorithm | run | steps | data-driven [ns/step] | specialised [ns/step] | saved [ns/step] | compile of the specialised [s] | pays from [steps] |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for name in ("two-sample", "panov-4s-5", "ignagni-1996-4"):
+        alg = get(name)
+        for velocity in (False, True):
+            steps = (2_000_000 if not velocity else 1_000_000) // scale
+            columns = (np.array([v]) for v in (DUAL.eps, DUAL.nu, DUAL.nutation, DUAL.nu_dual, DUAL.nutation_dual, H))
+            par, theta = kernels.parameter_rows(*columns, np.array([1.0, 0, 0, 0]), np.zeros(3), velocity=velocity)
+            t0 = time.perf_counter()
+            special = kernels.kernel(alg, velocity=velocity, specialised=True)
+            kernels.advance(special, par, theta.copy(), np.array([1]), empty_sums(1), 0, 1)
+            compile_s = time.perf_counter() - t0  # includes loading when numba's cache already holds it
+            driven = kernels.kernel(alg, velocity=velocity, specialised=False)
+            kernels.advance(driven, par, theta.copy(), np.array([1]), empty_sums(1), 0, 1)
+
+            def run(k, par=par, theta=theta, steps=steps):
+                kernels.advance(k, par, theta.copy(), np.array([steps]), empty_sums(1), 0, steps)
+
+            t = side_by_side({"driven": lambda: run(driven), "special": lambda: run(special)}, args.repeats)  # noqa: B023 - run now, in this iteration
+            a, b = t["driven"] / steps * 1e9, t["special"] / steps * 1e9
+            pays = f"{compile_s / ((a - b) * 1e-9):.2g}" if a > b else "never"
+            print(f"| {name} | {'velocity' if velocity else 'attitude'} | {steps:,} | {a:.0f} | {b:.0f} | {a - b:.0f} | {compile_s:.1f} | {pays} |")
+    print(f"\n(`SPECIALISE_MIN_WORK` = {kernels.SPECIALISE_MIN_WORK:,} point-steps; a compile time under 1 s is a load from numba's cache.)")
     print(f"\npeak RSS of this process: {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MiB; load at end: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
     return 0
 

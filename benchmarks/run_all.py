@@ -3,7 +3,9 @@
 Runs, each in its own child process pinned to CPU 0 (``taskset -c 0`` when
 available) with ``OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = MKL_NUM_THREADS = 1``:
 
-1. every ``benchmarks/bench_*.py`` script, in name order;
+1. every ``benchmarks/bench_*.py`` script, in name order, except
+   ``bench_first_run.py`` (it needs both cores, since the first run uses the
+   second one, and takes about ten minutes: run it on its own);
 2. the peer comparisons ``benchmarks/peer_*.py``;
 3. the full report, ``strapdown report --out <tmp>``, and ``--quick``.
 
@@ -92,9 +94,13 @@ def run(name: str, argv: list, *, timeout: float | None = None) -> Outcome:
     return Outcome(name, shown, seconds, usage.ru_maxrss / 1024.0, proc.returncode, stdout, stderr)
 
 
+#: Benchmarks that must not run pinned to one core (module docstring); run them on their own.
+UNPINNED = frozenset({"bench_first_run.py"})
+
+
 def benchmark_scripts(only=None) -> list:
     scripts = sorted(HERE.glob("bench_*.py")) + sorted(HERE.glob("peer_*.py"))
-    scripts = [s for s in scripts if s.is_file()]
+    scripts = [s for s in scripts if s.is_file() and s.name not in UNPINNED]
     if only:
         scripts = [s for s in scripts if s.stem in only or s.name in only]
     return scripts

@@ -62,7 +62,14 @@ def test_toml_higher_order_terms_express_lebedev_panov_6(tmp_path):
 MALFORMED = [
     ("samples = 2\n[cross\n", ["not valid TOML"]),
     ('samples = 2\ncolour = "red"\n', ["unknown key 'colour'"]),
-    ('[cross]\n"1,2" = "2/3"\n', ["key 'samples'", "positive integer"]),
+    ('[cross]\n"1,2" = "2/3"\n', ["key 'samples' is missing", "positive integer"]),
+    ('samples = 2\n[cross]\n"1,2" = "1/3"\n"1, 2" = "1/3"\n', ["[cross] key '1, 2'", "same product as key '1,2'", "give each product once"]),
+    ('samples = 2\n[cross]\n"1,2" = "1/3"\n"2,1" = "-1/3"\n', ["[cross] key '2,1'", "same product as key '1,2'", "p2×p1 = −p1×p2"]),
+    ('samples = 3\n[triple]\n"1,2,3" = "1/3"\n"1,3,2" = "1/3"\n', ["[triple] key '1,3,2'", "same product as key '1,2,3'"]),
+    ('samples = 3\n[dot_cross]\n"1,2;2,3" = "1/3"\n"2,1;2,3" = "1/3"\n', ["[dot_cross] key '2,1;2,3'", "same product as key '1,2;2,3'"]),
+    ('samples = 2\n[cross]\n"1,1" = "1/3"\n"1,2" = "2/3"\n', ["[cross] key '1,1'", "is zero", "two different sample indices"]),
+    ('samples = 3\n[triple]\n"1,2,2" = "1/3"\n', ["[triple] key '1,2,2'", "is zero"]),
+    ('samples = 3\n[dot_cross]\n"1,2;3,3" = "1/3"\n', ["[dot_cross] key '1,2;3,3'", "is zero"]),
     ('samples = 0\n', ["key 'samples'", "positive integer"]),
     ('samples = "2"\n', ["key 'samples'", "positive integer"]),
     ('samples = 2\n[cross]\n"1,2" = 0.6666\n', ["[cross] key '1,2'", "exact fraction"]),
@@ -116,6 +123,24 @@ def test_cli_refuses_inconsistent_file_with_status_2(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "second-order condition" in err
     assert main(argv + ["--allow-inconsistent", "--json"]) == 0
+
+
+@pytest.mark.parametrize(
+    "text, key, fragment",
+    [
+        ('samples = 2\n[cross]\n"1,2" = "1/3"\n"1, 2" = "1/3"\n', "'1, 2'", "same product as key '1,2'"),
+        ('samples = 2\n[cross]\n"1,1" = "1/12"\n"1,2" = "2/3"\n', "'1,1'", "is zero"),
+        ('name = "no-samples"\n[cross]\n"1,2" = "2/3"\n', "'samples'", "is missing"),
+    ],
+)
+def test_cli_refuses_ambiguous_file_naming_file_and_key(tmp_path, capsys, text, key, fragment):
+    """A duplicate pair, a self-product and a missing ``samples``: one line naming the file and the key, status 2."""
+    from strapdown.analysis.cli import main
+
+    path = _write(tmp_path, text, "alg.toml")
+    assert main(["algorithms", "show", "--algorithm-file", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and str(path) in err and key in err and fragment in err and "Traceback" not in err
 
 
 # --------------------------------------------------------------------------- registry and evaluation

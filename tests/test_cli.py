@@ -54,7 +54,7 @@ def test_bad_option_value_is_one_line_exit_2(tmp_path):
     from strapdown.analysis.report import discover
 
     sections = ", ".join(m.SECTION.name for m in discover())
-    assert lines == [f"strapdown report: error: argument --only: Expected `only` among {sections}, got no-such-section"]
+    assert lines == [f"strapdown report: error: argument --only: Expected `only` among {sections}, got 'no-such-section'"]
     assert "Traceback" not in out.stderr
     assert not (tmp_path / "r").exists()  # nothing half-written
 

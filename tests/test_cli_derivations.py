@@ -20,7 +20,7 @@ def test_local_error_json_table_2_algorithm_4(capsys):
     data = _json(capsys, ["derive", "local-error", "--algorithm", "panov-4s-4"])
     printed = {c.algorithm: c for c in P.BUDENNYI_TABLE_2}
     four, three = printed[4], printed[3]
-    assert data["order"] == 4 and data["delta"] == str(four.delta)
+    assert (data["accuracy_order"], data["local_error_order"]) == (4, 5) and data["delta"] == str(four.delta)
     # Table 2 as printed, except its misprinted k002, k0001 (errata): δ4 k002 and δ4 k0001 are
     # common to every pairwise algorithm, so they are algorithm 3's products over algorithm 4's δ4.
     expected = list(four.k)
@@ -34,7 +34,7 @@ def test_local_error_from_file(tmp_path, capsys):
     f = tmp_path / "alg.toml"
     f.write_text('name = "mine"\nsamples = 2\n[cross]\n"1,2" = "2/3"\n', encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f)])
-    assert data["algorithm"] == "mine" and data["order"] == 4 and data["delta"] == "1/90"
+    assert data["algorithm"] == "mine" and data["accuracy_order"] == 4 and data["delta"] == "1/90"
 
 
 def test_local_error_unknown_algorithm_exit_2(capsys):
@@ -114,7 +114,9 @@ def test_a_run_too_short_to_resolve_the_drift_is_flagged(capsys):
 def test_drift_max_order_bounds_the_series(capsys):
     argv = ["drift", "--algorithm", "panov-4s-3", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "1"]
     low = _json(capsys, argv + ["--max-order", "6"])
-    assert low["asymptotic_drift_deg_per_h"] is None and low["series_drift_deg_per_h"] == 0.0  # sixth-order: nothing through h^6
+    # drift order 6 under coning: nothing through h^6 (the composition of the steps starts at weight 9)
+    assert low["asymptotic_drift_deg_per_h"] is None and low["series_drift_deg_per_h"] == 0.0 and low["composition_drift_deg_per_h"] == 0.0
+    assert low["series_weight"] == 6 and low["series_converged"] is None and low["exact_drift_deg_per_h"] > 0
     assert main(argv + ["--max-order", "2"]) == 2
     assert capsys.readouterr().err == "strapdown drift: error: Expected --max-order in 3..20, got 2\n"
 
@@ -137,10 +139,13 @@ def test_local_error_to_h13_reaches_the_six_sample_coning_term(tmp_path, capsys)
     f = tmp_path / "optimal6.toml"
     f.write_text(OPTIMAL_6_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f), "--max-order", "13"])
-    assert data["max_order"] == 13 and data["order"] == 3 and data["nonzero_weights"] == list(range(4, 14))
+    assert data["max_order"] == 13 and data["accuracy_order"] == 3 and data["nonzero_weights"] == list(range(4, 14))
+    # every weight computed is printed, not only the leading one; letters of two digits are comma-separated
+    assert [t["weight"] for t in data["series"]] == list(range(4, 14)) and data["series"][0]["coefficients"] == {k: v for k, v in data["coefficients"].items() if v != "0"}
+    assert "x0,11" in data["series"][-1]["coefficients"] and all("," not in k for k in data["series"][5]["coefficients"])
     assert data["coning_drift_series"] == {"12": "1/24024"}
     closed = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f)])
-    assert (closed["order"], closed["coefficient"]) == (12, "1/24024")
+    assert (closed["coning_drift_order"], closed["coefficient"]) == (12, "1/24024")
     assert closed["step_coefficient"] == "1/52295018840064"  # Yan (PSINS), ρ_6
 
 
@@ -160,7 +165,7 @@ def test_local_error_cross_step_file(tmp_path, capsys):
     f = tmp_path / "savage.toml"
     f.write_text(SAVAGE_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "local-error", "--algorithm-file", str(f), "--max-order", "9"])
-    assert (data["history"], data["order"], data["delta"], data["coefficients"]["x02"]) == (1, 3, "1/24", "1")
+    assert (data["history"], data["accuracy_order"], data["delta"], data["coefficients"]["x02"]) == (1, 3, "1/24", "1")
     assert data["coning_drift_series"] == {"4": "1/60", "6": "-1/504", "8": "1/8640"}
 
 
@@ -172,7 +177,7 @@ def test_coning_drift_json_for_every_registry_algorithm(name, capsys):
 
     data = _json(capsys, ["derive", "coning-drift", "--algorithm", name])
     d = coning_drift(get(name))
-    assert data["order"] == d.order and data["coefficient"] == f"{d.coefficient.numerator}/{d.coefficient.denominator}"
+    assert data["coning_drift_order"] == d.order and data["coefficient"] == f"{d.coefficient.numerator}/{d.coefficient.denominator}"
     assert "/" in data["coefficient"] and "exact minus algorithm" in data["quantity"] and "cone axis" in data["quantity"]
 
 
@@ -186,14 +191,14 @@ def test_coning_drift_json_for_every_registry_algorithm(name, capsys):
 )
 def test_coning_drift_published_values(name, order, coefficient, step_coefficient, capsys):
     data = _json(capsys, ["derive", "coning-drift", "--algorithm", name])
-    assert (data["order"], data["coefficient"], data["step_coefficient"]) == (order, coefficient, step_coefficient)
+    assert (data["coning_drift_order"], data["coefficient"], data["step_coefficient"]) == (order, coefficient, step_coefficient)
 
 
 def test_coning_drift_cross_step_file_and_values(tmp_path, capsys):
     f = tmp_path / "savage.toml"
     f.write_text(SAVAGE_TOML, encoding="utf-8")
     data = _json(capsys, ["derive", "coning-drift", "--algorithm-file", str(f), "--omega-h-rad", "0.01,0.5"])
-    assert (data["history"], data["order"], data["coefficient"]) == (1, 4, "1/60")
+    assert (data["history"], data["coning_drift_order"], data["coefficient"]) == (1, 4, "1/60")
     small, large = data["values"]
     assert small["D"] == pytest.approx(small["leading"], rel=1e-4) and large["D"] < large["leading"]
     assert main(["derive", "coning-drift", "--algorithm-file", str(f)]) == 0

@@ -25,8 +25,8 @@ def _json(argv):
 def test_json_keys_of_the_contract():
     data = _json(BASE)
     assert data["terms"] == {"1,2": "2/3"}
-    assert (data["order"], data["coefficient"]) == (4, "1/60")  # as `derive coning-drift --algorithm two-sample`
-    assert data["consistent"] is True and data["local_error_order"] == 4
+    assert (data["coning_drift_order"], data["coefficient"]) == (4, "1/60")  # as `derive coning-drift --algorithm two-sample`
+    assert data["consistent"] is True and (data["accuracy_order"], data["local_error_order"]) == (4, 5)
     series = error_coefficients(get("two-sample"))  # the registry's own algorithm: the same series
     assert data["local_error"]["delta"] == str(series.delta)
     assert data["local_error"]["coefficients"] == {"x" + "".join(map(str, w)): str(c) for w, c in series.coefficients.items() if c}
@@ -58,7 +58,7 @@ def test_sculling_example():
 def test_an_inconsistent_integrator_is_reported_not_refused():
     data = _json(["identify", "--integrator", f"{EXAMPLES}:per_sample_quaternion", "--samples-per-step", "3", "--max-previous", "0", "--omega-h-rad", "1"])
     assert data["consistent"] is False and data["conditions"]["second_order_defect"] == "-1/4"
-    assert data["order"] == 2 and data["remainder"]["degree"] == 3
+    assert data["coning_drift_order"] == 2 and data["remainder"]["degree"] == 3
 
 
 def _refused(argv, *names):

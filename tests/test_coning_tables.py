@@ -203,7 +203,7 @@ def test_coning_and_core_errata_are_classified(tmp_path):
     entries = [e for module in (algorithms, derivations, errata) for e in module.errata(ctx)]
     assert all(e.kind in ("misprint", "ambiguous") for e in entries)
     ambiguous = [e for e in entries if e.kind == "ambiguous"]
-    assert [e.source for e in ambiguous] == [f"Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm {k} under coning (ρ = 6)" for k in (3, 5)]
+    assert [e.source for e in ambiguous] == [f"Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm {k} under coning (drift order 6)" for k in (3, 5)]
     assert all(e.alternatives and "Correct" not in e.correct for e in ambiguous)
 
 

@@ -160,11 +160,13 @@ def test_coning_drift_converges_at_the_design_order(name):
 
 # --------------------------------------------------------------------------- summaries and CLI
 def test_summary_orders():
-    assert summarize(get("lebedev-panov-6")).order == 6
+    s = summarize(get("lebedev-panov-6"))
+    assert (s.accuracy_order, s.local_error_order, s.coning_drift_order) == (6, 7, 6)
     s = summarize(get("ignagni-1996-5"))
-    assert (s.history, s.window, s.order, s.second_order_defect) == (1, 4, 3, 0)
-    # compressed forms are exact under coning only: third order in a general motion
-    assert summarize(get("compressed-4")).order == 3
+    assert (s.history, s.window, s.accuracy_order, s.second_order_defect) == (1, 4, 3, 0)
+    # tuned to coning: accuracy order 3 in a general motion, coning-drift order 8
+    assert (s.local_error_order, s.coning_drift_order) == (4, 8)
+    assert (summarize(get("compressed-4")).accuracy_order, summarize(get("compressed-4")).coning_drift_order) == (3, 8)
     with pytest.raises(TypeError, match="Algorithm"):
         summarize("savage-1+1")
 
@@ -250,4 +252,4 @@ def test_cross_step_series_order_is_the_measured_one(name):
     """The symbolic order of a cross-step algorithm equals the exponent measured on a tumbling motion (an independent oracle)."""
     from strapdown.analysis.coning.algorithm_summary import cross_step_local_exponent
 
-    assert cross_step_local_exponent(get(name)) - 1 == pytest.approx(summarize(get(name)).order, abs=0.3)
+    assert cross_step_local_exponent(get(name)) == pytest.approx(summarize(get(name)).local_error_order, abs=0.3)

@@ -148,6 +148,74 @@ def test_manifest_lists_what_was_written_and_only_that_is_replaced(tmp_path):
     assert (out / "first.md").read_text().endswith("version 2\n")
 
 
+def test_manifest_records_the_hash_of_every_file(tmp_path):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    manifest = json.loads((out / output.MANIFEST).read_text())
+    files = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file() and p.name != output.MANIFEST)
+    assert sorted(manifest["sha256"]) == files
+    assert all(manifest["sha256"][f] == output.file_digest(out / f) for f in files)
+
+
+def test_an_edited_generated_file_stops_the_next_run_and_survives(tmp_path, capsys):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    (out / "first.md").write_text("my corrections\n")
+    before = _snapshot(out)
+    with pytest.raises(output.ModifiedFilesError, match="first.md") as info:
+        generate(out, sections=fake_sections("2"), show_progress=False)
+    assert info.value.files == ["first.md"] and "`overwrite_modified=True`" in str(info.value)
+    assert _snapshot(out) == before
+    # the command line: exit status 2, one line naming the file and the option, before any work
+    assert main(["report", "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith("strapdown report: error: argument --out: ") and "first.md" in err and "--overwrite-modified" in err
+    assert _snapshot(out) == before and _strays(tmp_path, "r") == []
+
+
+def test_overwrite_modified_replaces_the_edited_file(tmp_path):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    (out / "figures" / "first.txt").write_text("edited\n")
+    generate(out, sections=fake_sections("2"), show_progress=False, overwrite_modified=True)
+    assert _versions(out) == {"2"}
+    assert output.modified_files(output.prepare(out)) == []
+
+
+def test_a_partial_run_keeps_an_edit_it_does_not_replace_and_still_marks_it(tmp_path):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    (out / "second.md").write_text("edited\n")
+    generate(out, only=["first"], sections=fake_sections("2"), show_progress=False)  # rebuilds first and the index only
+    assert (out / "second.md").read_text() == "edited\n"
+    assert output.modified_files(output.prepare(out)) == ["second.md"]
+    with pytest.raises(output.ModifiedFilesError, match="second.md"):
+        generate(out, sections=fake_sections("3"), show_progress=False)
+    with pytest.raises(output.ModifiedFilesError, match="second.md"):
+        generate(out, only=["second"], sections=fake_sections("3"), show_progress=False)
+
+
+def test_a_missing_generated_file_is_not_an_edit(tmp_path):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    (out / "second.md").unlink()
+    generate(out, sections=fake_sections("2"), show_progress=False)
+    assert _versions(out) == {"2"} and (out / "second.md").is_file()
+
+
+def test_a_manifest_without_hashes_is_still_read(tmp_path):
+    out = tmp_path / "r"
+    generate(out, sections=fake_sections("1"), show_progress=False)
+    body = json.loads((out / output.MANIFEST).read_text())
+    body["format"] = 1
+    del body["sha256"]
+    (out / output.MANIFEST).write_text(json.dumps(body))
+    (out / "first.md").write_text("edited before hashes were kept\n")
+    generate(out, sections=fake_sections("2"), show_progress=False)  # nothing to compare with: replaced, as before
+    assert _versions(out) == {"2"}
+
+
 def test_earlier_report_without_manifest(tmp_path):
     out = tmp_path / "r"
     out.mkdir()

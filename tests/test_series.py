@@ -373,3 +373,82 @@ def test_graded_power_series_rejects_a_weight_zero_argument():
     one = G.Graded.from_parts(S.RING, 1, {0: (S.RING.one,)})
     with pytest.raises(ValueError, match="weight 1"):
         G.power_series(one, lambda k: 1)
+
+
+# ------------------------------------------------------------------ every weight of the local error
+def _word(key: str) -> tuple:
+    """``"x02"`` → (0, 2); ``"x0,10"`` → (0, 10) (the key syntax of ``derive local-error``)."""
+    body = key[1:]
+    return tuple(int(k) for k in (body.split(",") if "," in body else body))
+
+
+def _nested_value(word, derivs):
+    v = derivs[word[-1]]
+    for k in reversed(word[:-1]):
+        v = np.cross(derivs[k], v)
+    return v
+
+
+@pytest.mark.parametrize("name, window_start, remainder", [("two-sample", 0, 9), ("savage-1+1", 1, 8)])
+def test_local_error_json_series_of_every_weight_is_the_local_error(name, window_start, remainder, capsys):
+    """``derive local-error --max-order 7`` gives every weight; summed, they leave only the remainder beyond h⁷ of the true local error.
+
+    A symmetric within-step algorithm (two-sample) has no even weight, so its remainder starts at h⁹.
+
+    Independent of the series: the exact rotation from the closed-form tumbling attitude, the
+    increments by quadrature, ω and its derivatives from a Chebyshev fit.
+    """
+    import json
+
+    from strapdown.analysis.cli import main
+    from strapdown.analysis.coning.evaluation import increment
+    from strapdown.analysis.coning.local_error import TumblingMotion
+
+    assert main(["derive", "local-error", "--algorithm", name, "--max-order", "7", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    alg = get(name)
+    weights = [t["weight"] for t in data["series"]]
+    assert weights == data["nonzero_weights"] and len(weights) >= 2 and weights[0] == data["local_error_order"] == data["accuracy_order"] + 1
+    motion, t_mid = TumblingMotion(), 0.7
+    derivs = _chebyshev_derivatives(motion, t_mid, 7)
+    residual = []
+    for h in (0.08, 0.04):
+        H = alg.samples * h
+        t0 = t_mid - H / 2
+        window = motion.increments(t0 - window_start * h, h, alg.window)
+        exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + H)))
+        predicted = sum(
+            Fraction(t["delta"]) * h ** t["weight"] * sum(float(Fraction(k)) * _nested_value(_word(w), derivs) for w, k in t["coefficients"].items())
+            for t in data["series"]
+        )
+        residual.append(np.linalg.norm(exact - increment(alg, window) - predicted.astype(float)))
+    assert residual[0] / residual[1] == pytest.approx(2**remainder, rel=0.3)
+
+
+def test_every_weight_reconstructs_the_local_error_exactly():
+    """lebedev-panov-6 (dot-product terms) through h^11: Σ δ_w k_x x_w equals each weight's part as polynomials."""
+    alg = get("lebedev-panov-6")
+    err = S.local_error(alg, 11)
+    terms = S.error_series(alg, 11)
+    assert [t.weight for t in terms] == [w for w, p in enumerate(err.parts) if any(p)] == [7, 9, 11]
+    for t in terms:
+        assert S.lie_vector([(w, t.delta * c) for w, c in t.coefficients.items()]) == err.part(t.weight, unit="h")
+
+
+def test_canonical_basis_is_the_greedy_choice_over_all_candidates():
+    """Chosen content by content, the basis is the one a single greedy pass over every candidate picks."""
+
+    def compositions(w):  # every word of weight w: the letters k = p − 1 of the ordered parts p of w
+        if w == 0:
+            yield ()
+        for p in range(1, w + 1):
+            for rest in compositions(w - p):
+                yield (p - 1,) + rest
+
+    for w in range(2, 10):
+        candidates = sorted((c for c in compositions(w) if len(c) == 1 or c[-2] < c[-1]), key=lambda p: (len(p), p))
+        echelon, greedy = S._Echelon(), []
+        for c in candidates:
+            if echelon.add(S._flatten(S.nested(c))):
+                greedy.append(c)
+        assert S.canonical_basis(w) == tuple(greedy), w

@@ -299,6 +299,77 @@ def test_monte_carlo_does_not_depend_on_chunking():
     assert np.array_equal(a.pairs, b.pairs)
 
 
+def test_draws_with_one_stream_per_realisation_are_the_single_draws(tmp_path):
+    from strapdown.analysis.coning.vibration_monte_carlo import draw_components
+
+    env = load_environment(_write(tmp_path, SPECTRUM_FILE))
+    seeds = np.random.SeedSequence(3).spawn(4)
+    freq, amp = draw_components(env, 4, [np.random.default_rng(s) for s in seeds])
+    for i, s in enumerate(seeds):
+        f, z = draw_components(env, 1, np.random.default_rng(s))
+        assert np.array_equal(freq[i], f[0]) and np.array_equal(amp[i], z[0])
+    with pytest.raises(ValueError, match="`rng`"):
+        draw_components(env, 3, [np.random.default_rng(s) for s in seeds])
+
+
+def test_monte_carlo_phases_advanced_between_anchors_agree_with_direct_evaluation():
+    """Phases advanced by e^{iω h_s} between direct evaluations every REANCHOR samples, against sines and cosines at every node."""
+    pytest.importorskip("numba")
+    from strapdown.analysis.coning.environment_examples import QUALIFICATION
+    from strapdown.analysis.coning.vibration_monte_carlo import REANCHOR, monte_carlo_drift
+
+    env = load_environment(QUALIFICATION)  # lines, a spectrum, second-order analog and digital filters, decimation by 4
+    run = dict(pairs=3, duration=0.5, rng=11, velocity=True)
+    direct = monte_carlo_drift(get("two-sample"), env, 1e-3, reanchor=1, **run)
+    advanced = monte_carlo_drift(get("two-sample"), env, 1e-3, **run)
+    assert direct.sensor_samples > 8 * REANCHOR * direct.realisations  # many anchors per realisation
+    gap = np.abs(advanced.pairs - direct.pairs)
+    # slope gaps times the run: attitude [rad] and velocity [m/s] error gaps at round-off, and relative to the slopes
+    assert gap[:, :3].max() * direct.duration < 1e-14
+    assert gap[:, 3:].max() * direct.duration < 1e-13
+    assert np.all(gap.max(axis=0) < 1e-8 * np.abs(direct.pairs).max(axis=0))
+
+
+def test_the_pair_kernel_runs_the_negative_member_as_its_own_realisation(tmp_path):
+    """The kernel computes the second member of a pair from the first one's motion; run alone, −Z gives the same numbers bit for bit.
+
+    The template is run as plain Python (two-sample placeholder, attitude), so the test needs no numba.
+    """
+    from strapdown.analysis.coning import _vibration_kernel as template
+    from strapdown.analysis.coning.vibration_monte_carlo import draw_components, sensor_matrices
+
+    env = load_environment(_write(tmp_path, SPECTRUM_FILE))  # mismatched analog filters, a digital filter, decimation
+    h, rng = 2e-3, np.random.default_rng(4)
+    freq, amp = draw_components(env, 1, rng, band_components=2)
+    mats = sensor_matrices(env, h, velocity=False)
+    om = 2.0 * math.pi * freq
+    theta = amp[..., :3] / (1j * om[..., None])
+    coef = np.concatenate([theta, amp], axis=-1)
+    vel = amp[..., 3:] / (1j * om[..., None])
+    out = {}
+    for sign in (1.0, -1.0):
+        out[sign] = np.empty((2, 6))
+        c, v = sign * coef, sign * vel
+        template.run(om, c.real.copy(), c.imag.copy(), v.real.copy(), v.imag.copy(), mats["hs"], env.decimation, 40, 6, mats["nodes"],
+                     mats["gmat"], mats["db"], mats["da"], 7, out[sign])  # fmt: skip
+    assert np.all(out[1.0][:, :3] != 0.0)
+    assert np.array_equal(out[1.0][1], out[-1.0][0]) and np.array_equal(out[1.0][0], out[-1.0][1])
+
+
+@pytest.mark.parametrize("angle", [1e-9, 1e-4, 0.0199, 0.0201, 0.0999, 0.1001, 0.7, 3.0])
+def test_monte_carlo_rotation_series_agree_with_the_closed_forms(angle):
+    """The kernel's exp(θ) and rotation vector switch to Taylor series below 0.1 and 0.02 rad; both sides agree with scipy."""
+    from scipy.spatial.transform import Rotation
+
+    from strapdown.analysis.coning import _vibration_kernel as template
+
+    for axis in np.random.default_rng(1).normal(size=(8, 3)):
+        v = angle * axis / np.linalg.norm(axis)
+        q = Rotation.from_rotvec(v).as_quat(scalar_first=True)
+        np.testing.assert_allclose(template.quat_of(*v), q, rtol=0, atol=4e-17)
+        np.testing.assert_allclose(template.error_rotvec(*q), Rotation.from_quat(q, scalar_first=True).as_rotvec(), rtol=0, atol=1e-15 * angle)
+
+
 # --------------------------------------------------------------------------- tuning
 def test_two_sample_tuned_to_one_line_nulls_its_drift_exactly():
     f, h = 40.0, 1e-3

@@ -57,6 +57,7 @@ from functools import cache
 
 import numpy as np
 
+from ..core import budget
 from ..core.validation import as_array, as_float, as_int, positive
 from ..gyrocompass.rocking import as_generator
 
@@ -223,7 +224,7 @@ class MotionRealisation:
         power = self.unit.spectrum.power * (a * a)[:, None]
         return MotionRealisation(replace(self.unit.spectrum, power=power), self.unit.coefficients * a[:, None], self.dt, self.unit, a.copy())
 
-    def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
+    def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2, limits: budget.Limits | None = None):
         """Angles, rates and angular accelerations at ``t_k = offset + k dt``, ``k < n_samples``.
 
         Parameters
@@ -234,19 +235,27 @@ class MotionRealisation:
             Time of the first point [s], in [0, dt].
         derivatives : int
             Highest derivative returned, 0 to 2 (the accelerations cost an FFT more).
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
         tuple of ndarray
             ``angles, rates, accelerations`` (up to ``derivatives``), each
             ``(n_trials, n_samples, 3)`` [rad, rad/s, rad/s²].
+
+        Raises
+        ------
+        ValueError
+            As :meth:`unit_evaluation`.
         """
-        parts, scale = self.unit_evaluation(n_samples, offset, derivatives=derivatives)
+        parts, scale = self.unit_evaluation(n_samples, offset, derivatives=derivatives, limits=limits)
         if self.unit is None:
             return parts
         return tuple(scale * p for p in parts)
 
-    def unit_evaluation(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2):
+    def unit_evaluation(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2, limits: budget.Limits | None = None):
         """:meth:`evaluate` as arrays and a factor per axis: ``evaluate(...) = tuple(scale · p for p in parts)``.
 
         A scaled draw (:attr:`unit`) returns the kept evaluations of its unit
@@ -262,6 +271,9 @@ class MotionRealisation:
             Time of the first point [s], in [0, dt].
         derivatives : int
             Highest derivative returned, 0 to 2.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
@@ -273,12 +285,15 @@ class MotionRealisation:
         Raises
         ------
         ValueError
-            For ``derivatives`` outside 0..2 or fewer than one sample.
+            For ``derivatives`` outside 0..2, fewer than one sample, or more
+            samples than ``limits`` allow.
         """
         n = as_int(n_samples, "n_samples", minimum=1)
         k = as_int(derivatives, "derivatives", minimum=0)
         if k > 2:
             raise ValueError(f"Expected `derivatives` in 0..2, got {k}")
+        what = f"`n_samples` = {n:.3g} samples of {self.n_trials} trials"
+        budget.check(budget.arrays(3.0 * self.n_trials * n, what=what, copies=2.0 * (k + 1) + 4.0), limits)
         shape = (self.n_trials, n, 3)
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros(shape) for _ in range(k + 1)), np.ones(3)
@@ -395,7 +410,7 @@ class _Model:
     def spectrum(self, n_samples: int, dt: float) -> Spectrum:  # pragma: no cover - overridden
         raise NotImplementedError
 
-    def draw(self, rng, n_trials: int, n_samples: int, dt: float) -> MotionRealisation:
+    def draw(self, rng, n_trials: int, n_samples: int, dt: float, *, limits: budget.Limits | None = None) -> MotionRealisation:
         """Draw the rocking of ``n_trials`` records of ``n_samples`` samples every ``dt`` [s].
 
         Parameters
@@ -408,14 +423,25 @@ class _Model:
             Samples per record (the realisation covers ``[0, (n_samples + 1) dt]``).
         dt : float
             Sample interval [s].
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
         MotionRealisation
+
+        Raises
+        ------
+        ValueError
+            For counts below 1, a bad ``dt``, or a draw beyond ``limits``
+            (naming ``n_trials`` and ``n_samples``).
         """
         n_trials = as_int(n_trials, "n_trials", minimum=1)
         dt = positive(dt, "dt")
         n_samples = as_int(n_samples, "n_samples", minimum=1)
+        what = f"`n_trials` × `n_samples` = {n_trials:.3g} × {n_samples:.3g} samples"
+        budget.check(budget.arrays(3.0 * n_trials * n_samples, what=what, copies=6.0), limits)
         s = self.spectrum(n_samples, dt)
         g = as_generator(rng)
         m = s.omega.size

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core import budget
 from ..core.validation import as_array, as_float, as_int, nonnegative, positive
 from ..gyrocompass.azimuth import check_latitude
 from ..gyrocompass.rocking import as_generator
@@ -349,7 +350,7 @@ class ImuDraws:
         return self.gyro_bias.shape[0]
 
 
-def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None) -> ImuDraws:
+def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, limits: budget.Limits | None = None) -> ImuDraws:
     """Draw the random numbers of ``n_trials`` records of ``scenario`` with ``errors``.
 
     The stream is consumed as :func:`simulate_imu` consumes it: the rocking,
@@ -365,10 +366,19 @@ def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials
         Trials.
     rng : Generator | SeedSequence | int | None
         Random stream.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     ImuDraws
+
+    Raises
+    ------
+    ValueError
+        For ``n_trials`` below 1, or draws beyond ``limits`` (naming ``n_trials``
+        and the scenario's ``duration``).
     """
     if not isinstance(scenario, Scenario):
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
@@ -377,8 +387,10 @@ def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials
         raise TypeError(f"Expected `errors` to be SensorErrors, got {type(e).__name__}")
     n = as_int(n_trials, "n_trials", minimum=1)
     N, dt = scenario.n_samples, scenario.dt
+    what = f"`n_trials` = {n:.3g} records of {N + 1:.3g} samples (`duration` = {scenario.duration:.3g} s of the scenario)"
+    budget.check(budget.imu_record(n, N + 1, what=what), limits)
     g = as_generator(rng)
-    rocking = scenario.motion.draw(g, n, N + 1, dt)
+    rocking = scenario.motion.draw(g, n, N + 1, dt, limits=limits)
     gb, ab = g.standard_normal((n, 3)), g.standard_normal((n, 3))
     gn = g.standard_normal((n, N, 3)) if e.gyro_noise else None
     an = g.standard_normal((n, N, 3)) if e.accel_noise else None
@@ -387,7 +399,16 @@ def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials
     return ImuDraws(rocking, gb, ab, gn, an, gs, as_)
 
 
-def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int | None = None, rng=None, draws: ImuDraws | None = None, truth_stride: int | None = None) -> ImuRecord:
+def simulate_imu(
+    scenario: Scenario,
+    errors: SensorErrors | None = None,
+    *,
+    n_trials: int | None = None,
+    rng=None,
+    draws: ImuDraws | None = None,
+    truth_stride: int | None = None,
+    limits: budget.Limits | None = None,
+) -> ImuRecord:
     """Sensor increments of ``n_trials`` independent rocking records.
 
     Parameters
@@ -405,6 +426,9 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
         the same trials again, at another rocking amplitude if ``scenario`` differs by it.
     truth_stride : int, optional
         Truth every ``truth_stride`` samples (default: at the start and the end only).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -413,7 +437,8 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     Raises
     ------
     ValueError
-        For a bad size or stride.
+        For a bad size or stride, or a record beyond ``limits`` (naming
+        ``n_trials`` and the scenario's ``duration``).
 
     Examples
     --------
@@ -433,12 +458,14 @@ def simulate_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_tr
     N, dt = scenario.n_samples, scenario.dt
     stride = N if truth_stride is None else as_int(truth_stride, "truth_stride", minimum=1)
     if draws is None:
-        draws = draw_imu(scenario, errors, n_trials=n_trials, rng=rng)
+        draws = draw_imu(scenario, errors, n_trials=n_trials, rng=rng, limits=limits)
     elif not isinstance(draws, ImuDraws):
         raise TypeError(f"Expected `draws` to be ImuDraws, got {type(draws).__name__}")
     elif n_trials is not None or rng is not None:
         raise ValueError("Expected either `draws` or `n_trials` and `rng`, got both")
     n = draws.n_trials
+    what = f"`n_trials` = {n:.3g} records of {N + 1:.3g} samples (`duration` = {scenario.duration:.3g} s of the scenario)"
+    budget.check(budget.imu_record(n, N + 1, what=what), limits)
     motion = draws.rocking
     if motion.unit is not None:
         motion = motion.rescaled(scenario.motion)  # the same draw at the scenario's amplitudes (checks the model)

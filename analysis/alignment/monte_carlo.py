@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core import kalman, montecarlo
+from ..core import budget, kalman, montecarlo
 from ..core.validation import as_int
 from ..gyrocompass.rocking import as_generator
 from .analytic import analytic_alignment
@@ -313,7 +313,7 @@ class AlignmentMonteCarlo:
 
 
 def _per_block(method: str, n_trials: int, trials_per_block) -> int:
-    per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else (128 if method == "kalman" else 32)
+    per_block = as_int(trials_per_block, "trials_per_block", minimum=1) if trials_per_block else budget.ALIGNMENT_BLOCKS[method][0]
     return min(per_block, n_trials)
 
 
@@ -374,6 +374,7 @@ def alignment_monte_carlo(
     progress: bool = False,
     trials_per_block: int | None = None,
     draws=None,
+    limits: budget.Limits | None = None,
 ) -> AlignmentMonteCarlo:
     """Monte Carlo of the azimuth error of one alignment method.
 
@@ -394,7 +395,7 @@ def alignment_monte_carlo(
     executor : Executor | dask Client | None
         Where blocks run (the result does not depend on it).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     trials_per_block : int, optional
         Trials per block (the unit of randomness; default 32, Kalman 128).
     draws : sequence of AlignmentDraws, optional
@@ -402,6 +403,9 @@ def alignment_monte_carlo(
         instead of from ``rng``: the same trials as another run on these draws
         (common random numbers), here in a scenario that may differ by the rocking
         amplitudes, or for another filter.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one core); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -410,7 +414,8 @@ def alignment_monte_carlo(
     Raises
     ------
     ValueError
-        For an unknown method or fewer than 2 trials.
+        For an unknown method, fewer than 2 trials, or a run beyond ``limits``
+        (naming ``n_trials`` and the scenario's ``duration``).
 
     Examples
     --------
@@ -429,19 +434,22 @@ def alignment_monte_carlo(
     options = AlignmentOptions() if options is None else options
     n_trials = as_int(n_trials, "n_trials", minimum=2)
     root = montecarlo.root_seed_sequence(rng)
-    floor = bias_floor(scenario, errors)
-    theory = analytic_theory(scenario, errors, formula=options.formula) if method == "analytic" else None
-    sequence, checks, model = None, (), None
+    sequence, checks, model, n_epochs = None, (), None, 0
     if method == "kalman":
         model = filter_model(scenario, options.tuning)
         n_epochs = scenario.n_samples // model.samples_per_epoch
         if n_epochs < 1:
             raise ValueError(f"Expected `duration` of at least one filter epoch ({model.epoch:g} s), got {scenario.duration:g}")
+    per_block = _per_block(method, n_trials, trials_per_block)
+    what = f"`n_trials` = {n_trials:.3g} trials of {scenario.n_samples:.3g} samples (`duration` = {scenario.duration:.3g} s of the scenario)"
+    budget.check(budget.alignment_monte_carlo(n_trials, scenario.n_samples, method=method, epochs=n_epochs, per_block=per_block, what=what), limits)
+    floor = bias_floor(scenario, errors)
+    theory = analytic_theory(scenario, errors, formula=options.formula) if method == "analytic" else None
+    if method == "kalman":
         sequence = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, n_epochs)
         checks = _check_epochs(n_epochs)
     kernel = AlignmentKernel(scenario, errors, method, options, checks, sequence, model=model)
     if draws is None:
-        per_block = _per_block(method, n_trials, trials_per_block)
         # histogram scale from a pilot block on its own stream (not one of the run's blocks)
         pilot, _ = kernel(min(8, n_trials), np.random.default_rng(montecarlo.block_seed(root, 2**31)))
         scale = float(np.sqrt(np.mean(pilot**2))) or 1e-12

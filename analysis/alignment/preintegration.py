@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import quaternion as quat
-from ..core.validation import as_int
+from ..core.validation import as_array, as_int
 from . import kernels
 
 __all__ = ["EpochIncrements", "preintegrate", "chain_rotations"]
@@ -94,10 +94,13 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     Raises
     ------
     ValueError
-        If the record is shorter than one epoch.
+        If the record is shorter than one epoch, or the increments are not
+        finite arrays of one shape ``(n, N, 3)``.
     """
     M = as_int(samples_per_epoch, "samples_per_epoch", minimum=1)
-    dtheta, dv = np.asarray(dtheta, dtype=float), np.asarray(dv, dtype=float)
+    dtheta, dv = as_array(dtheta, "dtheta", last=3), as_array(dv, "dv", last=3)
+    if dtheta.ndim != 3 or dtheta.shape != dv.shape:
+        raise ValueError(f"Expected `dtheta` and `dv` of the same shape (n, N, 3), got {dtheta.shape} and {dv.shape}")
     n, N, _ = dtheta.shape
     E = N // M
     if E < 1:

@@ -30,9 +30,11 @@ The contract of every command
 * Ctrl-C prints one line and exits with status 130.
 * Numerical warnings (numpy's ``RuntimeWarning``) never reach stderr; other
   warnings are printed as one line each.
-* Work longer than about two seconds shows its progress on stderr when stderr
-  is a terminal (:mod:`strapdown.analysis.core.progress`), and nothing when it
-  is not; ``--no-progress`` turns it off.
+* Work longer than a few seconds shows its progress on stderr
+  (:mod:`strapdown.analysis.core.progress`): bars on a terminal, and
+  otherwise (a log, a pipe, a notebook) a plain line at least every few
+  seconds with what runs, the fraction done and the time elapsed; ``--quiet``
+  (or ``--no-progress``) turns it off.
 
 Any other exception is a defect of the package: it prints one line asking for
 a report and exits with status 70.  ``STRAPDOWN_DEBUG=1`` in the environment
@@ -55,7 +57,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .. import __version__
-from ..core.progress import activity, wanted
+from ..core.progress import activity, lines, mode, wanted
 
 __all__ = ["main", "build_parser", "Commands", "Result", "UsageError", "EXIT_USAGE", "EXIT_INTERRUPTED", "EXIT_SOFTWARE"]
 
@@ -174,11 +176,14 @@ class Commands:
             ``"activity"``: the edge shows the elapsed time on stderr once the
             command runs longer than two seconds (on a terminal); ``"own"``: the
             command draws its own progress bar (it reads ``args.progress``).
+            Where stderr is not a terminal, the edge writes progress lines for
+            both (:func:`strapdown.analysis.core.progress.lines`), refined by
+            the bars of the command.
 
         Returns
         -------
         argparse.ArgumentParser
-            The command's parser, with ``--json`` and ``--no-progress`` already added.
+            The command's parser, with ``--json``, ``--quiet`` and ``--no-progress`` already added.
         """
         if progress not in ("activity", "own"):
             raise ValueError(f"Expected `progress` in ('activity', 'own'), got {progress!r}")
@@ -187,7 +192,10 @@ class Commands:
         else:
             parser = self._group(group).add_parser(name, help=help, description=description or help)
         parser.add_argument("--json", action="store_true", help="print exactly one JSON object on stdout")
-        parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="no progress display on stderr (shown only when stderr is a terminal)")
+        parser.add_argument(
+            "--quiet", action="store_true", help="no progress on stderr (by default: bars on a terminal, otherwise a plain line every few seconds for work that lasts)"
+        )
+        parser.add_argument("--no-progress", dest="no_progress", action="store_true", help="the same as --quiet")
         parser.set_defaults(func_=func, parser_=parser, command_=name if group is None else f"{group} {name}", progress_mode_=progress)
         self.listing.append((name if group is None else f"{group} {name}", help))
         return parser
@@ -234,21 +242,21 @@ class Commands:
 #: line: ``strapdown --help`` lists them, and a call imports only the module of the command it
 #: runs (the help is checked against what the module registers by tests/test_cli.py).
 COMMANDS = {
-    "algorithms list": ("algorithms", "list the registry: name, samples, previous samples read, order, source"),
-    "algorithms show": ("algorithms", "one algorithm: terms as exact fractions, samples, history, second-order defect, order, source"),
+    "algorithms list": ("algorithms", "list the registry: name, samples, previous samples read, accuracy, local-error and coning-drift orders, source"),
+    "algorithms show": ("algorithms", "one algorithm: terms as exact fractions, samples, history, second-order defect, orders, source"),
     "align": ("align", "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory"),
     "azimuth": ("azimuth", "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)"),
     "azimuth-design": ("azimuth", "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)"),
-    "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^order, exact fraction"),
-    "derive local-error": ("derive_local_error", "local-error series of an algorithm (exact fractions, LaTeX) to any order"),
+    "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^m, the next term in α and where the leading term holds"),
+    "derive local-error": ("derive_local_error", "local-error series of an algorithm, every weight through h^K (exact fractions, LaTeX)"),
     "derive lyapunov": ("lyapunov", "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))"),
     "design": ("design", "largest step and computational load of each algorithm for a drift budget"),
     "design-coning": ("environment", "coning algorithm tuned to a vibration environment: coefficients, algorithm file, drift across the band"),
     "design-sculling": ("environment", "sculling (velocity) algorithm tuned to a vibration environment: coefficients and algorithm file"),
-    "drift": ("drift", "constant drift rate of an algorithm under regular precession (parallel computation)"),
+    "drift": ("drift", "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)"),
     "environment-drift": ("environment", "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)"),
     "environment-rates": ("environment", "lowest sample rate and load of each algorithm, classical and tuned, for a drift budget in an environment"),
-    "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, order, drift, remainder, check"),
+    "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
     "report": ("report", "regenerate every report (errata, algorithms, derivations, stability, azimuth, index, HTML)"),
@@ -462,7 +470,7 @@ def _blame(message: str, args, argv=()) -> str:
 
 
 #: Options that set how a command runs, not what it computes (left out of "given: ..." lists).
-_QUIET = {"--json", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
+_QUIET = {"--json", "--quiet", "--no-progress", "--progress", "--time-limit", "--memory-limit-mb"}
 
 
 def _given(argv) -> str:
@@ -484,19 +492,29 @@ def _given(argv) -> str:
     return ", ".join(pairs)
 
 
+def _as_options(text: str, args) -> str:
+    """``text`` with each backticked Python argument replaced by its option: `` `horizon` = 3e+09 s`` → ``--horizon 3e+09 s``."""
+
+    def option(match):
+        return _option_for(match.group(1), args) or match.group(0)
+
+    return re.sub(r"`([A-Za-z_]\w*)`(?: =)?", option, text)
+
+
 def _budget_message(exc, args) -> str:
     from ..core.budget import format_bytes, format_seconds
 
     options = _option_strings(getattr(args, "parser_", None))
+    what = _as_options(exc.estimate.what, args)
     if exc.resource == "memory":
         flag = options.get("memory_limit_mb", "--memory-limit-mb")
         return (
-            f"{exc.estimate.what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
+            f"{what} needs an estimated {format_bytes(exc.estimate.memory)} of memory, "
             f"over the limit of {format_bytes(exc.limits.memory)}; reduce the request or raise the limit with {flag}"
         )
     flag = options.get("time_limit", "--time-limit")
     return (
-        f"{exc.estimate.what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
+        f"{what} would take an estimated {format_seconds(exc.estimate.seconds)}, "
         f"over the limit of {format_seconds(exc.limits.seconds)}; reduce the request or raise the limit with {flag} (seconds)"
     )
 
@@ -571,10 +589,13 @@ def _main(argv: list[str]) -> int:
         if not _debug():
             warnings.simplefilter("ignore", RuntimeWarning)
         try:
-            show = wanted(None if not args.no_progress else False)
-            args.progress = getattr(args, "progress", False) or show
+            how = mode(args.quiet or args.no_progress)
+            if getattr(args, "progress", False) and how != "off":  # --progress: bars even in a log
+                how = "bar"
+            args.progress = how != "off"
             _apply_rules(args)
-            with activity(prog, enabled=show and args.progress_mode_ == "activity"):
+            display = lines(prog) if how == "lines" else activity(prog, enabled=how == "bar" and args.progress_mode_ == "activity")
+            with display:
                 result = args.func_(args)
             if isinstance(result, dict):
                 result = Result(result)

@@ -3,7 +3,9 @@
 Argument types for argparse (:func:`count`, :func:`number`) turn a mistyped
 value into a one-line error naming the option; :func:`add_limits` and
 :func:`limits_from` give a command the ``--time-limit`` / ``--memory-limit-mb``
-options of :mod:`strapdown.analysis.core.budget`.
+options of :mod:`strapdown.analysis.core.budget`.  The algorithm registry (and
+with it SymPy) is imported only by the commands that take an algorithm, so that
+a command such as ``strapdown stability`` starts quickly.
 """
 
 from __future__ import annotations
@@ -14,8 +16,6 @@ import re
 
 import numpy as np
 
-from ...derivations.coning.algorithms import TOML_LIMITS, SecondOrderConditionError, load_toml
-from ...derivations.coning.registry import get, names
 from ..core import budget
 from ..core.quaternion import normalize
 from ..core.roundoff import drift_floor
@@ -115,6 +115,9 @@ def add_algorithm(parser, *, required: bool = True) -> None:
     required : bool, keyword-only
         Whether one of the two must be given.
     """
+    from ...derivations.coning.algorithms import TOML_LIMITS
+    from ...derivations.coning.registry import names
+
     group = parser.add_mutually_exclusive_group(required=required)
     default = "" if required else " (default: none)"
     group.add_argument(
@@ -148,7 +151,12 @@ def algorithm_from(args):
     ValueError
         An unknown name, or a file that is missing, unreadable, malformed or beyond the limits.
     """
-    if getattr(args, "algorithm_file", None):
+    from ...derivations.coning.algorithms import SecondOrderConditionError, load_toml
+    from ...derivations.coning.registry import get
+
+    if getattr(args, "algorithm_file", None) is not None:
+        if not str(args.algorithm_file).strip():
+            raise ValueError("Expected `--algorithm-file` to name a TOML file, got an empty file name")
         try:
             return load_toml(args.algorithm_file, allow_inconsistent=args.allow_inconsistent)
         except SecondOrderConditionError as exc:
@@ -161,16 +169,27 @@ def algorithm_from(args):
 
 # --------------------------------------------------------------------------- motion
 def add_motion(parser) -> None:
-    """Regular precession (4.1) options: ``--eps --nutation-deg --freq-hz``, sample interval, duration, work limits.
+    """Motion options: regular precession (4.1) or classical coning, ``--freq-hz``, sample interval, duration, work limits.
+
+    Regular precession takes ``--eps --nutation-deg``; classical coning takes
+    ``--half-angle-deg`` alone, the same motion with ε = −1 and ϑ = α (its
+    coning rate ω is the spin rate ν = 2πF).
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
         The command's parser.
     """
-    parser.add_argument("--eps", type=float, required=True, help="ε = μ/ν, precession to spin rate [dimensionless] (−1 is coning; required)")
-    parser.add_argument("--nutation-deg", type=float, required=True, help="nutation angle ϑ [deg], in (0, 180) (required)")
-    parser.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz], > 0; ν = 2πF (required)")
+    g = parser.add_argument_group("motion: regular precession (--eps and --nutation-deg) or classical coning (--half-angle-deg)")
+    g.add_argument("--eps", type=float, default=None, help="ε = μ/ν, precession to spin rate of a regular precession [dimensionless], −1 is coning (default: none)")
+    g.add_argument("--nutation-deg", type=float, default=None, help="nutation angle ϑ of a regular precession [deg], in (0, 180) (default: none)")
+    g.add_argument(
+        "--half-angle-deg",
+        type=float,
+        default=None,
+        help="half-cone angle α of classical coning [deg], in (0, 90): the regular precession with ε = −1 and ϑ = α (default: none)",
+    )
+    g.add_argument("--freq-hz", type=float, required=True, help="spin frequency F [Hz], > 0, ν = 2πF; under classical coning the coning frequency (required)")
     add_run(parser)
 
 
@@ -205,16 +224,28 @@ def motion_parameters(args, algorithm=None, *, velocity: bool = False) -> dict:
     Returns
     -------
     dict
-        ``eps``, ``nu`` [rad/s], ``nutation`` [rad].
+        ``eps``, ``nu`` [rad/s], ``nutation`` [rad], ``coning`` (True for
+        ``--half-angle-deg``) and ``nutation_deg`` [deg] (ϑ, or α under coning).
 
     Raises
     ------
     ValueError
-        A value out of range (in the unit typed), or work beyond the limits
+        A value out of range (in the unit typed), both or neither of the two
+        descriptions of the motion, or work beyond the limits
         (:class:`strapdown.analysis.core.budget.BudgetExceeded`).
     """
-    eps = as_float(args.eps, "--eps")
-    nutation_deg = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees")
+    coning = getattr(args, "half_angle_deg", None) is not None
+    given = [flag for key, flag in (("eps", "--eps"), ("nutation_deg", "--nutation-deg")) if getattr(args, key) is not None]
+    if coning and given:
+        raise ValueError(f"Expected either --half-angle-deg (classical coning) or --eps with --nutation-deg (regular precession), got --half-angle-deg and {given[0]}")
+    if not coning and len(given) < 2:
+        missing = " and ".join(f for f in ("--eps", "--nutation-deg") if f not in given)
+        raise ValueError(f"Expected --eps with --nutation-deg (regular precession) or --half-angle-deg (classical coning), got no {missing}")
+    if coning:
+        eps, nutation_deg = -1.0, in_open_interval(args.half_angle_deg, "--half-angle-deg", 0.0, 90.0, text="(0, 90) degrees")
+    else:
+        eps = as_float(args.eps, "--eps")
+        nutation_deg = in_open_interval(args.nutation_deg, "--nutation-deg", 0.0, 180.0, text="(0, 180) degrees")
     freq = positive(args.freq_hz, "--freq-hz")
     h = positive(args.sample_interval, "--sample-interval")
     positive(args.duration, "--duration")
@@ -222,14 +253,15 @@ def motion_parameters(args, algorithm=None, *, velocity: bool = False) -> dict:
     with np.errstate(over="ignore", invalid="ignore"):
         rate = float(abs(nu) * np.sqrt(np.float64(1.0) + 2.0 * eps * math.cos(nutation) + np.float64(eps) ** 2))  # |ω| of (4.1), constant
     if not rate * h < math.pi:
+        motion = f"--half-angle-deg {nutation_deg:g}" if coning else f"--eps {eps:g}, --nutation-deg {nutation_deg:g}"
         raise ValueError(
             f"Expected the body to turn less than π rad per sample, got |ω| h = {rate * h:.3g} rad "
-            f"(|ω| = {rate:.3g} rad/s from --eps {eps:g}, --nutation-deg {nutation_deg:g}, --freq-hz {freq:g}; --sample-interval {h:g} s): "
+            f"(|ω| = {rate:.3g} rad/s from {motion}, --freq-hz {freq:g}; --sample-interval {h:g} s): "
             "sample faster or slow the motion"
         )
     if algorithm is not None:
         check_run_work(args, algorithm, velocity=velocity)
-    return {"eps": eps, "nu": nu, "nutation": nutation}
+    return {"eps": eps, "nu": nu, "nutation": nutation, "coning": coning, "nutation_deg": nutation_deg}
 
 
 def check_run_work(args, algorithm, *, velocity: bool = False) -> None:

@@ -30,33 +30,16 @@ _METHOD_OPTIONS = {
     "--lever-arm-known": ("kalman",),
 }
 
-#: Alignment Monte Carlo, per trial and sensor sample: the time of the slowest method (Kalman; the
-#: analytic method takes about a third of it) and the start-up (theory, pilot block).  Measured with
-#: ``strapdown align`` from 1e3 to 1e5 samples and 16 to 256 trials on a shared machine, rounded up.
-_ALIGNMENT_TRIAL_SAMPLE = budget.CostModel(seconds_per_unit=3e-6, bytes_per_unit=0.0, fixed_seconds=1.0, fixed_bytes=2e8)
-#: Kalman filter, per trial and epoch (time) and per epoch (memory: the gain sequence and the epoch records).
-_KALMAN_EPOCH = budget.CostModel(seconds_per_unit=8e-6, bytes_per_unit=0.0)
-_KALMAN_EPOCH_BYTES = 5e4
-#: Trials per block of the Monte Carlo (the library's defaults) and the peak memory of a block per
-#: trial and sample [bytes].
-_BLOCK = {"analytic": (32, 350.0), "inertial": (32, 350.0), "kalman": (128, 150.0)}
-
-
 def _check_work(args, samples: int, trials: int, workers: int) -> None:
     """Refuse a Monte Carlo whose estimate exceeds ``--time-limit`` / ``--memory-limit-mb``, before it starts."""
     from ..core.validation import positive
 
-    per_block, bytes_per = _BLOCK[args.method]
-    block = bytes_per * min(trials, per_block) * float(samples)  # each worker holds one block
     what = f"{trials:.3g} trials (--trials) of {float(samples):.3g} samples (--duration × --sample-rate-hz) on {workers} worker(s) (--workers)"
-    model = _ALIGNMENT_TRIAL_SAMPLE
-    estimate = model.estimate(float(trials) * float(samples), what=what, seconds_factor=1.0 / workers, extra_bytes=workers * block + (workers - 1) * model.fixed_bytes)
+    epochs = 0.0
     if args.method == "kalman":  # the filter runs once per epoch: short epochs cost more than the samples
         epoch = positive(0.1 if args.epoch is None else args.epoch, "--epoch")
         epochs = float(samples) // max(1.0, round(epoch * positive(args.sample_rate_hz, "--sample-rate-hz")))
-        filtering = _KALMAN_EPOCH.estimate(float(trials) * epochs, what=what, seconds_factor=1.0 / workers)
-        estimate = budget.Estimate(estimate.seconds + filtering.seconds, estimate.memory + _KALMAN_EPOCH_BYTES * epochs, what)
-    check_work(args, estimate)
+    check_work(args, budget.alignment_monte_carlo(trials, samples, method=args.method, epochs=epochs, workers=workers, what=what))
 
 
 def _check_options(args) -> None:

@@ -1,16 +1,24 @@
-"""``strapdown drift``: constant drift rate of an algorithm under regular precession.
+"""``strapdown drift``: constant drift rate of an algorithm under regular precession or classical coning.
 
-Any registry algorithm or TOML file runs, cross-step ones too (indices ≤ 0:
-the samples before the first step come from the exact motion).  Beside the
-simulated drift it prints two values of the symbolic drift theory (Lebedev &
-Panov 1989, section 5), both for any algorithm:
+The motion is a regular precession (Lebedev & Panov 1989, eq. (4.1):
+``--eps --nutation-deg --freq-hz``) or classical coning (``--half-angle-deg
+--freq-hz``), which is the same motion with ε = −1, ϑ = α and the coning rate
+ω equal to the spin rate ν.  Any registry algorithm or TOML file runs,
+cross-step ones too (indices ≤ 0: the samples before the first step come from
+the exact motion).  Beside the simulated drift it prints, for any algorithm:
 
 * the asymptotic rate u_a, the leading nonvanishing term of the series
   ``u = Σ_w d_w ν^w H^(w−1)`` (eq. (3) of Part 2, the figure the papers print);
-* the series summed through weight ``--max-order`` (default 9), which follows
-  the simulation where the leading term alone does not: at a large ``νH`` the
-  next terms are not small, and ``leading_term_dominates`` is false (with a
-  note) when u_a and the series differ by more than 10 %.
+* the series, with the drift the composition of the steps adds at second order
+  in the transverse step error, summed through the lowest weight whose
+  estimated truncation error (the last term kept) is within ``--series-rtol``
+  of the drift, at most ``--max-order``
+  (:func:`strapdown.analysis.coning.drift_theory.converged_drift_series`): at a
+  large ``νH``, or where the leading terms cancel, the next terms are not
+  small, and ``leading_term_dominates`` is false (with a note) when u_a and the
+  series differ by more than 10 %;
+* the exact drift, from one step in extended precision with no series and no
+  simulation (:func:`strapdown.analysis.coning.exact_drift.exact_drift`).
 
 The simulated drift is a least-squares slope, which a periodic error larger
 than the drift accumulated over the run biases; ``simulation_matches_series``
@@ -28,15 +36,15 @@ from __future__ import annotations
 import numpy as np
 
 from ...derivations.coning.series import WEIGHT_LIMIT
-from ..coning.drift_theory import asymptotic_drift_vector, drift_series_terms
+from ..coning.drift_theory import SERIES_MAX_WEIGHT, SERIES_RTOL, asymptotic_drift_vector, converged_drift_series
+from ..coning.exact_drift import exact_drift
 from ..coning.precession import RegularPrecession
 from ..coning.simulator import simulate
 from ..core.units import deg_per_h
+from ..core.validation import positive
 from . import Result, UsageError
-from ._options import add_algorithm, add_motion, algorithm_from, count, motion_parameters, run_summary
+from ._options import add_algorithm, add_motion, algorithm_from, count, motion_parameters, number, run_summary
 
-#: Default weight through which the drift series is summed (``--max-order``).
-SERIES_ORDER = 9
 #: Smallest ``--max-order``: the drift starts at weight 3 (a first-order algorithm).
 MIN_ORDER = 3
 #: Relative difference of the leading term and the series above which the leading term is said not to dominate.
@@ -54,16 +62,24 @@ def _run(args) -> Result:
     K = args.max_order
     if not MIN_ORDER <= K <= WEIGHT_LIMIT:
         raise UsageError(f"Expected --max-order in {MIN_ORDER}..{WEIGHT_LIMIT}, got {K}")
+    rtol = positive(args.series_rtol, "--series-rtol")
     alg = algorithm_from(args)
     params = motion_parameters(args, alg)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
     r = simulate(alg, motion, args.sample_interval, args.duration)
     data, header = run_summary(alg, r, params)
-    theory = {"eps": params["eps"], "nu": params["nu"], "nutation": params["nutation"], "step": r.step, "max_weight": K}
-    terms = drift_series_terms(alg, **theory)
+    theory = {"eps": params["eps"], "nu": params["nu"], "nutation": params["nutation"], "step": r.step}
+    terms = converged_drift_series(alg, **theory, rtol=rtol, max_weight=K)
     asymptotic = _finite_or_none(deg_per_h(terms.asymptotic))  # None: no drift through weight K
-    vector = deg_per_h(asymptotic_drift_vector(alg, **theory))
+    vector = deg_per_h(asymptotic_drift_vector(alg, **theory, max_weight=terms.max_weight))
     series = float(deg_per_h(terms.total))
+    truncation = _finite_or_none(deg_per_h(terms.truncation_error))
+    # None: nothing through weight K (no term and no composition), so nothing to converge
+    converged = None if series == 0.0 else bool(truncation is not None and truncation <= rtol * series)
+    try:
+        exact = abs(float(deg_per_h(exact_drift(alg, motion, args.sample_interval))))
+    except ValueError:  # the drift did not settle in the precisions tried (it vanishes, or nearly)
+        exact = None
     dominates = terms.leading_term_dominates(DOMINANCE_TOLERANCE)
     leading, largest = terms.leading_weight, terms.largest_weight
     simulated = float(deg_per_h(r.drift_rate))
@@ -71,35 +87,60 @@ def _run(args) -> Result:
     if not data["drift_below_roundoff_floor"] and series > 0.0:
         agrees = bool(abs(simulated - series) <= AGREEMENT_TOLERANCE * series)
     data |= {
+        "motion": "classical coning" if params["coning"] else "regular precession",
         "eps": params["eps"],
-        "nutation_deg": args.nutation_deg,
+        "nutation_deg": params["nutation_deg"],
+        "half_angle_deg": params["nutation_deg"] if params["coning"] else None,
         "freq_hz": args.freq_hz,
         "max_order": K,
+        "series_rtol": rtol,
         "simulated_drift_deg_per_h": simulated,
         "drift_vector_deg_per_h": deg_per_h(r.drift).tolist(),
         "asymptotic_drift_deg_per_h": asymptotic,
         "asymptotic_drift_vector_deg_per_h": vector.tolist() if np.all(np.isfinite(vector)) else None,
         "series_drift_deg_per_h": series,
+        "series_weight": terms.max_weight,
+        "series_truncation_error_deg_per_h": truncation,
+        "series_converged": converged,
+        "composition_drift_deg_per_h": _finite_or_none(deg_per_h(terms.composition)),
+        "exact_drift_deg_per_h": exact,
         "leading_term_dominates": dominates,
         "leading_weight": leading if leading >= 0 else None,
+        "drift_order": leading - 1 if leading >= 0 else None,
         "largest_term_weight": largest if largest >= 0 else None,
         "simulation_matches_series": agrees,
         "periodic_error_rad": float(r.periodic_error),
         "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
     }
-    u_a_text = f"{asymptotic:.6g} deg/h" if asymptotic is not None else f"zero through h^{K} (raise --max-order)"
-    lines = [
-        header,
+    u_a_text = f"{asymptotic:.6g} deg/h (drift order {leading - 1}: ∝ H^{leading - 1})" if asymptotic is not None else f"zero through h^{terms.max_weight} (raise --max-order)"
+    truncation_text = f"{truncation:.2g} deg/h, the last term kept" if truncation is not None else "unknown: the terms do not fall yet"
+    lines = [header]
+    if params["coning"]:
+        lines.append(f"classical coning: α = {params['nutation_deg']:g} deg, ω = 2π·{args.freq_hz:g} rad/s (the regular precession ε = −1, ϑ = α, ν = ω)")
+    lines += [
         f"constant drift rate: {data['simulated_drift_deg_per_h']:.6g} deg/h, "
         f"vector (frame I, exact minus algorithm) {', '.join(f'{x:.6g}' for x in data['drift_vector_deg_per_h'])} deg/h",
         f"asymptotic drift rate u_a (leading term): {u_a_text}",
-        f"drift series through h^{K}: {series:.6g} deg/h",
+        f"drift series through h^{terms.max_weight}: {series:.6g} deg/h (estimated truncation error {truncation_text}; "
+        f"composition of the steps {data['composition_drift_deg_per_h'] or 0.0:.3g} deg/h)",
+        f"exact drift (one step in extended precision, no series): {exact:.6g} deg/h" if exact is not None else "exact drift: did not settle (it vanishes or nearly)",
     ]
-    if dominates is False:
+    if converged is None:
+        lines.append(f"note: the drift series vanishes through h^{terms.max_weight} (--max-order {K})")
+    elif not converged:
         lines.append(
-            f"note: u_a differs from the series by {abs(asymptotic - series) / series:.0%} (more than {DOMINANCE_TOLERANCE:.0%}): "
-            f"the largest term is of weight {largest}, the leading one of weight {leading} "
-            f"(νH = {params['nu'] * r.step:.3g} rad, ϑ = {args.nutation_deg:g} deg); the series is the drift to quote"
+            f"note: through h^{terms.max_weight} (--max-order {K}) the series has not reached --series-rtol {rtol:g}: "
+            f"estimated truncation error {truncation_text}; raise --max-order, or quote the exact drift"
+        )
+    if dominates is False:
+        why = (
+            f"the leading term (weight {leading}) is the largest, and the later ones cancel most of it"
+            if largest == leading
+            else f"the largest term is of weight {largest}, the leading one of weight {leading}"
+        )
+        lines.append(
+            f"note: u_a differs from the series by {abs(asymptotic - series) / series:.0%} (more than {DOMINANCE_TOLERANCE:.0%}): {why} "
+            f"(νH = {params['nu'] * r.step:.3g} rad, ϑ = {params['nutation_deg']:g} deg); the series is the drift to quote"
         )
     if agrees is False:
         lines.append(
@@ -121,15 +162,23 @@ def register(commands) -> None:
     p = commands.add(
         "drift",
         _run,
-        "constant drift rate of an algorithm under regular precession (parallel computation)",
+        "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)",
     )
     add_algorithm(p)
     add_motion(p)
     p.add_argument(
         "--max-order",
         type=count,
-        default=SERIES_ORDER,
+        default=SERIES_MAX_WEIGHT,
         metavar="K",
-        help=f"weight through which the drift series is summed and its leading term searched, K in {MIN_ORDER}..{WEIGHT_LIMIT} "
-        f"[count] (default {SERIES_ORDER})",
+        help=f"highest weight (power of h) the drift series may reach, K in {MIN_ORDER}..{WEIGHT_LIMIT} [count] (default {SERIES_MAX_WEIGHT}); "
+        "the weight is raised 7, 9, 11, ... until --series-rtol is met",
+    )
+    p.add_argument(
+        "--series-rtol",
+        type=number,
+        default=SERIES_RTOL,
+        metavar="R",
+        help=f"estimated truncation error of the drift series (its last term kept) the series must reach, relative to the drift "
+        f"[dimensionless] (default {SERIES_RTOL:g})",
     )

@@ -138,7 +138,7 @@ def _text(a, data) -> str:
         f"second-order condition Σ c_ij (j − i) = {data['conditions']['second_order_sum']} against N³/12 = {data['conditions']['second_order_expected']}: "
         f"{'holds' if con.second_order else 'fails'}"
     )
-    lines.append(f"local error O(h^{a.order + 1}) (order {a.order})" if a.order is not None else "local error zero through h^7")
+    lines.append(f"local error O(h^{a.order + 1}): accuracy order {a.order}, local-error order {a.order + 1}" if a.order is not None else "local error zero through h^7")
     if data["local_error"] is not None:
         words = [(c.startswith("-"), c.lstrip("-"), w) for w, c in data["local_error"]["coefficients"].items()]
         terms = " ".join(f"{'-' if neg else '+'} {'' if c == '1' else c + ' '}{w}" for neg, c, w in words).removeprefix("+ ")
@@ -146,7 +146,7 @@ def _text(a, data) -> str:
     if a.local_error_exponent is not None:
         lines.append(f"  the integrator's own one-step error on a tumbling motion: exponent {a.local_error_exponent:.2f}")
     if a.coning is not None:
-        lines.append(f"coning drift u = {data['coefficient']} · α² ω (ωh)^{data['order']}  (exact minus integrator, along the cone axis)")
+        lines.append(f"coning drift u = {data['coefficient']} · α² ω (ωh)^{data['coning_drift_order']}: coning-drift order {data['coning_drift_order']} (exact minus integrator, along the cone axis)")
     else:
         lines.append("coning drift: no α² closed form (the linear part is not p1 + … + pN)")
     lines.append(f"remainder: {ident.remainder.summary()}")
@@ -183,7 +183,7 @@ def register(commands) -> None:
     p = commands.add(
         "identify",
         identify_command,
-        "identify a user's coning and sculling code as an exact algorithm: terms, consistency, order, drift, remainder, check",
+        "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check",
         description=__doc__.split("\n\n")[1].replace("\n", " ").replace("``", ""),
     )
     p.add_argument("--integrator", required=True, metavar="FILE.py:NAME", help="Python file and the name of the integrator defined in it [path] (see docs/integrators.md)")

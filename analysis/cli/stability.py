@@ -11,6 +11,7 @@ cached on disk (:mod:`strapdown.analysis.core.cache`).
 from __future__ import annotations
 
 from . import Result
+from ._options import add_limits, limits_from
 
 _G, _R = 9.81, 6.371e6
 
@@ -45,9 +46,25 @@ def _loop(args):
     return loop, None
 
 
+def _check_response(args) -> None:
+    """Refuse a response too long for the limits from the options alone, before python-control is imported."""
+    import math
+
+    from ..core import budget
+    from ..multistage.response_grid import largest_sample_count
+
+    dur, end = args.accel_duration, args.horizon
+    if end is None or not (0.0 < dur <= end < math.inf):
+        return  # the default horizon is bounded; bad values are the library's to name
+    samples = largest_sample_count(dur, end)
+    what = f"--horizon {end:.3g} s over --accel-duration {dur:.3g} s (up to {samples:.3g} time samples)"
+    budget.check(budget.loop_response(samples, what=what), limits_from(args))
+
+
 def _run(args) -> Result:
+    _check_response(args)
     loop, gains = _loop(args)
-    s = loop.summary(args.accel_m_s2, args.accel_duration, horizon=args.horizon)
+    s = loop.summary(args.accel_m_s2, args.accel_duration, horizon=args.horizon, limits=limits_from(args))
     data = {
         "k_per_s": s.k,
         "l_per_s2": s.l,
@@ -100,3 +117,4 @@ def register(commands) -> None:
     p.add_argument("--horizon", type=float, default=None, help="end of the response [s] (default: T + 2 Schuler periods)")
     p.add_argument("--gravity-m-s2", type=float, default=_G, help=f"gravity g [m/s²] (default {_G:g})")
     p.add_argument("--earth-radius", type=float, default=_R, help=f"Earth radius R [m] (default {_R:g})")
+    add_limits(p)

@@ -18,7 +18,7 @@ simulator
     Parallel computation: an algorithm run beside the exact solution
     (cross-step algorithms included).
 algorithm_summary
-    An algorithm at a glance: terms, window, second-order defect, order, source.
+    An algorithm at a glance: terms, window, second-order defect, orders, source.
 kernels
     Fused compiled simulator kernels generated from an algorithm's terms (numba),
     and the chunked run of a batch of points through them.
@@ -29,8 +29,15 @@ batch
 local_error
     One-step local error on a motion with no symmetry (tumbling motion).
 drift_theory
-    Asymptotic drift and accumulated error from the symbolic one-step series;
-    coning drift in closed form as compiled functions.
+    Asymptotic drift and accumulated error from the symbolic one-step series
+    (with the composition of the steps, summed to a truncation error); coning
+    drift in closed form as compiled functions.
+exact_drift
+    The exact drift under regular precession or classical coning from one step
+    in extended precision: the reference for the series, with no series.
+coning_validity
+    Where the leading coning term is the drift: the next term in α and the
+    range of α and ωh where the leading term is within a tolerance of the exact drift.
 frequency_response
     Coning drift against ωh for several algorithms, with simulator checks.
 computational_load

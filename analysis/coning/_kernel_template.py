@@ -3,8 +3,11 @@
 :mod:`strapdown.analysis.coning.kernels` copies the functions of this module,
 below a generated :func:`increment` and the constants of one algorithm, into a
 generated module and compiles them with ``numba.njit(cache=True)``.  Read
-here, the module is ordinary Python with placeholder constants (a two-sample
-algorithm), so the template itself can be run and tested without numba, slowly.
+here, the module is ordinary Python with a placeholder increment (the
+two-sample algorithm), so the template itself can be run and tested without
+numba, slowly.  The algorithm's number of samples N and of earlier samples are
+arguments of :func:`run`, and :func:`pairwise_increment` takes its pairwise
+terms as data, so that one compiled kernel serves every pairwise algorithm.
 
 The kernel does per step what :func:`strapdown.analysis.coning.simulator.simulate`
 does with whole arrays (Lebedev & Panov 1989, eqs. (1.3), (1.5), (1.12),
@@ -35,12 +38,6 @@ import numpy as np
 __all__: list = []  # a template, not an API: kernels.py copies its functions
 
 # ---------------------------------------------------------------- constants (the generated module sets them)
-#: Samples N per step.
-SAMPLES = 2
-#: Samples of earlier steps the algorithm reads.
-HISTORY = 0
-#: Rows of the increment window, ``HISTORY + SAMPLES``.
-WINDOW = 2
 #: Biquaternion (velocity) run.
 DUAL = False
 #: Sines and cosines are computed directly at every multiple of this index (module docstring).
@@ -57,7 +54,7 @@ N_SUMS = 18
 
 
 def increment(w, wd):
-    """Placeholder for the generated increment: the two-sample algorithm, real part only."""
+    """Placeholder for a generated straight-line increment: the two-sample algorithm, real part only."""
     p1x, p1y, p1z = w[0, 0], w[0, 1], w[0, 2]
     p2x, p2y, p2z = w[1, 0], w[1, 1], w[1, 2]
     c = 2.0 / 3.0
@@ -69,6 +66,72 @@ def increment(w, wd):
         0.0,
         0.0,
     )
+
+
+def step_increment(w, wd, pairs, samples, history):
+    """The increment :func:`run` calls: here the straight-line :func:`increment`, which ignores the data.
+
+    The module of the data-driven kernel defines it as :func:`pairwise_increment` instead.
+    """
+    return increment(w, wd)
+
+
+def pairwise_increment(w, wd, pairs, samples, history):
+    """``Δφ = P + Σ_i p_i × (Σ_j c_ij p_j)`` (and its dual part) with the algorithm's terms as data.
+
+    ``pairs`` is a float array with one row per pairwise term ``(i, j, c_ij)``
+    (window rows of ``p_i`` and ``p_j``, coefficient), grouped by ``i`` in the
+    order of :func:`strapdown.analysis.coning.kernels.pairwise_data`; rows
+    ``history … history + samples − 1`` of ``w`` are the step's own samples.
+    The operations are those of the generated straight-line code, in the same
+    order (the sum P sample by sample, each right factor term by term, then
+    the cross product), so the result is the same to the last bit.
+    """
+    r0 = history
+    sx, sy, sz = w[r0, 0], w[r0, 1], w[r0, 2]
+    dsx, dsy, dsz = 0.0, 0.0, 0.0
+    if DUAL:
+        dsx, dsy, dsz = wd[r0, 0], wd[r0, 1], wd[r0, 2]
+    for j in range(1, samples):
+        sx = sx + w[r0 + j, 0]
+        sy = sy + w[r0 + j, 1]
+        sz = sz + w[r0 + j, 2]
+        if DUAL:
+            dsx = dsx + wd[r0 + j, 0]
+            dsy = dsy + wd[r0 + j, 1]
+            dsz = dsz + wd[r0 + j, 2]
+    k = 0
+    count = pairs.shape[0]
+    while k < count:
+        i = int(pairs[k, 0])
+        j = int(pairs[k, 1])
+        c = pairs[k, 2]
+        rx, ry, rz = c * w[j, 0], c * w[j, 1], c * w[j, 2]
+        drx, dry, drz = 0.0, 0.0, 0.0
+        if DUAL:
+            drx, dry, drz = c * wd[j, 0], c * wd[j, 1], c * wd[j, 2]
+        k += 1
+        while k < count and int(pairs[k, 0]) == i:
+            j = int(pairs[k, 1])
+            c = pairs[k, 2]
+            rx = rx + c * w[j, 0]
+            ry = ry + c * w[j, 1]
+            rz = rz + c * w[j, 2]
+            if DUAL:
+                drx = drx + c * wd[j, 0]
+                dry = dry + c * wd[j, 1]
+                drz = drz + c * wd[j, 2]
+            k += 1
+        ax, ay, az = w[i, 0], w[i, 1], w[i, 2]
+        sx = sx + (ay * rz - az * ry)
+        sy = sy + (az * rx - ax * rz)
+        sz = sz + (ax * ry - ay * rx)
+        if DUAL:
+            dax, day, daz = wd[i, 0], wd[i, 1], wd[i, 2]
+            dsx = dsx + (ay * drz + day * rz - (az * dry + daz * ry))
+            dsy = dsy + (az * drx + daz * rx - (ax * drz + dax * rz))
+            dsz = dsz + (ax * dry + dax * ry - (ay * drx + day * rx))
+    return sx, sy, sz, dsx, dsy, dsz
 
 
 def qmul(a0, a1, a2, a3, b0, b1, b2, b3):
@@ -165,17 +228,19 @@ def anchor_of(rate, interval, offset, index):
     return math.cos(angle), math.sin(angle)
 
 
-def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
+def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, history):
     """Advance every point from step ``k0`` to ``min(k1, n_steps)``; accumulate the statistics.
 
     ``par`` (P, N_PARAMETERS) parameter rows; ``n_steps`` (P,) steps of each run;
     ``theta`` (P, 8) the (bi)quaternion after step ``k0``, updated in place;
     ``sums`` (P, N_SUMS) the accumulators, updated; ``err`` (P, n + 1, 3) and
     ``dwe``, ``dwi`` the series, written at every step index when ``keep``.
-    Step 0 (the initial state) is compared when ``k0 == 0``.
+    Step 0 (the initial state) is compared when ``k0 == 0``.  ``samples`` (N) and
+    ``history`` are the algorithm's, and ``pairs`` holds the pairwise terms of a
+    data-driven increment (:func:`pairwise_increment`).
     """
-    win = np.zeros((WINDOW, 3))
-    wind = np.zeros((WINDOW, 3))
+    win = np.zeros((history + samples, 3))
+    wind = np.zeros((history + samples, 3))
     tab_s = np.zeros((REANCHOR, 2))
     tab_a = np.zeros((REANCHOR, 2))
     tab_b = np.zeros((REANCHOR, 2))
@@ -187,7 +252,7 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
         e, nu, nut, nud, nutd, h = par[i, 0], par[i, 1], par[i, 2], par[i, 3], par[i, 4], par[i, 5]
         k0c0, k0c1, k0c2, k0c3 = par[i, 6], par[i, 7], par[i, 8], par[i, 9]
         k0d0, k0d1, k0d2, k0d3 = par[i, 10], par[i, 11], par[i, 12], par[i, 13]
-        big_h = SAMPLES * h
+        big_h = samples * h
         half_n = 0.5 * n
         # Increments (2.1) of (4.1) about the sample midpoint t_m = (s + 1/2) h:
         # p = (a sin νt_m, a cos νt_m, p3), a = 2 ε sin ϑ sin(νh/2).
@@ -200,7 +265,7 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
         if DUAL:
             damp = e * cos_nut * nutd * g + e * sin_nut * h * math.cos(0.5 * h * nu) * nud
             dp3 = (nud * (1.0 + e * cos_nut) - nu * e * sin_nut * nutd) * h
-        fill_table(tab_s, nu, h, REANCHOR if HISTORY > 0 else min(REANCHOR, n * SAMPLES))
+        fill_table(tab_s, nu, h, REANCHOR if history > 0 else min(REANCHOR, n * samples))
         # Exact attitude (4.4): angles a = (1 + ε)νt/2, b = (1 − ε)νt/2 at t_k = k H.
         rate_a = (1.0 + e) * nu / 2.0
         rate_b = (1.0 - e) * nu / 2.0
@@ -209,9 +274,9 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
         cn, sn = math.cos(nut / 2.0), math.sin(nut / 2.0)
         dcn = -sn * nutd / 2.0
         dsn = cn * nutd / 2.0
-        # The window's history rows: samples k0 N − HISTORY … k0 N − 1.
-        for r in range(HISTORY):
-            s_idx = k0 * SAMPLES - HISTORY + r
+        # The window's history rows: samples k0 N − history … k0 N − 1.
+        for r in range(history):
+            s_idx = k0 * samples - history + r
             sca, ssa = anchor_of(nu, h, 0.5, s_idx)
             cs, ss, sca, ssa = phase(nu, h, 0.5, s_idx, tab_s, sca, ssa)
             win[r, 0], win[r, 1], win[r, 2] = amp * ss, amp * cs, p3
@@ -222,7 +287,7 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
                 wind[r, 2] = dp3
         t0, t1, t2, t3 = theta[i, 0], theta[i, 1], theta[i, 2], theta[i, 3]
         d0, d1, d2, d3 = theta[i, 4], theta[i, 5], theta[i, 6], theta[i, 7]
-        sca, ssa = anchor_of(nu, h, 0.5, k0 * SAMPLES)
+        sca, ssa = anchor_of(nu, h, 0.5, k0 * samples)
         aca, asa = anchor_of(rate_a, big_h, 0.0, k0)
         bca, bsa = anchor_of(rate_b, big_h, 0.0, k0)
         ca, sa, aca, asa = phase(rate_a, big_h, 0.0, k0, tab_a, aca, asa)
@@ -235,21 +300,21 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep):
             stepped = k > k0
             if stepped:
                 # One algorithm step: the samples (k − 1) N … k N − 1.
-                for j in range(SAMPLES):
-                    s_idx = (k - 1) * SAMPLES + j
+                for j in range(samples):
+                    s_idx = (k - 1) * samples + j
                     cs, ss, sca, ssa = phase(nu, h, 0.5, s_idx, tab_s, sca, ssa)
-                    r = HISTORY + j
+                    r = history + j
                     win[r, 0], win[r, 1], win[r, 2] = amp * ss, amp * cs, p3
                     if DUAL:
                         tm = (s_idx + 0.5) * h
                         wind[r, 0] = damp * ss + amp * cs * nud * tm
                         wind[r, 1] = damp * cs - amp * ss * nud * tm
                         wind[r, 2] = dp3
-                x, y, z, dx, dy, dz = increment(win, wind)
-                for r in range(HISTORY):  # the next step's earlier samples
+                x, y, z, dx, dy, dz = step_increment(win, wind, pairs, samples, history)
+                for r in range(history):  # the next step's earlier samples
                     for c in range(3):
-                        win[r, c] = win[r + SAMPLES, c]
-                        wind[r, c] = wind[r + SAMPLES, c]
+                        win[r, c] = win[r + samples, c]
+                        wind[r, c] = wind[r + samples, c]
                 q0, q1, q2, q3, e0, e1, e2, e3 = rotvec_quat(x, y, z, dx, dy, dz)
                 if DUAL:
                     m0, m1, m2, m3 = qmul(t0, t1, t2, t3, e0, e1, e2, e3)

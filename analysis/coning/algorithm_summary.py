@@ -1,9 +1,12 @@
-"""What one needs to know about an algorithm at a glance: terms, window, consistency, order, source.
+"""What one needs to know about an algorithm at a glance: terms, window, consistency, orders, source.
 
 :func:`summarize` backs ``strapdown algorithms show``; :func:`summaries` backs
-``strapdown algorithms list``.  The local-error order comes from the symbolic
-series (:func:`strapdown.derivations.coning.series.local_error`), cross-step
-algorithms (indices ≤ 0) included.  :func:`cross_step_local_exponent` measures
+``strapdown algorithms list``.  The accuracy order ρ (local error O(h^(ρ+1)),
+local-error order ρ + 1) comes from the symbolic series
+(:func:`strapdown.derivations.coning.series.local_error`), the coning-drift order
+m (drift ∝ α² ω (ωh)^m under classical coning) from the closed form
+(:func:`strapdown.derivations.coning.drift.coning_drift`), cross-step algorithms
+(indices ≤ 0) included.  :func:`cross_step_local_exponent` measures
 the same order numerically, on a tumbling motion with no symmetry (the exponent
 of the one-step error ``|Δφ_exact − Δφ_alg|`` against the step, whose window
 starts ``history`` samples before the step): an independent check of the series.
@@ -19,6 +22,7 @@ import numpy as np
 from ...derivations.coning import series as S
 from ...derivations.coning.algorithms import Algorithm, second_order_defect
 from ..core import quaternion as quat
+from .drift_theory import coning_drift
 from .evaluation import increment
 from .local_error import TumblingMotion
 
@@ -43,8 +47,11 @@ class AlgorithmSummary:
         Each nonlinear term: exact coefficient and the product it multiplies.
     second_order_defect : Fraction
         ``Σ c_ij (j − i) − N³/12`` (zero: the second-order condition holds).
-    order : int or None
-        Order ρ: local error O(h^(ρ+1)); None when it vanishes through h⁷.
+    accuracy_order : int or None
+        ρ: local error O(h^(ρ+1)) in a general motion; None when it vanishes through h⁷.
+    coning_drift_order : int or None
+        m: under classical coning the drift is ``c α² ω (ωh)^m``; None if the
+        closed form finds no finite order.
     description : str
         One line.
     reference : str
@@ -57,9 +64,15 @@ class AlgorithmSummary:
     window: int
     terms: tuple
     second_order_defect: Fraction
-    order: int | None
+    accuracy_order: int | None
+    coning_drift_order: int | None
     description: str
     reference: str
+
+    @property
+    def local_error_order(self) -> int | None:
+        """ρ + 1: the power of h of the leading local error."""
+        return None if self.accuracy_order is None else self.accuracy_order + 1
 
     def as_dict(self) -> dict:
         """JSON-able form (fractions as strings such as ``"27/40"``)."""
@@ -70,7 +83,9 @@ class AlgorithmSummary:
             "window": self.window,
             "terms": [{"coefficient": str(c), "product": p} for c, p in self.terms],
             "second_order_defect": str(self.second_order_defect),
-            "order": self.order,
+            "accuracy_order": self.accuracy_order,
+            "local_error_order": self.local_error_order,
+            "coning_drift_order": self.coning_drift_order,
             "description": self.description,
             "reference": self.reference,
         }
@@ -96,7 +111,7 @@ def cross_step_local_exponent(algorithm: Algorithm, *, steps=(0.2, 0.1, 0.05), t
     Returns
     -------
     float
-        ``d log|δφ| / d log H`` (ρ + 1 for an algorithm of order ρ).
+        ``d log|δφ| / d log H``: the local-error order ρ + 1 of an algorithm of accuracy order ρ.
     """
     motion = TumblingMotion()
     n, hist = algorithm.samples, algorithm.history
@@ -134,12 +149,16 @@ def summarize(algorithm: Algorithm) -> AlgorithmSummary:
     --------
     >>> from strapdown.derivations.coning.registry import get
     >>> s = summarize(get("savage-1+1"))
-    >>> (s.samples, s.history, s.order, str(s.second_order_defect))
-    (1, 1, 3, '0')
+    >>> (s.samples, s.history, s.accuracy_order, s.coning_drift_order, str(s.second_order_defect))
+    (1, 1, 3, 4, '0')
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
     order = S.local_error(algorithm).order
+    try:
+        coning = coning_drift(algorithm).order
+    except ValueError:  # no finite order through (ωh)^60
+        coning = None
     return AlgorithmSummary(
         algorithm.name,
         algorithm.samples,
@@ -148,6 +167,7 @@ def summarize(algorithm: Algorithm) -> AlgorithmSummary:
         tuple((t.coefficient, _product(t)) for t in algorithm.terms),
         second_order_defect(algorithm),
         order,
+        coning,
         algorithm.description,
         algorithm.reference,
     )

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core import budget
 from ..core.validation import as_array, as_int, as_quaternion, as_vector
 from . import kernels
 from .precession import RegularPrecession
@@ -63,7 +64,7 @@ class BatchResult:
         return self.statistics.drift_rate
 
 
-def _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual):
+def _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual, limits):
     arrays = {
         "eps": as_array(eps, "eps"),
         "nu": as_array(nu, "nu"),
@@ -85,15 +86,26 @@ def _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual):
     except ValueError:
         shapes = ", ".join(f"{k} {a.shape}" for k, a in arrays.items())
         raise ValueError(f"Expected the parameter arrays to broadcast together, got shapes {shapes}") from None
+    points = math.prod(shape)
+    if points == 0:
+        empty = ", ".join(f"`{k}` (shape {a.shape})" for k, a in arrays.items() if a.size == 0)
+        raise ValueError(f"Expected at least one parameter point, got the empty array {empty}")
+    budget.check(budget.coning_batch(points, 0, window=1, degree_sum=0, velocity=False, series=False, what=f"{_named(arrays)} broadcast to {points:.3g} points (shape {shape})"), limits)
     flat = {k: np.ascontiguousarray(np.broadcast_to(a, shape).ravel()) for k, a in arrays.items()}
     return shape, flat
+
+
+def _named(arrays: dict) -> str:
+    """The arguments that set the batch shape, e.g. "`eps` and `nu`"."""
+    names = [f"`{k}`" for k, a in arrays.items() if a.ndim] or [f"`{k}`" for k in arrays]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _step_counts(samples: int, h, duration, steps, shape):
     if (duration is None) == (steps is None):
         raise ValueError("Expected exactly one of `duration` and `steps`, got " + ("both" if steps is not None else "neither"))
     if steps is not None:
-        return np.full(h.shape, as_int(steps, "steps", minimum=1), dtype=np.int64)
+        return np.full(h.shape, float(as_int(steps, "steps", minimum=1)))
     d = as_array(duration, "duration")
     try:
         d = np.broadcast_to(d, shape).ravel()
@@ -101,7 +113,7 @@ def _step_counts(samples: int, h, duration, steps, shape):
         raise ValueError(f"Expected `duration` to broadcast to the parameter shape {shape}, got shape {d.shape}") from None
     if np.any(d <= 0):
         raise ValueError(f"Expected `duration` > 0, got {float(d[d <= 0].flat[0]):g}")
-    n = np.floor(d / (samples * h) * (1.0 + 1e-12)).astype(np.int64)
+    n = np.floor(d / (samples * h) * (1.0 + 1e-12))
     if np.any(n < 1):
         i = int(np.argmin(n))
         raise ValueError(f"Expected `duration` >= one step H = {samples} × `sample_interval` = {samples} × {h[i]:g} s = {samples * h[i]:g} s, got {d[i]:g}")
@@ -125,6 +137,7 @@ def simulate_batch(
     series: bool = False,
     engine: str = "auto",
     progress: bool = False,
+    limits: budget.Limits | None = None,
 ) -> BatchResult:
     """Run ``algorithm`` at every point of broadcast arrays of ε, ν, ϑ, h (and ν°, ϑ°).
 
@@ -167,7 +180,10 @@ def simulate_batch(
         ``"auto"``: the compiled kernel whenever numba is available; ``"numpy"``:
         a loop over points of the numpy simulator (the reference, slow).
     progress : bool, keyword-only
-        Progress bar on stderr (only when it is a terminal).
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -176,9 +192,11 @@ def simulate_batch(
     Raises
     ------
     ValueError
-        Bad parameters (named), arrays that do not broadcast, both or neither
-        of ``duration`` and ``steps``, a run shorter than one step, or
-        ``series`` with runs of different lengths.
+        Bad parameters (named), empty arrays, arrays that do not broadcast, both or neither
+        of ``duration`` and ``steps``, a run shorter than one step,
+        ``series`` with runs of different lengths, or a batch whose estimated
+        memory or time exceeds ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration`` or ``steps``).
     TypeError
         If ``algorithm`` is not an :class:`Algorithm`.
     ImportError
@@ -199,15 +217,21 @@ def simulate_batch(
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
     compiled = kernels.use_compiled(engine)  # the numpy path here is a slow per-point reference
-    shape, p = _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual)
+    shape, p = _parameters(eps, nu, nutation, sample_interval, nu_dual, nutation_dual, limits)
     size = int(np.prod(shape, dtype=np.int64))
     n = _step_counts(algorithm.samples, p["sample_interval"], duration, steps, shape)
-    if series and size and np.any(n != n[0]):
+    if series and np.any(n != n[0]):
         raise ValueError(f"Expected runs of equal length for `series=True`, got {int(n.min())} to {int(n.max())} steps (pass `steps` instead of `duration`)")
     lam0 = as_quaternion(attitude0, "attitude0", unit=True)
     w0 = as_vector(w_inertial0, "w_inertial0")
     if lam0.shape != (4,) or w0.shape != (3,):
         raise ValueError(f"Expected `attitude0` of shape (4,) and `w_inertial0` of shape (3,), got {lam0.shape} and {w0.shape}")
+    longest = float(n.max())
+    asked = f"`steps` = {steps:.3g}" if steps is not None else f"`duration` up to {float(np.max(as_array(duration, 'duration'))):.3g} s"
+    what = f"{asked} ({size} point{'s' if size != 1 else ''} of up to {longest:.3g} steps{', series kept' if series else ''})"
+    degree_sum = sum(t.degree for t in algorithm.terms)
+    budget.check(budget.coning_batch(size, longest, window=algorithm.window, degree_sum=degree_sum, velocity=velocity, series=series, what=what), limits)
+    n = n.astype(np.int64)
     big_h = algorithm.samples * p["sample_interval"]
     if compiled:
         par, theta = kernels.parameter_rows(p["eps"], p["nu"], p["nutation"], p["nu_dual"], p["nutation_dual"], p["sample_interval"], lam0, w0, velocity=velocity)
@@ -217,7 +241,7 @@ def simulate_batch(
     stats = statistics(sums, n, big_h, velocity=velocity, shape=shape)
     out = {"algorithm": algorithm, "sample_interval": np.reshape(p["sample_interval"], shape), "statistics": stats}
     if series:
-        rows = int(n[0]) + 1 if size else 1
+        rows = int(n[0]) + 1
         out["attitude_error"] = np.reshape(keep[0], shape + (rows, 3))
         if velocity:
             out["dw_body"] = np.reshape(keep[1], shape + (rows, 3))

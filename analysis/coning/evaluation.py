@@ -10,7 +10,8 @@ separately (each a contiguous or strided ``(...)`` array), and folds the
 pairwise terms by their left factor, ``Σ_ij c_ij p_i × p_j =
 Σ_i p_i × (Σ_j c_ij p_j)``, so that an algorithm with many pairs costs few
 cross products.  The same code serves real and :class:`~strapdown.analysis.core.dual.Dual`
-input.
+input, and so do arrays of Python objects such as :mod:`mpmath` numbers, which are evaluated with
+the exact fractions of the algorithm (for extended-precision references).
 """
 
 from __future__ import annotations
@@ -61,7 +62,8 @@ def increment(algorithm: Algorithm, p):
     p : array_like or Dual, shape (..., W, 3)
         Increments ``p_j`` [rad] (real) or ``q_j = p_j + s b_j`` (dual, ``b_j`` in m/s),
         ``j = 1 − history … N`` oldest first: ``W = algorithm.window`` rows, the
-        last ``N`` of them the current step.
+        last ``N`` of them the current step.  An array of dtype ``object``
+        (e.g. :mod:`mpmath` numbers) is evaluated with the exact coefficients.
 
     Returns
     -------
@@ -80,8 +82,10 @@ def increment(algorithm: Algorithm, p):
     >>> increment(get("two-sample"), p)
     array([1.00000000e-03, 1.00000000e-03, 6.66666667e-07])
     """
+    exact = not isinstance(p, Dual) and np.asarray(p).dtype == object
     if not isinstance(p, Dual):
-        p = np.asarray(p, dtype=float)
+        p = np.asarray(p, dtype=object if exact else float)
+    scalar = (lambda c: c) if exact else float  # object arrays keep the exact fractions
     if p.ndim < 2 or p.shape[-1] != 3 or p.shape[-2] != algorithm.window:
         raise ValueError(f"Expected `p` with shape (..., {algorithm.window}, 3) for algorithm {algorithm.name!r}, got shape {p.shape}")
     # comps[j - 1] is p_j for j = 1 - history ... N (negative list positions reach back).
@@ -91,7 +95,7 @@ def increment(algorithm: Algorithm, p):
     # Pairwise terms folded by their left factor: p_i × (Σ_j c_ij p_j).
     by_left: dict = {}
     for (i, j), c in algorithm.pairwise.items():
-        by_left.setdefault(i, []).append((j, float(c)))
+        by_left.setdefault(i, []).append((j, scalar(c)))
     for i, row in by_left.items():
         right = [sum(c * comps[j - 1][k] for j, c in row) for k in range(3)]
         term = _cross(comps[i - 1], right)
@@ -101,7 +105,7 @@ def increment(algorithm: Algorithm, p):
         if plain_pair:
             continue
         value = _expr(term.cross, comps)
-        factor = float(term.coefficient)
+        factor = scalar(term.coefficient)
         for i, j in term.dots:
             factor = factor * _dot(comps[i - 1], comps[j - 1])
         total = [total[k] + factor * value[k] for k in range(3)]

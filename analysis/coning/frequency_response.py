@@ -32,11 +32,12 @@ import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
 from ...derivations.coning.drift import coning_drift, coning_drift_series
+from ..core import budget
 from ..core.cache import derived
 from ..core.validation import as_array, in_open_interval, positive
-from .drift_theory import algorithm_key, coning_drift_function, coning_drift_rate, drift_terms
+from .drift_theory import algorithm_key, coning_drift_function, coning_drift_rate, drift_series_terms
 from .precession import RegularPrecession
-from .simulator import simulate
+from .simulator import CHUNK_STEPS, simulate
 
 __all__ = [
     "CHECK_CONE_ANGLE",
@@ -121,7 +122,16 @@ class SimulatorCheck:
         return self.simulated / (self.cone_angle**2 * self.nu)
 
 
-def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto") -> SimulatorCheck:
+def _check_run(algorithm: Algorithm, steps: float, periods, x: float, limits) -> None:
+    """Refuse a simulated run beyond ``limits``, naming ``periods`` (before the simulator would name its own arguments)."""
+    what = f"`periods` = {periods:.3g} coning periods at `omega_h` = {x:g} ({steps:.3g} steps of {algorithm.samples} samples)"
+    degree_sum = sum(t.degree for t in algorithm.terms)
+    budget.check(budget.coning_simulation(steps, window=algorithm.window, degree_sum=degree_sum, velocity=False, chunk_steps=CHUNK_STEPS, what=what), limits)
+
+
+def simulator_check(
+    algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto", limits: budget.Limits | None = None
+) -> SimulatorCheck:
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
 
     The motion is (4.1) with ε = −1, ϑ = α, ν = ω, the initial attitude the
@@ -146,6 +156,10 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
         ``"numpy"`` compiles nothing, the right choice for a few short runs on a
         cold cache.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the simulation (default 2 GB,
+        300 s); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -157,7 +171,7 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
     Raises
     ------
     ValueError
-        For bad parameters.
+        For bad parameters, or a run beyond ``limits`` (naming ``periods``).
     """
     x = positive(omega_h, "omega_h")
     alpha = in_open_interval(cone_angle, "cone_angle", 0.0, math.pi / 2, text="(0, π/2)")
@@ -167,6 +181,7 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
     h = x / nu
     duration = periods * 2 * math.pi / nu
     steps = math.floor(duration / (algorithm.samples * h) * (1.0 + 1e-12))
+    _check_run(algorithm, steps, periods, x, limits)
     theory = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
     floor = ROUND_OFF_MARGIN * max(steps, 1) * np.finfo(float).eps / duration
     common = dict(omega_h=x, cone_angle=alpha, nu=nu, sample_interval=h, duration=duration, steps=steps, theory=theory, round_off_floor=floor)
@@ -176,7 +191,9 @@ def simulator_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float =
         return SimulatorCheck(**common, simulated=None, note="drift below the round-off floor of the run")
     motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, motion, h, duration, engine=engine)
+        run = simulate(algorithm, motion, h, duration, engine=engine, limits=limits)
+    except budget.BudgetExceeded:
+        raise
     except ValueError as exc:
         return SimulatorCheck(**common, simulated=None, note=f"not run by the simulator: {exc}")
     return SimulatorCheck(**common, simulated=float(run.drift @ -motion.precession_axis()))
@@ -394,7 +411,8 @@ class FiniteAngleCheck:
         ``α² ω D(ωh)`` [rad/s], signed as ``series``.
     series : float
         The drift series at ε = −1, ϑ = α through ``max_weight``, all orders in
-        α, along the cone axis, exact minus algorithm [rad/s].
+        α, with the composition of the steps, along the cone axis, exact minus
+        algorithm [rad/s].
     simulated : float or None
         Parallel computation: the simulator's drift along the cone axis, exact
         minus algorithm [rad/s] (None if not run, see ``note``).
@@ -418,7 +436,9 @@ class FiniteAngleCheck:
         return None if self.simulated is None else self.simulated / self.series - 1.0
 
 
-def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: float, nu: float = 2 * math.pi * 10.0, max_weight: int = 11, periods: int = 200) -> FiniteAngleCheck:
+def finite_angle_check(
+    algorithm: Algorithm, omega_h: float, *, cone_angle: float, nu: float = 2 * math.pi * 10.0, max_weight: int = 11, periods: int = 200, limits: budget.Limits | None = None
+) -> FiniteAngleCheck:
     """Coning drift at a finite half-cone angle: where the α² closed form stops describing it.
 
     Parameters
@@ -432,9 +452,13 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     nu : float, keyword-only
         ω [rad/s], > 0.
     max_weight : int, keyword-only
-        Weight of the drift series (:func:`strapdown.analysis.coning.drift_theory.drift_terms`).
+        Weight of the drift series (:func:`strapdown.analysis.coning.drift_theory.drift_series_terms`, with the composition of the steps).
     periods : int, keyword-only
         Length of the simulated run in coning periods.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the simulation (default 2 GB,
+        300 s); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -443,21 +467,23 @@ def finite_angle_check(algorithm: Algorithm, omega_h: float, *, cone_angle: floa
     Raises
     ------
     ValueError
-        For bad parameters.
+        For bad parameters, or a run or a series beyond ``limits`` (naming
+        ``periods`` or ``max_weight``).
     """
     x = positive(omega_h, "omega_h")
     alpha = in_open_interval(cone_angle, "cone_angle", 0.0, math.pi / 2, text="(0, π/2)")
     nu = positive(nu, "nu")
     h = x / nu
     H = algorithm.samples * h
-    vals, _ = drift_terms(algorithm, -1.0, alpha, max_weight=max_weight)
-    w = np.arange(vals.shape[-1])
-    # drift_terms is along the precession axis n; the cone axis is a = −n
-    series = -float(np.sum(vals * nu**w * H ** np.maximum(w - 1, 0)))
+    _check_run(algorithm, periods * 2 * math.pi / nu / H, periods, x, limits)
+    # the series (with the composition of the steps) is along the precession axis n; the cone axis is a = −n
+    series = -drift_series_terms(algorithm, eps=-1.0, nu=nu, nutation=alpha, step=H, max_weight=max_weight, limits=limits).signed_total
     closed = float(coning_drift_rate(algorithm, cone_angle=alpha, nu=nu, sample_interval=h))
     motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, motion, h, periods * 2 * math.pi / nu)
+        run = simulate(algorithm, motion, h, periods * 2 * math.pi / nu, limits=limits)
+    except budget.BudgetExceeded:
+        raise
     except ValueError as exc:
         return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, None, f"not run by the simulator: {exc}")
     return FiniteAngleCheck(algorithm, x, alpha, nu, max_weight, closed, series, float(run.drift @ -motion.precession_axis()))

@@ -1,14 +1,22 @@
 """Fused compiled simulator kernels, generated from an algorithm's terms (numba).
 
-For every algorithm and run kind (attitude, or biquaternion for the apparent
-velocity) this module writes the algorithm's increment ``Δφ`` (or
-``ΔΦ = Δφ + s Δφ°``, Lebedev & Panov 1989, eq. (2.5)) as straight-line scalar
-code, term by term from the :class:`~strapdown.derivations.coning.algorithms.Algorithm`
-data, in the same order of operations as
+Almost every algorithm is purely pairwise, ``Δφ = P + Σ c_ij p_i × p_j``
+(all but one of the registry): for these one kernel per run kind (attitude,
+or biquaternion for the apparent velocity) takes the terms as data
+(:func:`pairwise_data`, evaluated by the template's ``pairwise_increment``),
+so that it is compiled once and serves every such algorithm, its number of
+samples and of earlier samples included.  An algorithm with nested or
+dot-weighted terms (Lebedev & Panov's sixth-order (2.2), user files) gets its
+own kernel, whose increment ``Δφ`` (or ``ΔΦ = Δφ + s Δφ°``, Lebedev & Panov
+1989, eq. (2.5)) is written as straight-line scalar code, term by term from
+the :class:`~strapdown.derivations.coning.algorithms.Algorithm` data.  Both
+follow the order of operations of
 :func:`strapdown.analysis.coning.evaluation.increment`: the sum ``P``, the
 pairwise terms folded by their left factor, then the nested and dot-weighted
-terms.  Dual arithmetic is expanded into real and dual parts by the generator,
-so a sculling run is a fused loop too.  Below it come the functions of
+terms; so a pairwise algorithm gives the same bits either way
+(``benchmarks/bench_simulator.py`` measures what the specialised code would
+gain).  Dual arithmetic is expanded into real and dual parts, so a sculling
+run is a fused loop too.  Below the increment come the functions of
 :mod:`strapdown.analysis.coning._kernel_template` (exact increments by
 angle addition from anchors computed directly every few samples, the step
 biquaternion (1.12), the product, the exact solution (1.5), (4.4)–(4.5), the
@@ -17,8 +25,8 @@ statistics), and the whole module is compiled with ``numba.njit(cache=True)``.
 
 Generated modules are stored under ``<cache base>/kernels/``, named by the
 SHA-256 of their own text, next to numba's cache of their machine code: the
-first run of an algorithm compiles it (a few seconds), later runs in any
-process load it.  A stale kernel cannot be served, because a changed
+first run of a kernel compiles it (a few seconds), later runs in any process
+load it.  A stale kernel cannot be served, because a changed
 generator or template gives a different text and so a different file.
 
 numba is optional at run time: :func:`available` says whether it can be
@@ -38,12 +46,14 @@ import tempfile
 import threading
 from fractions import Fraction
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
 from ..core import quaternion as quat
 from ..core.dual import Dual
+from ..core.progress import bar
 from . import _kernel_template as template
 from .streaming import N_SUMS, empty_sums
 
@@ -61,13 +71,17 @@ __all__ = [
     "chunk_steps",
     "run_batch",
     "compiled_series",
+    "Kernel",
+    "is_pairwise",
+    "pairwise_data",
+    "SPECIALISE_MIN_WORK",
 ]
 
 #: Values of the ``engine`` argument of the simulators.
 ENGINES = ("auto", "numpy", "compiled")
 
 #: Template functions copied into every generated module, in this order.
-_TEMPLATE_FUNCTIONS = ("qmul", "rotvec_quat", "error_rotvec", "fill_table", "phase", "anchor_of", "flush", "run")
+_TEMPLATE_FUNCTIONS = ("pairwise_increment", "qmul", "rotvec_quat", "error_rotvec", "fill_table", "phase", "anchor_of", "flush", "run")
 
 _lock = threading.Lock()
 _loaded: dict = {}
@@ -86,6 +100,12 @@ def available() -> bool:
         return False
     return True
 
+
+#: A pairwise algorithm gets its own straight-line kernel only for a run of at least this many
+#: point-steps: it runs about 150 ns per step faster than the data-driven kernel of every pairwise
+#: algorithm, and its compilation (a few seconds, once per algorithm and install) pays after about
+#: 2·10⁷ steps (``benchmarks/bench_simulator.py``).  Both give the same bits.
+SPECIALISE_MIN_WORK = 1 << 25
 
 #: ``engine="auto"`` compiles a kernel for an algorithm outside the registry only for a run of at
 #: least this many point-steps, where the compile (seconds, once per algorithm and install) pays.
@@ -193,8 +213,54 @@ class _Code:
         return total
 
 
+def is_pairwise(algorithm: Algorithm) -> bool:
+    """Whether every term of ``algorithm`` is a plain cross product ``c p_i × p_j`` (no nesting, no dot factor).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+
+    Returns
+    -------
+    bool
+    """
+    return all(not t.dots and isinstance(t.cross[0], int) and isinstance(t.cross[1], int) for t in algorithm.terms)
+
+
+def pairwise_data(algorithm: Algorithm) -> np.ndarray:
+    """The pairwise terms of ``algorithm`` as rows ``(row of p_i, row of p_j, c_ij)`` for the data-driven kernel.
+
+    Rows are grouped by the left factor in the order of
+    :attr:`Algorithm.pairwise`, as the generated code folds them; a sample
+    index ``j`` is window row ``j − 1 + history``.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+
+    Returns
+    -------
+    ndarray, shape (K, 3)
+        Float rows (the indices are exact small integers).
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> pairwise_data(get("two-sample"))
+    array([[0.        , 1.        , 0.66666667]])
+    """
+    by_left: dict = {}
+    for (i, j), c in algorithm.pairwise.items():
+        by_left.setdefault(i, []).append((j, float(c)))
+    h = algorithm.history
+    rows = [(i - 1 + h, j - 1 + h, c) for i, row in by_left.items() for j, c in row]
+    return np.array(rows, dtype=float).reshape(-1, 3)
+
+
 def increment_source(algorithm: Algorithm, *, dual: bool) -> str:
-    """Source of ``increment(w, wd)``: the algorithm's ``Δφ`` (and ``Δφ°``) from one increment window.
+    """Source of ``increment(w, wd)``: the algorithm's ``Δφ`` (and ``Δφ°``) as straight-line code.
 
     ``w[r, c]`` and ``wd[r, c]`` hold the real and dual parts of ``p_j``,
     ``j = 1 − history … N`` (row ``r = j − 1 + history``); the function
@@ -279,8 +345,13 @@ def _algorithm_text(algorithm: Algorithm) -> str:
     return f"N={algorithm.samples}; {terms}"
 
 
-def kernel_source(algorithm: Algorithm, *, velocity: bool) -> str:
-    """Full source of the generated kernel module of ``algorithm``.
+def kernel_source(algorithm: Algorithm, *, velocity: bool, specialised: bool = False) -> str:
+    """Full source of the generated kernel module that runs ``algorithm``.
+
+    A purely pairwise algorithm (:func:`is_pairwise`) gets the one
+    data-driven module of its run kind, the same text for every such
+    algorithm; any other, or any with ``specialised``, gets its own module with
+    a straight-line increment.
 
     Parameters
     ----------
@@ -288,26 +359,33 @@ def kernel_source(algorithm: Algorithm, *, velocity: bool) -> str:
         The algorithm as data.
     velocity : bool, keyword-only
         Biquaternion run (attitude and apparent velocity) instead of attitude only.
+    specialised : bool, keyword-only
+        Straight-line code even for a pairwise algorithm (for comparison: same
+        results to the last bit, one compilation per algorithm).
 
     Returns
     -------
     str
-        Module source: numba import, the algorithm's constants, the generated
-        :func:`increment_source`, and the template functions, each decorated
-        with ``numba.njit(cache=True)``.
+        Module source: numba import, the run's constants, the increment (the
+        data-driven one, or the generated :func:`increment_source`), and the
+        template functions, each decorated with ``numba.njit(cache=True)``.
     """
+    run = "biquaternion (attitude and apparent velocity)" if velocity else "attitude"
+    if is_pairwise(algorithm) and not specialised:
+        head = ["# algorithm: any purely pairwise algorithm, its terms as data (pairwise_increment)"]
+        increment = "def step_increment(w, wd, pairs, samples, history):\n    return pairwise_increment(w, wd, pairs, samples, history)\n"
+    else:
+        head = [f"# algorithm: {algorithm.name}: {_algorithm_text(algorithm)}"]
+        increment = increment_source(algorithm, dual=velocity) + "\n\n@numba.njit(cache=True, nogil=True)\ndef step_increment(w, wd, pairs, samples, history):\n    return increment(w, wd)\n"
     parts = [
-        "# Generated by strapdown.analysis.coning.kernels from the algorithm's terms; do not edit.",
-        f"# algorithm: {algorithm.name}: {_algorithm_text(algorithm)}",
-        f"# run: {'biquaternion (attitude and apparent velocity)' if velocity else 'attitude'}",
+        "# Generated by strapdown.analysis.coning.kernels; do not edit.",
+        *head,
+        f"# run: {run}",
         "import math",
         "",
         "import numba",
         "import numpy as np",
         "",
-        f"SAMPLES = {algorithm.samples}",
-        f"HISTORY = {algorithm.history}",
-        f"WINDOW = {algorithm.window}",
         f"DUAL = {bool(velocity)}",
         f"REANCHOR = {template.REANCHOR}",
         f"BLOCK = {template.BLOCK}",
@@ -316,7 +394,7 @@ def kernel_source(algorithm: Algorithm, *, velocity: bool) -> str:
         "",
         "",
         "@numba.njit(cache=True, nogil=True)",
-        increment_source(algorithm, dual=velocity),
+        increment,
     ]
     return "\n".join(parts) + _template_text()
 
@@ -358,34 +436,26 @@ def _module_path(text: str, name: str) -> Path:
         return _write_once(Path(tempfile.mkdtemp(prefix="strapdown-kernels-")) / name, text)
 
 
-def kernel(algorithm: Algorithm, *, velocity: bool):
-    """The compiled ``run`` function of ``algorithm`` (generated, written and compiled on first use).
+class Kernel(NamedTuple):
+    """A compiled kernel and the data of the algorithm it runs (:func:`kernel`).
 
-    Parameters
+    Attributes
     ----------
-    algorithm : Algorithm
-        The algorithm as data.
-    velocity : bool, keyword-only
-        Biquaternion run instead of attitude only.
-
-    Returns
-    -------
-    numba dispatcher
-        ``run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep)`` of
-        :mod:`strapdown.analysis.coning._kernel_template`.
-
-    Raises
-    ------
-    ImportError
-        If numba is not installed.
-    TypeError
-        If ``algorithm`` is not an :class:`Algorithm`.
+    run : numba dispatcher
+        ``run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, history)``
+        of :mod:`strapdown.analysis.coning._kernel_template`.
+    pairs : ndarray, shape (K, 3)
+        :func:`pairwise_data` of the algorithm (empty for a straight-line kernel, which does not read it).
+    samples : int
+        N, samples per step.
+    history : int
+        Samples of earlier steps read.
     """
-    if not isinstance(algorithm, Algorithm):
-        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
-    if not available():
-        raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
-    return compiled_module(kernel_source(algorithm, velocity=velocity)).run
+
+    run: object
+    pairs: np.ndarray
+    samples: int
+    history: int
 
 
 def compiled_module(text: str):
@@ -415,6 +485,57 @@ def compiled_module(text: str):
         spec.loader.exec_module(module)
         _loaded[digest] = module
         return module
+
+
+def kernel(algorithm: Algorithm, *, velocity: bool, specialised: bool | None = False, work: float = 0) -> Kernel:
+    """The compiled kernel that runs ``algorithm`` (generated, written and compiled on first use).
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm as data.
+    velocity : bool, keyword-only
+        Biquaternion run instead of attitude only.
+    specialised : bool or None, keyword-only
+        Straight-line code even for a pairwise algorithm (:func:`kernel_source`);
+        None: when ``work`` reaches :data:`SPECIALISE_MIN_WORK`.
+    work : float, keyword-only
+        Point-steps of the run (for ``specialised=None``).
+
+    Returns
+    -------
+    Kernel
+
+    Raises
+    ------
+    ImportError
+        If numba is not installed.
+    TypeError
+        If ``algorithm`` is not an :class:`Algorithm`.
+    """
+    if not isinstance(algorithm, Algorithm):
+        raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    if not available():
+        raise ImportError("The compiled engine needs numba, which is not installed (pip install numba), or pass engine='numpy'")
+    if specialised is None:
+        specialised = work >= SPECIALISE_MIN_WORK
+    text = kernel_source(algorithm, velocity=velocity, specialised=specialised)
+    run = compiled_module(text).run
+    pairs = pairwise_data(algorithm) if is_pairwise(algorithm) and not specialised else np.zeros((0, 3))
+    compiled = Kernel(run, np.ascontiguousarray(pairs), int(algorithm.samples), int(algorithm.history))
+    if not run.signatures:  # first use in this process: compile, or load what another process compiled
+        from ..core.cache import building
+
+        with building(_kernel_directory() / f"{hashlib.sha256(text.encode()).hexdigest()[:24]}.compile"):
+            _first_call(compiled)
+    return compiled
+
+
+def _first_call(compiled: Kernel) -> None:
+    """One step of one point through ``compiled``, with the argument types of every run: numba compiles (or loads) it."""
+    one = (np.array([v]) for v in (0.5, 1.0, 0.5, 0.0, 0.0, 0.01))  # ε, ν, ϑ, ν°, ϑ°, h of a harmless motion
+    par, theta = parameter_rows(*one, np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3), velocity=False)
+    advance(compiled, par, theta, np.array([1], dtype=np.int64), empty_sums(1), 0, 1)
 
 
 # --------------------------------------------------------------------------- running
@@ -474,12 +595,12 @@ def chunk_steps(points: int, *, budget: int = 1 << 20) -> int:
     return max(block, (budget // max(points, 1)) // block * block)
 
 
-def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> None:
-    """Advance all points from step ``k0`` to ``k1`` with a compiled ``run``, in place.
+def advance(run: Kernel, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> None:
+    """Advance all points from step ``k0`` to ``k1`` with a compiled kernel, in place.
 
     Parameters
     ----------
-    run : numba dispatcher
+    run : Kernel
         From :func:`kernel`.
     par : ndarray, shape (P, 14)
         From :func:`parameter_rows`.
@@ -496,19 +617,14 @@ def advance(run, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> No
         :class:`~strapdown.analysis.coning.simulator.SimulationResult`), written
         at every step of the span.
     """
+    data = (run.pairs, run.samples, run.history)
     if series is None:
         dummy = np.zeros((1, 1, 3))
-        run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False)
+        run.run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False, *data)
     else:
-        run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True)
+        run.run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True, *data)
 
 
-def _progress(total: int, enabled: bool):
-    if not enabled or not sys.stderr.isatty():
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="step", unit_scale=True, file=sys.stderr, leave=False)
 
 
 def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, series: bool, progress: bool = False):
@@ -527,7 +643,7 @@ def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, seri
     series : bool, keyword-only
         Keep the error series (every point then runs ``max(n_steps)`` steps of storage).
     progress : bool, keyword-only
-        Progress bar on stderr (only when it is a terminal).
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
 
     Returns
     -------
@@ -537,23 +653,20 @@ def run_batch(algorithm: Algorithm, par, theta, n_steps, *, velocity: bool, seri
         δφ_I, ΔW_E, ΔW_I (exact minus algorithm) at every step end; the last two
         are placeholders of shape (1, 1, 3) in an attitude run (``series=True`` only).
     """
-    run = kernel(algorithm, velocity=velocity)
-    sums = empty_sums(par.shape[0])
     last = int(n_steps.max())
+    run = kernel(algorithm, velocity=velocity, specialised=None, work=float(n_steps.sum()))
+    sums = empty_sums(par.shape[0])
     keep = None
     if series:
         # Unused series get one contiguous placeholder, so that the kernel's signature never changes.
         unused = np.zeros((1, 1, 3))
         keep = tuple(np.zeros((par.shape[0], last + 1, 3)) if velocity or i == 0 else unused for i in range(3))
     chunk = chunk_steps(par.shape[0])
-    bar = _progress(last * par.shape[0], progress)
-    for k0 in range(0, last, chunk):
-        k1 = min(last, k0 + chunk)
-        advance(run, par, theta, n_steps, sums, k0, k1, keep)
-        if bar is not None:
-            bar.update((k1 - k0) * par.shape[0])
-    if bar is not None:
-        bar.close()
+    with bar(total=last * par.shape[0], desc="simulation", enabled=progress, unit="step") as shown:
+        for k0 in range(0, last, chunk):
+            k1 = min(last, k0 + chunk)
+            advance(run, par, theta, n_steps, sums, k0, k1, keep)
+            shown.update((k1 - k0) * par.shape[0])
     return sums, keep
 
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.dual import Dual
 from ..core.validation import as_array, as_float, as_quaternion, as_vector, in_open_interval
@@ -218,7 +219,7 @@ class RegularPrecession:
         t0, t1 = np.broadcast_arrays(_time(t0), _time(t1))
         return self._integral(t0, t1, self.nu, self.nutation)
 
-    def grid_increments(self, sample_interval: float, first: int, count: int, *, dual: bool = False):
+    def grid_increments(self, sample_interval: float, first: int, count: int, *, dual: bool = False, limits: budget.Limits | None = None):
         """Increments (2.1) over the uniform samples ``[(k−1)h, kh]``, k = first+1 … first+count.
 
         The same integrals as :meth:`increments`, written about the sample
@@ -239,6 +240,10 @@ class RegularPrecession:
         dual : bool, keyword-only
             Return ``p + s b`` (:class:`Dual`, ``b`` in m/s) instead of ``p`` [rad].
 
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
+
         Returns
         -------
         ndarray or Dual, shape (count, 3)
@@ -250,6 +255,7 @@ class RegularPrecession:
         >>> bool(np.allclose(m.grid_increments(0.01, 0, 3), m.angle_increments(t[:-1], t[1:]), rtol=1e-13, atol=0))
         True
         """
+        budget.check(budget.arrays(3.0 * float(count), what=f"`count` = {count:.3g} samples", copies=20.0 if dual else 10.0), limits)
         h = float(sample_interval)
         t_mid = (np.arange(first, first + count) + 0.5) * h
         nu, nut = self._dual_params() if dual else (self.nu, self.nutation)

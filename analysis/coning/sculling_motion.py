@@ -51,6 +51,7 @@ import numpy as np
 from scipy.special import jv
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.dual import Dual
 from ..core.validation import as_array, as_float, as_int, positive
@@ -276,7 +277,7 @@ class ScullingMotion:
         b = (self.accel_amplitude / nu * (np.cos(nu * t0 + ph) - np.cos(nu * t1 + ph)))[..., None] * self.e_a
         return Dual(p, b)
 
-    def grid_increments(self, sample_interval: float, first: int, count: int, *, dual: bool = False):
+    def grid_increments(self, sample_interval: float, first: int, count: int, *, dual: bool = False, limits: budget.Limits | None = None):
         """Increments over the uniform samples ``[(k−1)h, kh]``, k = first+1 … first+count.
 
         Written about the sample midpoint ``t_m`` (no cancellation):
@@ -295,6 +296,10 @@ class ScullingMotion:
         dual : bool, keyword-only
             Return ``p + s b`` (:class:`Dual`) instead of ``p`` [rad].
 
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
+
         Returns
         -------
         ndarray or Dual, shape (count, 3)
@@ -308,6 +313,7 @@ class ScullingMotion:
         >>> bool(np.allclose(q.re, ref.re, rtol=1e-13, atol=0) and np.allclose(q.du, ref.du, rtol=1e-13, atol=0))
         True
         """
+        budget.check(budget.arrays(3.0 * float(count), what=f"`count` = {count:.3g} samples", copies=12.0 if dual else 6.0), limits)
         h = float(sample_interval)
         t_mid = (np.arange(first, first + count) + 0.5) * h
         s = 2.0 * math.sin(0.5 * self.nu * h)

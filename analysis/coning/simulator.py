@@ -41,9 +41,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.dual import Dual
-from ..core.validation import as_quaternion, as_vector, positive
+from ..core.validation import as_array, as_quaternion, as_vector, positive
 from . import kernels
 from .evaluation import increment
 from .precession import RegularPrecession, exact_state, initial_biquaternion
@@ -181,7 +182,7 @@ def step_count(sample_interval, duration, samples: int) -> int:
     return n
 
 
-def window_index(steps: int, samples: int, history: int = 0) -> np.ndarray:
+def window_index(steps: int, samples: int, history: int = 0, *, limits: budget.Limits | None = None) -> np.ndarray:
     """Rows of the step windows in a flat sequence of sample increments.
 
     Row ``r`` of the flat sequence is sample ``r − history`` counted from the
@@ -199,10 +200,18 @@ def window_index(steps: int, samples: int, history: int = 0) -> np.ndarray:
         Samples N per step.
     history : int
         Samples before the step that the algorithm reads (:attr:`Algorithm.history`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     ndarray of int, shape (steps, history + samples)
+
+    Raises
+    ------
+    ValueError
+        If the index array would exceed ``limits`` (named by ``steps``).
 
     Examples
     --------
@@ -211,6 +220,7 @@ def window_index(steps: int, samples: int, history: int = 0) -> np.ndarray:
            [2, 3, 4],
            [4, 5, 6]])
     """
+    budget.check(budget.arrays(float(steps) * (history + samples), what=f"`steps` = {steps:.3g} windows of {history + samples} rows"), limits)
     return np.arange(steps)[:, None] * samples + np.arange(history + samples)[None, :]
 
 
@@ -246,7 +256,7 @@ def step_windows(sequence, samples: int, history: int = 0):
     return sequence[..., window_index(steps, samples, history), :]
 
 
-def sample_increments(motion, sample_interval: float, steps: int, samples: int, *, first_step: int = 0, dual: bool = False, history: int = 0):
+def sample_increments(motion, sample_interval: float, steps: int, samples: int, *, first_step: int = 0, dual: bool = False, history: int = 0, limits: budget.Limits | None = None):
     """Exact increments of every sample of ``steps`` consecutive steps, in step windows.
 
     Parameters
@@ -267,14 +277,24 @@ def sample_increments(motion, sample_interval: float, steps: int, samples: int, 
         Samples before each step that the window also holds (cross-step
         algorithms).  Before t = 0 they come from the exact motion, so a run
         starts in steady state.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     ndarray or Dual, shape (steps, history + samples, 3)
         Row ``history + j − 1`` of window k is ``p_j`` (or ``q_j``) of step k, over
         ``[((k N + j − 1) h, (k N + j) h]``, j = 1 − history … N.
+
+    Raises
+    ------
+    ValueError
+        If the increments would exceed ``limits`` (named by ``steps``).
     """
-    inc = motion.grid_increments(sample_interval, first_step * samples - history, steps * samples + history, dual=dual)
+    rows = float(steps) * (samples + history)
+    budget.check(budget.arrays(3.0 * rows, what=f"`steps` = {steps:.3g} steps of {samples + history} samples", copies=24.0 if dual else 12.0), limits)
+    inc = motion.grid_increments(sample_interval, first_step * samples - history, steps * samples + history, dual=dual, limits=limits)
     return step_windows(inc, samples, history)
 
 
@@ -344,8 +364,15 @@ def drift_rate(time, error):
     -------
     ndarray, shape (..., 3)
         Slope [rad/s].
+
+    Raises
+    ------
+    ValueError
+        For fewer than two times, or times that are all equal.
     """
-    t = np.asarray(time, dtype=float)
+    t = as_array(time, "time")
+    if t.ndim != 1 or t.size < 2 or t.min() == t.max():
+        raise ValueError(f"Expected `time` with at least two distinct times, got shape {t.shape}")
     tc = t - t.mean()
     return np.einsum("k,...kj->...j", tc, error) / np.dot(tc, tc)
 
@@ -381,6 +408,7 @@ def simulate(
     w_inertial0=(0.0, 0.0, 0.0),
     velocity: bool = False,
     engine: str = "auto",
+    limits: budget.Limits | None = None,
 ) -> SimulationResult:
     """Run ``algorithm`` against the exact solution of ``motion`` ("parallel computation").
 
@@ -417,6 +445,9 @@ def simulate(
         (same results to round-off); ``"auto"``: compiled when numba is
         available, the motion is a :class:`RegularPrecession`, and the kernel
         pays (:func:`strapdown.analysis.coning.kernels.use_compiled`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -428,7 +459,9 @@ def simulate(
     ------
     ValueError
         Non-positive step or duration, a duration shorter than one step, a
-        non-unit ``attitude0``, an unknown ``engine``.
+        non-unit ``attitude0``, an unknown ``engine``, or a run whose estimated
+        memory or time exceeds ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration``).
     ImportError
         ``engine="compiled"`` without numba.
     TypeError
@@ -457,6 +490,10 @@ def simulate(
     h = positive(sample_interval, "sample_interval")
     n_samples = algorithm.samples
     steps = step_count(h, duration, n_samples)
+    degree_sum = sum(t.degree for t in algorithm.terms)
+    runs = f"{len(motions)} runs of " if batched else ""
+    what = f"`duration` = {float(duration):.3g} s over `sample_interval` = {h:g} s ({runs}{steps:.3g} steps of {n_samples} samples)"
+    budget.check(budget.coning_simulation(len(motions) * steps, window=algorithm.window, degree_sum=degree_sum, velocity=velocity, chunk_steps=CHUNK_STEPS, what=what), limits)
     lam0 = as_quaternion(attitude0, "attitude0", unit=True)
     w0 = as_vector(w_inertial0, "w_inertial0")
     if lam0.shape != (4,) or w0.shape != (3,):

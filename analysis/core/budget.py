@@ -14,11 +14,19 @@ how far each model is from a fresh measurement; they are rounded up, so the
 estimates err on the side of refusing.  A domain adds its own hot path by
 defining a :class:`CostModel` and an estimator function next to the others.
 
->>> est = CONING_STEP.estimate(1e9, what="1e9 simulator steps")
+The same estimates guard the Python API: every public function whose
+allocation or run time grows with a scalar argument (a duration, a horizon, a
+number of trials or samples) takes ``limits=None`` (keyword-only; None means
+the defaults) and raises :class:`BudgetExceeded`, a ``ValueError`` whose message
+starts with the argument that asked for the work, before anything is
+allocated; the command line passes its ``--time-limit`` and
+``--memory-limit-mb`` down as the same :class:`Limits` and names the option.
+
+>>> est = CONING_STEP.estimate(1e9, what="`duration` = 1e+07 s (1e9 simulator steps)")
 >>> check(est, Limits(seconds=60.0, memory=1e9))
 Traceback (most recent call last):
 ...
-strapdown.analysis.core.budget.BudgetExceeded: 1e9 simulator steps: estimated memory 96 GB exceeds the limit of 1 GB (`memory_limit`)
+strapdown.analysis.core.budget.BudgetExceeded: `duration` = 1e+07 s (1e9 simulator steps): estimated memory 96 GB exceeds the limit of 1 GB (pass larger `limits`)
 """
 
 from __future__ import annotations
@@ -36,13 +44,27 @@ __all__ = [
     "CostModel",
     "BudgetExceeded",
     "check",
+    "as_limits",
     "format_bytes",
     "format_seconds",
     "CONING_STEP",
     "MONTE_CARLO_SAMPLE",
     "MULTISTAGE_STEP",
     "AUTOCORRELATION_TERM",
+    "ARRAY_ELEMENT",
+    "RESPONSE_SAMPLE",
+    "IMU_TRIAL_SAMPLE",
+    "IMU_SAMPLE_BYTES",
+    "ALIGNMENT_BLOCKS",
+    "KALMAN_EPOCH",
+    "KALMAN_EPOCH_BYTES",
     "coning_simulation",
+    "coning_batch",
+    "arrays",
+    "loop_response",
+    "imu_record",
+    "alignment_monte_carlo",
+    "series_derivation",
     "monte_carlo",
     "multistage",
     "autocorrelation_sums",
@@ -166,10 +188,34 @@ class BudgetExceeded(ValueError):
         self.limits = limits
         self.resource = resource
         if resource == "memory":
-            text = f"estimated memory {format_bytes(estimate.memory)} exceeds the limit of {format_bytes(limits.memory)} (`memory_limit`)"
+            text = f"estimated memory {format_bytes(estimate.memory)} exceeds the limit of {format_bytes(limits.memory)} (pass larger `limits`)"
         else:
-            text = f"estimated time {format_seconds(estimate.seconds)} exceeds the limit of {format_seconds(limits.seconds)} (`time_limit`)"
+            text = f"estimated time {format_seconds(estimate.seconds)} exceeds the limit of {format_seconds(limits.seconds)} (pass larger `limits`)"
         super().__init__(f"{estimate.what}: {text}")
+
+
+def as_limits(limits: Limits | None) -> Limits:
+    """``limits``, or the default :class:`Limits` when it is None.
+
+    Parameters
+    ----------
+    limits : Limits or None
+        What a request may use.
+
+    Returns
+    -------
+    Limits
+
+    Raises
+    ------
+    TypeError
+        If ``limits`` is neither a :class:`Limits` nor None.
+    """
+    if limits is None:
+        return Limits()
+    if not isinstance(limits, Limits):
+        raise TypeError(f"Expected `limits` to be a strapdown.analysis.core.budget.Limits or None, got {type(limits).__name__}")
+    return limits
 
 
 def check(estimate: Estimate, limits: Limits | None = None) -> Estimate:
@@ -191,8 +237,10 @@ def check(estimate: Estimate, limits: Limits | None = None) -> Estimate:
     ------
     BudgetExceeded
         If the estimated memory or time exceeds its limit (or is not finite).
+    TypeError
+        If ``limits`` is neither a :class:`Limits` nor None.
     """
-    limits = Limits() if limits is None else limits
+    limits = as_limits(limits)
     if not estimate.memory <= limits.memory:  # also catches NaN
         raise BudgetExceeded(estimate, limits, "memory")
     if not estimate.seconds <= limits.seconds:
@@ -243,7 +291,8 @@ class CostModel:
         per_second = self.seconds_per_unit * as_float(seconds_factor, "seconds_factor")
         per_byte = self.bytes_per_unit * as_float(bytes_factor, "bytes_factor")
         seconds = self.fixed_seconds + (per_second * units if per_second else 0.0)
-        memory = self.fixed_bytes + as_float(extra_bytes, "extra_bytes") + (per_byte * units if per_byte else 0.0)
+        extra = float(extra_bytes) if math.isinf(float(extra_bytes)) else nonnegative(extra_bytes, "extra_bytes")
+        memory = self.fixed_bytes + extra + (per_byte * units if per_byte else 0.0)
         return Estimate(seconds, memory, what)
 
 
@@ -259,6 +308,24 @@ MONTE_CARLO_SAMPLE = CostModel(seconds_per_unit=1.2e-7, bytes_per_unit=16.0, fix
 MULTISTAGE_STEP = CostModel(seconds_per_unit=3e-5, bytes_per_unit=1.2e3, fixed_seconds=0.5)
 #: Autocorrelation sum of a sample mean's variance, per lag term (arrays of the lags).
 AUTOCORRELATION_TERM = CostModel(seconds_per_unit=5e-8, bytes_per_unit=48.0)
+#: One float64 element of arrays that a function allocates in proportion to an argument (a few
+#: elementwise passes over each).
+ARRAY_ELEMENT = CostModel(seconds_per_unit=2e-8, bytes_per_unit=8.0)
+#: Response of a corrected stage's tilt loop, per time sample: the grid, the zero-order-hold
+#: recursion (``scipy.signal.lfilter``) and the superposed pulse, a dozen float64 arrays.
+RESPONSE_SAMPLE = CostModel(seconds_per_unit=1e-7, bytes_per_unit=96.0, fixed_seconds=0.05)
+#: Whole-system alignment, per trial and IMU sample: the time of the slowest method (Kalman; the
+#: analytic method takes about a third of it) and the start-up (theory, pilot block).  Measured with
+#: ``strapdown align`` from 1e3 to 1e5 samples and 16 to 256 trials on a shared machine, rounded up.
+IMU_TRIAL_SAMPLE = CostModel(seconds_per_unit=3e-6, bytes_per_unit=0.0, fixed_seconds=1.0, fixed_bytes=2e8)
+#: Memory of a simulated IMU record per trial and sample [bytes] (motion, increments, noise).
+IMU_SAMPLE_BYTES = 450.0
+#: Alignment Monte Carlo: trials per block (the library's defaults) and the peak memory of a block per
+#: trial and sample [bytes], by method.
+ALIGNMENT_BLOCKS = {"analytic": (32, 350.0), "inertial": (32, 350.0), "kalman": (128, 150.0)}
+#: Kalman alignment, per trial and filter epoch (time); its gain sequence and epoch records per epoch (memory).
+KALMAN_EPOCH = CostModel(seconds_per_unit=8e-6, bytes_per_unit=0.0)
+KALMAN_EPOCH_BYTES = 5e4
 
 
 def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, chunk_steps: int, what: str) -> Estimate:
@@ -292,6 +359,44 @@ def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, ch
     dual = 5.0 if velocity else 1.0
     chunk = min(float(steps), float(chunk_steps)) * window * 3 * 8 * 4 * (2 if velocity else 1)
     return CONING_STEP.estimate(steps, what=what, seconds_factor=per_step * dual, bytes_factor=3.0 if velocity else 1.0, extra_bytes=chunk)
+
+
+def coning_batch(points, steps, *, window: int, degree_sum: int, velocity: bool, series: bool, what: str) -> Estimate:
+    """Estimate of a batch of ``points`` parallel-computation runs of ``steps`` steps each.
+
+    The time is that of :func:`coning_simulation` over all point-steps (an
+    upper bound for the compiled kernels).  The memory is the streaming
+    accumulators and parameters of each point, plus with ``series`` the error
+    series of every point (one, or three for a velocity run, ``(steps + 1, 3)``
+    float64 arrays).
+
+    Parameters
+    ----------
+    points : float
+        Parameter points of the batch [count].
+    steps : float
+        Steps of the longest run [count].
+    window : int
+        Increments read per step [count].
+    degree_sum : int
+        Sum of the degrees of the algorithm's nonlinear terms [count].
+    velocity : bool
+        Dual (apparent-velocity) run.
+    series : bool
+        The full error series are kept.
+    what : str
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    points, steps = float(points), float(steps)
+    per_step = 1.0 + window / 6.0 + degree_sum / 60.0
+    work = points * steps if points and steps else 0.0
+    seconds = CONING_STEP.fixed_seconds + CONING_STEP.seconds_per_unit * per_step * (5.0 if velocity else 1.0) * work
+    memory = points * 400.0 + (points * (steps + 1.0) * 3 * 8 * (3 if velocity else 1) if series and points else 0.0)
+    return Estimate(seconds, memory, what)
 
 
 def monte_carlo(samples, *, workers: int = 1, what: str) -> Estimate:
@@ -350,3 +455,143 @@ def autocorrelation_sums(points, terms, *, what: str) -> Estimate:
     """
     one = AUTOCORRELATION_TERM.estimate(terms, what=what)
     return Estimate(one.seconds * max(float(points), 1.0), one.memory, what)
+
+
+def arrays(elements, *, what: str, copies: float = 1.0) -> Estimate:
+    """Estimate of float64 arrays of ``elements`` elements in all, ``copies`` of them alive at once.
+
+    Parameters
+    ----------
+    elements : float
+        Elements of one set of arrays [count]; may be huge.
+    what : str, keyword-only
+        The request in the user's terms, starting with the argument that sets the size.
+    copies : float, keyword-only
+        Sets of such arrays alive at the peak [count].
+
+    Returns
+    -------
+    Estimate
+
+    Examples
+    --------
+    >>> arrays(1e9, what="`steps` = 1e9", copies=3).memory
+    24000000000.0
+    """
+    return ARRAY_ELEMENT.estimate(elements, what=what, seconds_factor=copies, bytes_factor=copies)
+
+
+def loop_response(samples, *, what: str) -> Estimate:
+    """Estimate of a tilt-loop response over ``samples`` time samples.
+
+    Parameters
+    ----------
+    samples : float
+        Time samples of the response [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    return RESPONSE_SAMPLE.estimate(samples, what=what)
+
+
+def imu_record(trials, samples, *, held_trials=None, bytes_per_sample=None, what: str) -> Estimate:
+    """Estimate of a whole-system alignment run: ``trials`` trials of ``samples`` IMU samples.
+
+    Parameters
+    ----------
+    trials : float
+        Monte Carlo trials [count].
+    samples : float
+        IMU samples per trial [count].
+    held_trials : float, keyword-only, optional
+        Trials whose samples are held in memory at once (default all of them).
+    bytes_per_sample : float, keyword-only, optional
+        Memory kept per held trial and sample [bytes] (default :data:`IMU_SAMPLE_BYTES`).
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    held = float(trials) if held_trials is None else min(float(trials), float(held_trials))
+    units = float(trials) * float(samples)
+    per = IMU_SAMPLE_BYTES if bytes_per_sample is None else float(bytes_per_sample)
+    extra = held * float(samples) * per if per and held and samples else 0.0
+    return IMU_TRIAL_SAMPLE.estimate(units, what=what, extra_bytes=extra if math.isfinite(extra) else math.inf)
+
+
+def alignment_monte_carlo(trials, samples, *, method: str, epochs: float = 0.0, per_block=None, workers: int = 1, what: str) -> Estimate:
+    """Estimate of a whole-system alignment Monte Carlo (each worker holds one block of trials).
+
+    Parameters
+    ----------
+    trials : float
+        Monte Carlo trials [count].
+    samples : float
+        IMU samples per trial [count].
+    method : {"analytic", "inertial", "kalman"}
+        Alignment method (:data:`ALIGNMENT_BLOCKS`).
+    epochs : float, keyword-only
+        Filter epochs per trial (Kalman) [count].
+    per_block : int, keyword-only, optional
+        Trials per block (default: the library's for the method).
+    workers : int, keyword-only
+        Worker processes sharing the trials [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    default_block, bytes_per = ALIGNMENT_BLOCKS[method]
+    workers = max(int(workers), 1)
+    block = bytes_per * min(float(trials), float(per_block or default_block)) * float(samples)
+    estimate = IMU_TRIAL_SAMPLE.estimate(float(trials) * float(samples), what=what, seconds_factor=1.0 / workers, extra_bytes=workers * block + (workers - 1) * IMU_TRIAL_SAMPLE.fixed_bytes)
+    if method == "kalman":  # the filter runs once per epoch: short epochs cost more than the samples
+        filtering = KALMAN_EPOCH.estimate(float(trials) * float(epochs), what=what, seconds_factor=1.0 / workers)
+        estimate = Estimate(estimate.seconds + filtering.seconds, estimate.memory + KALMAN_EPOCH_BYTES * float(epochs), what)
+    return estimate
+
+
+#: Symbolic one-step error series through weight 16 (exact increment, error and drift series of a
+#: registry algorithm, cold): time [s] and peak memory [bytes], measured by
+#: ``benchmarks/bench_budget.py``; each weight more multiplies them by the factors below.
+SERIES_AT_16 = (65.0, 3.5e8)
+SERIES_GROWTH = (2.7, 1.7)
+
+
+def series_derivation(max_weight, *, what: str) -> Estimate:
+    """Estimate of deriving the symbolic error series of an algorithm through ``max_weight`` (cold).
+
+    The work grows geometrically with the weight (the words of the exact
+    increment multiply), and hardly with the algorithm; weights up to 11 take
+    under a second.  A cached result costs nothing, but the estimate is that of
+    the first derivation, so that a request never depends on what happens to
+    be cached.
+
+    Parameters
+    ----------
+    max_weight : int
+        Highest weight (power of h) of the series [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+
+    Examples
+    --------
+    >>> round(series_derivation(7, what="").seconds, 3) < 0.1, format_seconds(series_derivation(20, what="").seconds)
+    (True, '3.45e+03 s')
+    """
+    k = float(max_weight) - 16.0
+    seconds = SERIES_AT_16[0] * SERIES_GROWTH[0] ** k
+    memory = max(SERIES_AT_16[1] * SERIES_GROWTH[1] ** k, 1e8)
+    return Estimate(seconds, memory, what)

@@ -11,7 +11,9 @@ The cache directory is keyed by the package version and a fingerprint of the
 package's own source files, so a changed derivation can never be served stale.
 Its location is ``$STRAPDOWN_CACHE_DIR`` if set, else
 ``$XDG_CACHE_HOME/strapdown-analysis``, else ``~/.cache/strapdown-analysis``.
-Where it cannot be written, the generated code is kept in memory only.
+Where it cannot be written, the generated code is kept in memory only.  Two
+processes that need the same entry at once do not both derive it: the second
+waits for the first (a lock file per entry) and loads what it wrote.
 
 :func:`derived` does the same for a derivation's result itself (SymPy
 expressions, exact fractions, the dataclasses that hold them), pickled, for
@@ -29,6 +31,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import tempfile
@@ -38,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["compiled", "derived", "cache_directory", "source_fingerprint", "generate_source"]
+__all__ = ["compiled", "derived", "contains", "building", "cache_directory", "source_fingerprint", "generate_source"]
 
 _FUNCTION = "generated"
 _memory: dict = {}
@@ -175,6 +178,41 @@ def _write(path: Path, text: str | bytes) -> None:
         pass  # an unwritable cache only costs speed: the code stays in memory
 
 
+@contextlib.contextmanager
+def building(path: Path):
+    """Hold an exclusive lock on ``<path>.lock`` while ``path`` is built: another process building it waits.
+
+    The lock is released when the block ends (or the process dies).  Where
+    locks are not available (not POSIX, an unwritable directory) the block
+    runs without one: at worst two processes build the same thing.
+
+    Parameters
+    ----------
+    path : Path
+        What is built (the lock file is next to it).
+
+    Yields
+    ------
+    None
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX: at worst two processes build the same entry
+        yield
+        return
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd = os.open(f"{path}.lock", os.O_RDWR | os.O_CREAT, 0o644)
+    except OSError:  # an unwritable cache: nothing to share
+        yield
+        return
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # closing releases the lock
+
+
 def compiled(key: str, build: Callable[[], tuple]) -> Callable:
     """A numpy function of a derived expression, generated once and cached.
 
@@ -208,12 +246,41 @@ def compiled(key: str, build: Callable[[], tuple]) -> Callable:
         path = _file_for(key)
         source = _read(path, key)
         if source is None:
-            arguments, expression = build()
-            source = generate_source(arguments, expression, key=key)
-            _write(path, source)
+            with building(path):
+                source = _read(path, key)  # another process may have written it while this one waited
+                if source is None:
+                    arguments, expression = build()
+                    source = generate_source(arguments, expression, key=key)
+                    _write(path, source)
         function = _load(source, str(path))
         _memory[key] = function
         return function
+
+
+def _derived_path(key: str) -> Path:
+    return cache_directory() / f"{hashlib.sha256(key.encode()).hexdigest()[:32]}.pickle"
+
+
+def contains(key: str) -> bool:
+    """Whether :func:`derived` has a result for ``key`` in this process or on disk (without loading it).
+
+    Parameters
+    ----------
+    key : str
+        The key given to :func:`derived`.
+
+    Returns
+    -------
+    bool
+    """
+    if ("derived", key) in _memory:
+        return True
+    header = f"# key: {key}\n".encode()
+    try:
+        with open(_derived_path(key), "rb") as handle:
+            return handle.read(len(header)) == header
+    except OSError:
+        return False
 
 
 def derived(key: str, build: Callable[[], object]):
@@ -256,22 +323,29 @@ def derived(key: str, build: Callable[[], object]):
     with _lock:
         if memory_key in _memory:
             return _memory[memory_key]
-        path = cache_directory() / f"{hashlib.sha256(key.encode()).hexdigest()[:32]}.pickle"
+        path = _derived_path(key)
         header = f"# key: {key}\n".encode()
-        result, found = None, False
-        try:
-            data = path.read_bytes()
-            if data.startswith(header):
-                result, found = pickle.loads(data[len(header) :]), True  # noqa: S301 - our own cache
-        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError, TypeError, ValueError):
-            found = False
-        if not found:
-            result = build()
+
+        def load():
             try:
-                payload = pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)
-            except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
-                payload = None
-            if payload is not None:
-                _write(path, header + payload)
+                data = path.read_bytes()
+                if data.startswith(header):
+                    return pickle.loads(data[len(header) :]), True  # noqa: S301 - our own cache
+            except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError, TypeError, ValueError):
+                pass
+            return None, False
+
+        result, found = load()
+        if not found:
+            with building(path):
+                result, found = load()  # another process may have written it while this one waited
+                if not found:
+                    result = build()
+                    try:
+                        payload = pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)
+                    except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+                        payload = None
+                    if payload is not None:
+                        _write(path, header + payload)
         _memory[memory_key] = result
         return result

@@ -227,7 +227,7 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
     tasks : sequence of callable
         Picklable zero-argument callables.
     progress : bool, keyword-only
-        Progress bar over the tasks on stderr.
+        Progress over the tasks on stderr (:func:`strapdown.analysis.core.progress.bar`).
     desc : str, keyword-only
         Label of the bar.
 
@@ -236,11 +236,9 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
     list
         The results, in the order of ``tasks`` (whatever order they finish in).
     """
-    import sys
+    from .progress import bar as progress_bar
 
-    from tqdm import tqdm
-
-    bar = tqdm(total=len(tasks), desc=desc, file=sys.stderr, disable=not progress, leave=False)
+    bar = progress_bar(total=len(tasks), desc=desc, enabled=progress)
     try:
         if executor is None:
             out = []
@@ -471,7 +469,7 @@ def collect(
     executor : Executor | dask Client | None
         Where chunks run (does not change the result).
     progress : bool
-        tqdm bar over chunks on stderr.
+        Progress over chunks on stderr (:func:`strapdown.analysis.core.progress.bar`).
 
     Returns
     -------

@@ -1,38 +1,84 @@
-"""Progress on stderr: tqdm bars, shown only when stderr is a terminal.
+"""Progress on stderr: tqdm bars on a terminal, plain lines in a log, nothing when asked to be quiet.
 
-Long work shows a progress bar on stderr when a person is watching (stderr is
-a terminal) and nothing at all otherwise: a log file or a pipe never receives
-carriage returns or ANSI escapes.  Two forms:
+Long work shows its progress on stderr in one of three ways, chosen once, at
+the edge (:func:`mode`), and never by library code:
 
-:func:`bar`
-    a tqdm bar over an iterable or a known total (Monte Carlo chunks, report
-    sections);
-:func:`activity`
-    a context manager for work without a natural count (a vectorised run, a
-    symbolic derivation): after ``delay`` seconds it shows the elapsed time,
-    refreshed twice a second, and erases itself when the work ends.
+``"bar"``
+    stderr is a terminal: tqdm bars that redraw in place (:func:`bar`), and
+    for work without a natural count the elapsed time (:func:`activity`);
+``"lines"``
+    stderr is a file, a pipe or a notebook: plain lines, no carriage returns
+    or escapes, each saying what runs, the fraction done and the time elapsed,
+    the first after a few seconds and then at least every ten
+    (:func:`lines`), so that a long run in a CI log never looks like a hang;
+``"off"``
+    ``--quiet``: nothing.
 
-Whether to show progress is decided once, at the edge, by :func:`wanted`, and
-passed down as a plain ``bool``; library functions never look at the terminal.
+Library functions take a plain ``progress: bool`` and wrap their loops in
+:func:`bar`.  Inside a :func:`lines` block the bars draw nothing themselves:
+they report their position to the block, whose timer thread writes the lines
+(nested bars, such as the chunks of a Monte Carlo inside a report section,
+refine the fraction).  The block is scoped to the command that opened it (a
+context variable), like a logging handler, so that library code never looks
+at the terminal.
+
+Public API: :func:`mode`, :func:`wanted`, :func:`bar`, :func:`activity`,
+:func:`lines`, :data:`MODES`, :data:`LINE_INTERVAL`.
 """
 
 from __future__ import annotations
 
+import contextvars
+import os
 import sys
 import threading
+import time
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 
-__all__ = ["wanted", "bar", "activity"]
+__all__ = ["MODES", "LINE_INTERVAL", "mode", "wanted", "bar", "activity", "lines"]
+
+#: The ways of showing progress (module docstring).
+MODES = ("bar", "lines", "off")
+#: Seconds between two progress lines, and before the first (``STRAPDOWN_PROGRESS_INTERVAL`` overrides it).
+LINE_INTERVAL = 5.0
+
+_active: contextvars.ContextVar = contextvars.ContextVar("strapdown_progress_lines", default=None)
+
+
+def mode(quiet: bool = False, stream=None) -> str:
+    """How to show progress: ``"off"`` when ``quiet``, ``"bar"`` on a terminal, ``"lines"`` otherwise.
+
+    Parameters
+    ----------
+    quiet : bool
+        ``--quiet`` was given.
+    stream : file, optional
+        The stream progress goes to (default ``sys.stderr``).
+
+    Returns
+    -------
+    str
+        One of :data:`MODES`.
+
+    Examples
+    --------
+    >>> import io
+    >>> mode(False, io.StringIO()), mode(True, io.StringIO())
+    ('lines', 'off')
+    """
+    if quiet:
+        return "off"
+    return "bar" if wanted(None, stream) else "lines"
 
 
 def wanted(requested: bool | None = None, stream=None) -> bool:
-    """Whether to show progress: ``requested`` if given, else whether ``stream`` is a terminal.
+    """Whether to draw progress bars: ``requested`` if given, else whether ``stream`` is a terminal.
 
     Parameters
     ----------
     requested : bool or None
-        An explicit choice (``--progress`` / ``--no-progress``); None decides by the terminal.
+        An explicit choice; None decides by the terminal.
     stream : file, optional
         The stream the bar would write to (default ``sys.stderr``).
 
@@ -55,8 +101,158 @@ def wanted(requested: bool | None = None, stream=None) -> bool:
         return False
 
 
+class _Task:
+    """A counted piece of work reported to a :func:`lines` block (the subset of tqdm's interface the package uses)."""
+
+    def __init__(self, block, iterable, desc: str, total):
+        self._block, self._iterable = block, iterable
+        self.desc, self.n = desc, 0
+        if total is None and iterable is not None:
+            try:
+                total = len(iterable)
+            except TypeError:
+                total = None
+        self.total = total
+        self._open = True
+        block.push(self)
+
+    def __iter__(self):
+        try:
+            for item in self._iterable:
+                yield item
+                self.n += 1
+        finally:
+            self.close()
+
+    def update(self, n: float = 1) -> None:
+        self.n += n
+
+    def set_description(self, desc: str, refresh: bool = True) -> None:
+        self.desc = desc
+
+    def close(self) -> None:
+        if self._open:
+            self._open = False
+            self._block.pop(self)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
+class _Lines:
+    """The state of a :func:`lines` block: the open tasks, innermost last, and the timer thread."""
+
+    def __init__(self, label: str, stream, interval: float):
+        self.label, self.stream, self.interval = label, stream, interval
+        self.start = time.monotonic()
+        self.tasks: list = []
+        self._lock = threading.Lock()
+        self._done = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="strapdown-progress-lines", daemon=True)
+
+    def push(self, task: _Task) -> None:
+        with self._lock:
+            self.tasks.append(task)
+
+    def pop(self, task: _Task) -> None:
+        with self._lock:
+            if task in self.tasks:
+                self.tasks.remove(task)
+
+    def text(self) -> str:
+        """One line: what runs, the fraction done (when the work is counted) and the time elapsed."""
+        with self._lock:
+            tasks = [(t.desc, t.n, t.total) for t in self.tasks]
+        fraction, scale, known = 0.0, 1.0, False
+        for _, n, total in tasks:  # nested counts: the inner ones refine the current step of the outer
+            if not total:
+                break
+            share = min(max(n, 0) / total, 1.0)
+            fraction += scale * share
+            scale /= total
+            known = True
+        steps = "; ".join(f"{d} {n:.0f}/{total:.0f}" if total else f"{d} {n:.0f}" for d, n, total in tasks if d)
+        parts = [f"{100.0 * fraction:.0f}% done" if known else None, steps or None, f"{time.monotonic() - self.start:.0f} s elapsed"]
+        return f"{self.label}: " + ", ".join(p for p in parts if p)
+
+    def _run(self) -> None:
+        while not self._done.wait(self.interval):
+            try:
+                self.stream.write(self.text() + "\n")
+                self.stream.flush()
+            except (OSError, ValueError):  # the log went away: stop reporting, not the work
+                return
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._done.set()
+        self._thread.join()
+        return False
+
+
+def _interval(interval) -> float:
+    if interval is not None:
+        return float(interval)
+    try:
+        value = float(os.environ.get("STRAPDOWN_PROGRESS_INTERVAL", LINE_INTERVAL))
+    except ValueError:
+        return LINE_INTERVAL
+    return value if value > 0 else LINE_INTERVAL
+
+
+@contextmanager
+def lines(label: str, *, stream=None, interval: float | None = None) -> Iterator[None]:
+    """Write a plain progress line every ``interval`` seconds while the block runs.
+
+    The first line comes after ``interval`` seconds (work shorter than that
+    writes nothing), the next every ``interval`` seconds after, until the
+    block ends.  Each line is ``<label>: <fraction>% done, <task> <n>/<total>;
+    <inner task> <n>/<total>, <seconds> s elapsed``, from the :func:`bar`
+    tasks open at that instant (the fraction is left out while no task has a
+    count).
+
+    Parameters
+    ----------
+    label : str
+        What runs (e.g. ``"strapdown report"``).
+    stream : file, optional, keyword-only
+        Where the lines go (default ``sys.stderr``).
+    interval : float, optional, keyword-only
+        Seconds between lines [s] (default :data:`LINE_INTERVAL`, or
+        ``STRAPDOWN_PROGRESS_INTERVAL`` from the environment).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import io, time
+    >>> log = io.StringIO()
+    >>> with lines("demo", stream=log, interval=0.05):
+    ...     for _ in bar(range(2), desc="step", enabled=True):
+    ...         time.sleep(0.12)
+    >>> log.getvalue().splitlines()[0].startswith("demo: ")
+    True
+    """
+    block = _Lines(label, sys.stderr if stream is None else stream, _interval(interval))
+    token = _active.set(block)
+    try:
+        with block:
+            yield
+    finally:
+        _active.reset(token)
+
+
 def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = None, enabled: bool = False, unit: str = "it", leave: bool = False):
-    """A tqdm progress bar on stderr (a silent pass-through when not ``enabled``).
+    """A progress bar on stderr: tqdm on a terminal, a counted task inside :func:`lines`, else silent.
 
     Parameters
     ----------
@@ -67,7 +263,7 @@ def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = No
     total : float, optional, keyword-only
         Expected number of iterations [count] (default ``len(iterable)`` when it has one).
     enabled : bool, keyword-only
-        Show the bar (decide with :func:`wanted`).
+        Show progress at all (the edge decides with :func:`mode`).
     unit : str, keyword-only
         Name of one iteration.
     leave : bool, keyword-only
@@ -75,9 +271,12 @@ def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = No
 
     Returns
     -------
-    tqdm.tqdm
-        Iterable, and usable as a context manager.
+    tqdm.tqdm or a task of the enclosing :func:`lines` block
+        Iterable, usable as a context manager, with ``update``, ``set_description`` and ``close``.
     """
+    block = _active.get() if enabled else None
+    if block is not None:
+        return _Task(block, iterable, desc, total)
     from tqdm import tqdm
 
     return tqdm(iterable, desc=desc, total=total, unit=unit, file=sys.stderr, leave=leave, disable=not enabled, dynamic_ncols=True)
@@ -85,14 +284,14 @@ def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = No
 
 @contextmanager
 def activity(desc: str, *, enabled: bool = False, delay: float = 2.0, interval: float = 0.5) -> Iterator[None]:
-    """Show ``desc`` and the elapsed time on stderr while the block runs longer than ``delay``.
+    """Show ``desc`` and the elapsed time on stderr (a terminal) while the block runs longer than ``delay``.
 
     Parameters
     ----------
     desc : str
         What is running (e.g. the command name).
     enabled : bool, keyword-only
-        Show anything at all (decide with :func:`wanted`).
+        Show anything at all (decide with :func:`mode`: ``"bar"``).
     delay : float, keyword-only
         Seconds before the line appears [s]; short work shows nothing.
     interval : float, keyword-only

@@ -23,6 +23,7 @@ __all__ = [
     "as_float",
     "as_int",
     "in_open_interval",
+    "in_closed_interval",
     "positive",
     "nonnegative",
 ]
@@ -202,7 +203,46 @@ def in_open_interval(x, name: str, low: float, high: float, *, text: str | None 
     return value
 
 
-def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> np.ndarray:
+def in_closed_interval(x, name: str, low: float, high: float, *, text: str | None = None) -> float:
+    """Return ``x`` as a finite float in the closed interval ``[low, high]``.
+
+    Parameters
+    ----------
+    x : real number
+        The value.
+    name : str
+        Argument name for the message.
+    low, high : float
+        Ends of the interval (included), in the unit of ``x``.
+    text : str, optional, keyword-only
+        How the message shows the interval, with its unit (e.g. ``"[1e-06, 3] rad"``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a real number.
+    ValueError
+        If ``x`` is not finite or outside the interval.
+
+    Examples
+    --------
+    >>> in_closed_interval(1e-9, "tolerance", 1e-6, 0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected `tolerance` in [1e-06, 0.5], got 1e-09
+    """
+    value = as_float(x, name)
+    if not (low <= value <= high):
+        span = text or f"[{low:g}, {high:g}]"
+        raise ValueError(f"Expected `{name}` in {span}, got {value:g}")
+    return value
+
+
+def as_array(x, name: str, *, last: int | None = None, finite: bool = True, nonempty: bool = False) -> np.ndarray:
     """Return ``x`` as a float array, optionally with last axis of length ``last``.
 
     Parameters
@@ -215,6 +255,8 @@ def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> n
         Required length of the last axis.
     finite : bool, keyword-only
         Refuse NaN and infinities.
+    nonempty : bool, keyword-only
+        Refuse an array without elements.
 
     Returns
     -------
@@ -225,12 +267,22 @@ def as_array(x, name: str, *, last: int | None = None, finite: bool = True) -> n
     TypeError
         If ``x`` is not numeric.
     ValueError
-        If the last axis has the wrong length, or (with ``finite``) an entry is NaN or inf.
+        If the last axis has the wrong length, (with ``finite``) an entry is
+        NaN or inf, or (with ``nonempty``) the array is empty.
+
+    Examples
+    --------
+    >>> as_array([], "omega", nonempty=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected `omega` to hold at least one value, got an empty array (shape (0,))
     """
     try:
         arr = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
         raise TypeError(f"Expected `{name}` to be a numeric array, got {type(x).__name__} {_describe(x)}") from None
+    if nonempty and arr.size == 0:
+        raise ValueError(f"Expected `{name}` to hold at least one value, got an empty array (shape {arr.shape})")
     if last is not None and (arr.ndim == 0 or arr.shape[-1] != last):
         raise ValueError(f"Expected `{name}` with shape (..., {last}), got shape {arr.shape}")
     if finite and not np.all(np.isfinite(arr)):

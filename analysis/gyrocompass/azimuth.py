@@ -27,7 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core import montecarlo
+from ..core import budget, montecarlo
 from ..core.cache import compiled
 from ..core.validation import as_float, as_int, in_open_interval, nonnegative
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
@@ -803,6 +803,7 @@ def azimuth_monte_carlo(
     control_degree: int = 0,
     pilot_samples: int = 1024,
     min_samples: int = 4096,
+    limits: budget.Limits | None = None,
 ) -> AzimuthMonteCarlo:
     """Monte Carlo of ``α − α*`` at independent instants, with bounds (14), (15) and theory.
 
@@ -848,7 +849,7 @@ def azimuth_monte_carlo(
     executor : Executor | dask Client | None
         Where chunks run (the result does not depend on it).
     progress : bool
-        tqdm progress bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     blocks_per_chunk : int
         Blocks per work item (the result does not depend on it).
     control_degree : int
@@ -860,6 +861,10 @@ def azimuth_monte_carlo(
         Draws of the pilot (control variates) [count].
     min_samples : int
         Fewest draws of the run (control variates) [count].
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s; the time
+        of a plain run of ``n_samples`` on one core); a request beyond them
+        raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -869,7 +874,8 @@ def azimuth_monte_carlo(
     ------
     ValueError
         For ``|latitude|`` ≥ 90°, negative sigmas, ``n_samples < 2``, a negative
-        ``control_degree``, too small a pilot or non-finite input.
+        ``control_degree``, too small a pilot, non-finite input, or a run whose
+        estimate exceeds ``limits`` (naming ``n_samples``).
 
     References
     ----------
@@ -889,6 +895,7 @@ def azimuth_monte_carlo(
     """
     latitude = check_latitude(latitude)
     n_samples = as_int(n_samples, "n_samples", minimum=2)
+    budget.check(budget.monte_carlo(n_samples, what=f"`n_samples` = {n_samples:.3g} rocking samples"), limits)
     control_degree = as_int(control_degree, "control_degree", minimum=0)
     steps = min(as_int(steps_per_trial, "steps_per_trial", minimum=1), max(1, n_samples // 2))
     kernel = AzimuthErrorKernel(latitude, beta0, gamma0, rocking, n_steps=steps)

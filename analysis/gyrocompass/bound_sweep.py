@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core import montecarlo
+from ..core import budget, montecarlo
 from ..core.validation import as_array, as_int, nonnegative, positive
 from .azimuth import AzimuthErrorKernel, ControlVariateSummary, azimuth_monte_carlo, bound14, bound14_squared, bound15, check_latitude, gradient, second_order_theory
 from .rocking import mean_law, mean_variance_factor, rocking_model
@@ -173,7 +173,7 @@ class SweepRow:
         return "undecided"
 
 
-def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int = 0) -> SweepRow:
+def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int = 0, limits: budget.Limits | None = None) -> SweepRow:
     """Monte Carlo of one case with its bounds and theory (angles in rad).
 
     Parameters
@@ -187,11 +187,22 @@ def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int 
         The case's random stream.
     control_degree : int
         0: plain Monte Carlo; else the degree of the Taylor control variates.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     SweepRow
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, or a run beyond ``limits`` (naming ``n_samples``).
     """
+    n_samples = as_int(n_samples, "n_samples", minimum=2)
+    budget.check(budget.monte_carlo(n_samples, what=f"`n_samples` = {n_samples:.3g} rocking samples"), limits)
     rocking = case.rocking()
     control_degree = as_int(control_degree, "control_degree", minimum=0)
     if case.estimate == "known":
@@ -289,7 +300,7 @@ class _CaseTask:
         return evaluate_case(self.case, self.n_samples, montecarlo.block_seed(root, self.index), control_degree=self.control_degree)
 
 
-def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0) -> list:
+def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0, limits: budget.Limits | None = None) -> list:
     """Evaluate every case; the rows come back in case order.
 
     Parameters
@@ -303,19 +314,31 @@ def sweep(cases, *, n_samples: int, rng=None, executor=None, progress: bool = Fa
     executor : Executor | dask Client | None
         Where cases run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates (see
         :func:`evaluate_case`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     list of SweepRow
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, no case, or a sweep beyond ``limits`` (naming ``n_samples``).
     """
     n_samples = as_int(n_samples, "n_samples", minimum=2)
     control_degree = as_int(control_degree, "control_degree", minimum=0)
     root = montecarlo.root_seed_sequence(rng)
     cases = list(cases)
+    if not cases:
+        raise ValueError("Expected at least one case in `cases`, got none")
+    budget.check(budget.monte_carlo(len(cases) * n_samples, what=f"`n_samples` = {n_samples:.3g} rocking samples in each of {len(cases)} cases"), limits)
     for c in cases:
         if not isinstance(c, SweepCase):
             raise TypeError(f"Expected `cases` of SweepCase, got {type(c).__name__}")
@@ -379,7 +402,7 @@ class ValidityMap:
         return np.array(values, dtype=float).reshape(len(self.latitudes), len(self.sigmas))
 
 
-def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0, **fields) -> ValidityMap:
+def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, progress: bool = False, control_degree: int = 0, limits: budget.Limits | None = None, **fields) -> ValidityMap:
     """Sweep the latitude × amplitude grid and classify bounds (14), (15) in every cell.
 
     Parameters
@@ -395,19 +418,31 @@ def validity_map(latitudes, sigmas, *, n_samples: int, rng=None, executor=None, 
     executor : Executor | dask Client | None
         Where cells run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates (see
         :func:`evaluate_case`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
     **fields
         The other :class:`SweepCase` fields.
 
     Returns
     -------
     ValidityMap
+
+    Raises
+    ------
+    ValueError
+        For an empty grid, bad fields, or a sweep beyond ``limits`` (as :func:`sweep`).
     """
     lats, sig = as_array(latitudes, "latitudes").ravel(), as_array(sigmas, "sigmas").ravel()
-    rows = tuple(sweep(grid_cases(lats, sig, **fields), n_samples=n_samples, rng=rng, executor=executor, progress=progress, control_degree=control_degree))
+    for name, values in (("latitudes", lats), ("sigmas", sig)):
+        if values.size == 0:
+            raise ValueError(f"Expected at least one value in `{name}`, got an empty array")
+    rows = tuple(sweep(grid_cases(lats, sig, **fields), n_samples=n_samples, rng=rng, executor=executor, progress=progress, control_degree=control_degree, limits=limits))
     shape = (len(lats), len(sig))
 
     def grid(values, dtype=float):

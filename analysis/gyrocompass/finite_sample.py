@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget as work
 from ..core.validation import as_array, as_int, in_open_interval, positive
 from .azimuth import check_latitude, gradient
 from .rocking import GaussianRocking, SineRocking, mean_variance_factor
@@ -77,7 +78,7 @@ class SampleMeanStatistics:
     variance_dof: float
 
 
-def sample_mean_statistics(model, n_samples: int, dt, *, axis: str = "xi") -> SampleMeanStatistics:
+def sample_mean_statistics(model, n_samples: int, dt, *, axis: str = "xi", limits: work.Limits | None = None) -> SampleMeanStatistics:
     """Effective sample size and bias of the variance estimate of (16).
 
     Parameters
@@ -90,10 +91,18 @@ def sample_mean_statistics(model, n_samples: int, dt, *, axis: str = "xi") -> Sa
         Sample interval [s].
     axis : str
         ``"xi"`` or ``"eta"``.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     SampleMeanStatistics
+
+    Raises
+    ------
+    ValueError
+        For ``n_samples`` below 2 or beyond ``limits``.
 
     Examples
     --------
@@ -104,7 +113,8 @@ def sample_mean_statistics(model, n_samples: int, dt, *, axis: str = "xi") -> Sa
     (50.0, -0.02, 49.0)
     """
     n = as_int(n_samples, "n_samples", minimum=2)
-    v = mean_variance_factor(model, n, dt, axis=axis)
+    work.check(work.autocorrelation_sums(2, n, what=f"`n_samples` = {n:.3g} samples averaged"), limits)
+    v = mean_variance_factor(model, n, dt, axis=axis, limits=limits)
     ratio = math.sqrt(n * v / (1.0 - v)) if v < 1.0 else math.inf
     return SampleMeanStatistics(n, dt, v, 1.0 / v if v > 0 else math.inf, -v, ratio, _variance_dof(model, n, dt, v, axis))
 
@@ -119,7 +129,7 @@ def _variance_dof(model, n, dt, v, axis) -> float:
     return max(n * (1.0 - v) ** 2 / w, 1.0)
 
 
-def variance_factors(model, max_samples: int, dt: float, *, axis: str = "xi") -> np.ndarray:
+def variance_factors(model, max_samples: int, dt: float, *, axis: str = "xi", limits: work.Limits | None = None) -> np.ndarray:
     """``v(n)`` for every n = 1 … max_samples at once (cumulative sums of the autocorrelation).
 
     ``v(n) = (1/n) [1 + 2 S1(n) − (2/n) S2(n)]``, ``S1 = Σ_{k<n} ρ_k``, ``S2 = Σ_{k<n} k ρ_k``.
@@ -134,13 +144,22 @@ def variance_factors(model, max_samples: int, dt: float, *, axis: str = "xi") ->
         Sample interval [s].
     axis : str
         ``"xi"`` or ``"eta"``.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     ndarray
         ``(max_samples,)``, entry ``n − 1`` is v(n).
+
+    Raises
+    ------
+    ValueError
+        For ``max_samples`` below 1 or beyond ``limits``.
     """
     N = as_int(max_samples, "max_samples", minimum=1)
+    work.check(work.arrays(N, what=f"`max_samples` = {N:.3g}", copies=10.0), limits)
     n = np.arange(1, N + 1, dtype=float)
     if isinstance(model, GaussianRocking):
         return 1.0 / n
@@ -278,7 +297,7 @@ class RequiredAveraging:
     budget: float
 
 
-def required_averaging(budget, latitude, model, dt: float, *, beta0: float = 0.0, gamma0: float = 0.0, max_samples: int = 200_000) -> RequiredAveraging:
+def required_averaging(budget, latitude, model, dt: float, *, beta0: float = 0.0, gamma0: float = 0.0, max_samples: int = 200_000, limits: work.Limits | None = None) -> RequiredAveraging:
     """Smallest averaging of (16) from which the first-order alignment rms stays within a budget.
 
     Parameters
@@ -295,10 +314,18 @@ def required_averaging(budget, latitude, model, dt: float, *, beta0: float = 0.0
         Stable tilts [rad].
     max_samples : int
         Search limit.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     RequiredAveraging
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, or a search limit beyond ``limits`` (naming ``max_samples``).
 
     Examples
     --------
@@ -313,8 +340,8 @@ def required_averaging(budget, latitude, model, dt: float, *, beta0: float = 0.0
     latitude = check_latitude(latitude)
     dt = positive(dt, "dt")
     g = gradient(latitude, beta0, gamma0)
-    vx = variance_factors(model, max_samples, dt, axis="xi")
-    ve = variance_factors(model, max_samples, dt, axis="eta")
+    vx = variance_factors(model, max_samples, dt, axis="xi", limits=limits)
+    ve = variance_factors(model, max_samples, dt, axis="eta", limits=limits)
     rms = np.sqrt(g.d_beta**2 * model.sigma_xi**2 * vx + g.d_gamma**2 * model.sigma_eta**2 * ve)
     worst_after = np.maximum.accumulate(rms[::-1])[::-1]  # max over m ≥ n
     ok = np.flatnonzero(worst_after <= budget * (1 + 1e-12))

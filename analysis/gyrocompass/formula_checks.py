@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget
 from ..core.validation import as_int
 
 __all__ = ["FormulaCheck", "check_printed_formulas"]
@@ -71,7 +72,7 @@ def _derived(label: str):
     }[label]
 
 
-def check_printed_formulas(*, n_points: int = 200, rng=None) -> tuple:
+def check_printed_formulas(*, n_points: int = 200, rng=None, limits: budget.Limits | None = None) -> tuple:
     """Compare every printed formula of (2), (5)–(10) with its derivation.
 
     Parameters
@@ -80,10 +81,18 @@ def check_printed_formulas(*, n_points: int = 200, rng=None) -> tuple:
         Random points of the numeric residual.
     rng : Generator | int | None
         Random stream of the points (default seed 0, so the residuals are reproducible).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     tuple of FormulaCheck
+
+    Raises
+    ------
+    ValueError
+        For ``n_points`` below 1 or beyond ``limits``.
 
     References
     ----------
@@ -96,6 +105,7 @@ def check_printed_formulas(*, n_points: int = 200, rng=None) -> tuple:
     from ...derivations.reproducible import reproducible
 
     n = as_int(n_points, "n_points", minimum=1)
+    budget.check(budget.arrays(n, what=f"`n_points` = {n:.3g} points", copies=100.0), limits)
     gen = np.random.default_rng(0 if rng is None else rng)
     s = g.SYMBOLS
     args = (s.phi, s.beta0, s.gamma0, s.xi, s.eta)

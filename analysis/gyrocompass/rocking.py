@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget
 from ..core.validation import as_float, as_int, nonnegative, positive
 
 __all__ = ["GaussianRocking", "SineRocking", "NarrowbandRocking", "as_generator", "rocking_model", "mean_variance_factor", "mean_law", "tilt_domain_limit", "MODELS"]
@@ -64,8 +65,11 @@ def as_generator(rng) -> np.random.Generator:
     raise TypeError(f"Expected `rng` to be a numpy Generator, SeedSequence, int or None, got {type(rng).__name__}")
 
 
-def _shape(n_trials, n_steps) -> tuple[int, int]:
-    return as_int(n_trials, "n_trials", minimum=1), as_int(n_steps, "n_steps", minimum=1)
+def _shape(n_trials, n_steps, limits=None, copies: float = 2.0) -> tuple[int, int]:
+    """Validated ``(n_trials, n_steps)``; refused if ``copies`` arrays of that shape exceed ``limits``."""
+    trials, steps = as_int(n_trials, "n_trials", minimum=1), as_int(n_steps, "n_steps", minimum=1)
+    budget.check(budget.arrays(float(trials) * steps, what=f"`n_trials` × `n_steps` = {trials:.3g} × {steps:.3g} rocking samples", copies=copies), limits)
+    return trials, steps
 
 
 def _dt(dt):
@@ -137,7 +141,7 @@ class GaussianRocking:
         object.__setattr__(self, "sigma_xi", nonnegative(self.sigma_xi, "sigma_xi"))
         object.__setattr__(self, "sigma_eta", nonnegative(self.sigma_eta, "sigma_eta"))
 
-    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
+    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None, *, limits: budget.Limits | None = None):
         """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad].
 
         Parameters
@@ -150,12 +154,21 @@ class GaussianRocking:
             Samples per record.
         dt : float or None
             Sample interval [s] (irrelevant for white rocking; checked if given).
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
         xi, eta : ndarray
+
+        Raises
+        ------
+        ValueError
+            For counts below 1 or records whose memory exceeds ``limits``
+            (naming ``n_trials`` and ``n_steps``).
         """
-        n_trials, n_steps = _shape(n_trials, n_steps)
+        n_trials, n_steps = _shape(n_trials, n_steps, limits)
         _dt(dt)
         g = as_generator(rng)
         z = g.standard_normal((2, n_trials, n_steps))
@@ -238,7 +251,7 @@ class SineRocking:
         for field in ("period_xi", "period_eta"):
             object.__setattr__(self, field, positive(getattr(self, field), field))
 
-    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
+    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None, *, limits: budget.Limits | None = None):
         """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s].
 
         Parameters
@@ -251,12 +264,21 @@ class SineRocking:
             Samples per record.
         dt : float or None
             Sample interval [s]; None: an independent phase for every sample.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
         xi, eta : ndarray
+
+        Raises
+        ------
+        ValueError
+            For counts below 1 or records whose memory exceeds ``limits``
+            (naming ``n_trials`` and ``n_steps``).
         """
-        n_trials, n_steps = _shape(n_trials, n_steps)
+        n_trials, n_steps = _shape(n_trials, n_steps, limits)
         dt = _dt(dt)
         g = as_generator(rng)
         out = []
@@ -413,7 +435,7 @@ class NarrowbandRocking:
         F, Q = _discretise(self.omega0, self.damping, positive(dt, "dt"))
         return F.copy(), Q.copy()
 
-    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None):
+    def sample(self, rng, n_trials: int, n_steps: int, dt: float | None = None, *, limits: budget.Limits | None = None):
         """``(ξ, η)``, each of shape ``(n_trials, n_steps)`` [rad], sampled every ``dt`` [s].
 
         Parameters
@@ -427,12 +449,21 @@ class NarrowbandRocking:
         dt : float or None
             Sample interval [s]; None: independent draws from the stationary
             (Gaussian) distribution.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
         xi, eta : ndarray
+
+        Raises
+        ------
+        ValueError
+            For counts below 1 or records whose memory exceeds ``limits``
+            (naming ``n_trials`` and ``n_steps``).
         """
-        n_trials, n_steps = _shape(n_trials, n_steps)
+        n_trials, n_steps = _shape(n_trials, n_steps, limits, copies=8.0)
         dt = _dt(dt)
         g = as_generator(rng)
         if dt is None:
@@ -585,7 +616,7 @@ def rocking_model(name: str, sigma_xi: float, sigma_eta: float, *, period: float
     raise ValueError(f"Expected `rocking` among {', '.join(MODELS)}, got {name!r}")
 
 
-def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "xi") -> float:
+def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "xi", limits: budget.Limits | None = None) -> float:
     """``Var(ξ̄_n) / Var ξ`` for the mean of ``n_steps`` samples taken every ``dt`` [s].
 
     ``(1/n) [1 + 2 Σ_{k=1}^{n−1} (1 − k/n) ρ(k dt)]`` with the model's
@@ -603,10 +634,18 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
         Sample interval [s]; None for independent samples.
     axis : str
         ``"xi"`` or ``"eta"``.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        For ``n_steps`` below 1, or more lags than ``limits`` allow.
 
     >>> round(mean_variance_factor(SineRocking(1.0, 1.0, 10.0, 10.0), 100, 0.1), 12)
     0.0
@@ -617,6 +656,7 @@ def mean_variance_factor(model, n_steps: int, dt: float | None, *, axis: str = "
     if dt is None or isinstance(model, GaussianRocking):
         return 1.0 / n
     dt = positive(dt, "dt")
+    budget.check(budget.autocorrelation_sums(1, n, what=f"`n_steps` = {n:.3g} samples averaged"), limits)
     k = np.arange(1, n, dtype=float)
     if isinstance(model, SineRocking):
         rho = model.autocorrelation(k * dt, axis=axis)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget as work
 from ..core import montecarlo
 from ..core.units import rad
 from ..core.validation import as_array, as_int, nonnegative, positive
@@ -138,7 +139,7 @@ class CaseResult:
         return bool(lo <= self.mc.theory.rms <= hi)
 
 
-def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0) -> tuple:
+def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0, limits: work.Limits | None = None) -> tuple:
     """Monte Carlo of each case from its own child stream of ``rng``.
 
     Parameters
@@ -153,12 +154,23 @@ def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0) -> tu
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates of
         :func:`strapdown.analysis.gyrocompass.azimuth.azimuth_monte_carlo`.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     tuple of CaseResult
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, or runs beyond ``limits`` (naming ``n_samples``).
     """
     n_samples = as_int(n_samples, "n_samples", minimum=2)
+    cases = list(cases)
+    work.check(work.monte_carlo(len(cases) * n_samples, what=f"`n_samples` = {n_samples:.3g} rocking samples in each of {len(cases)} cases"), limits)
     root = montecarlo.root_seed_sequence(rng)
     out = []
     for i, case in enumerate(cases):
@@ -201,7 +213,9 @@ class DesignCheck:
         return self.design.amplitude[list(self.indices)]
 
 
-def tilt_design_check(budget, latitude, averaging_time, frequencies, *, damping: float = 0.1, sample_rate: float = 10.0, n_trials: int = 1000, check=(0, -1), rng=None) -> DesignCheck:
+def tilt_design_check(
+    budget, latitude, averaging_time, frequencies, *, damping: float = 0.1, sample_rate: float = 10.0, n_trials: int = 1000, check=(0, -1), rng=None, limits: work.Limits | None = None
+) -> DesignCheck:
     """Admissible narrow-band amplitudes (tilt channel) with a Monte Carlo check at some of them.
 
     At the admissible amplitude the rms alignment error of the estimate (16)
@@ -227,16 +241,27 @@ def tilt_design_check(budget, latitude, averaging_time, frequencies, *, damping:
         Indices of the frequencies to check.
     rng : Generator | SeedSequence | int | None
         Root of the per-frequency streams.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     DesignCheck
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, or a check beyond ``limits`` (naming ``n_trials``).
     """
     design = admissible_amplitude(budget, latitude, averaging_time, frequencies, rocking="narrowband", damping=damping, sample_rate=sample_rate)
     dt = 1.0 / positive(sample_rate, "sample_rate")
     n_trials = as_int(n_trials, "n_trials", minimum=2)
     f = as_array(frequencies, "frequencies").ravel()
     indices = tuple(int(i) % f.size for i in check)
+    draws = float(n_trials) * len(indices) * design.samples
+    work.check(work.monte_carlo(draws, what=f"`n_trials` = {n_trials:.3g} trials of {design.samples:.3g} samples at {len(indices)} frequencies"), limits)
     root = montecarlo.root_seed_sequence(rng)
     results = []
     for k, i in enumerate(indices):

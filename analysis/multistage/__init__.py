@@ -20,6 +20,8 @@ decay_rates
     Exponential decay rates of the first-variant stage: exact, at rest, guaranteed, simulated.
 tilt_loop
     python-control analysis of a stage loop: poles, damping, root loci, responses, Bode data.
+response_grid
+    The time grid of a pulse response, and its size bounded before the loop is built.
 gain_design
     Gains from a requested loop, Schuler tuning, bumpless switch, the Schuler error budget.
 readings

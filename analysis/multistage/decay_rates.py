@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import eigh
 
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.cache import compiled
 from ..core.validation import as_float, as_vector, positive
@@ -164,7 +165,7 @@ def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
     return float(best[0]), best[1]
 
 
-def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=None, z0=(0.0, 0.02, -0.01, 0.015)) -> float:
+def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=None, z0=(0.0, 0.02, -0.01, 0.015), limits: budget.Limits | None = None) -> float:
     """Decay rate of ``V = l|z|² + ½|y|²`` measured on a simulation of the stage [1/s].
 
     The body turns at the constant rate ω relative to a fixed frame; stage 1 is
@@ -186,16 +187,27 @@ def simulated_rate(k, l, omega=(0.0, 0.0, 0.0), *, step: float = 0.05, duration=
         Run length [s]; default ``14 / rest_rate``.
     z0 : array_like, shape (4,)
         Initial perturbation.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, or a run whose estimated memory or time exceeds ``limits``
+        (naming ``duration`` and ``step``).
     """
     k, l = positive(k, "k"), positive(l, "l")
     w = as_vector(omega, "omega")
     h = positive(step, "step")
     end = 14.0 / rest_rate(k, l) if duration is None else positive(duration, "duration")
-    n = int(np.ceil(end / h))
+    steps = np.ceil(end / h)
+    budget.check(budget.multistage(steps, what=f"`duration` = {end:.3g} s over `step` = {h:g} s ({steps:.3g} steps)"), limits)
+    n = int(steps)
     t = np.arange(n + 1) * h
     mu = quat.rotvec_to_quat(t[:, None] * w)
     dq = np.broadcast_to(quat.rotvec_to_quat(w * h), (n, 4))

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.cache import compiled
 from ..core.validation import as_int
@@ -95,7 +96,7 @@ def _w3_build(which):
     return build
 
 
-def check_printed_formulas(*, samples: int = 500, small_angle: float = 1e-3, rng=None) -> FormulaChecks:
+def check_printed_formulas(*, samples: int = 500, small_angle: float = 1e-3, rng=None, limits: budget.Limits | None = None) -> FormulaChecks:
     """Evaluate (1.9), (1.10) and (3.7) as printed and as derived against the truth.
 
     Parameters
@@ -106,16 +107,25 @@ def check_printed_formulas(*, samples: int = 500, small_angle: float = 1e-3, rng
         Bound of the small error angles (α, β, χ) of the (3.7) check [rad].
     rng : numpy.random.Generator, int, SeedSequence or None
         Source of the samples.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     FormulaChecks
+
+    Raises
+    ------
+    ValueError
+        For ``samples`` below 1 or beyond ``limits``.
 
     References
     ----------
     Plotnikov (1999), eqs. (1.7)–(1.10), (3.7).
     """
     n_samples = as_int(samples, "samples", minimum=1)
+    budget.check(budget.arrays(n_samples, what=f"`samples` = {n_samples:.3g} random attitudes", copies=150.0), limits)
     gen = np.random.default_rng(rng)
     ang = gen.uniform([0.0, -0.6, -0.6], [0.0, 0.6, 0.6], size=(n_samples, 3))
     mu = angles_to_quat(ang[:, 0], ang[:, 1], ang[:, 2])

@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...derivations.multistage.published import SECTION5
-from ..core import montecarlo
+from ..core import budget, montecarlo
 from ..core.validation import as_int, nonnegative, positive
 from .sensors import SensorData, SensorErrors, corrupt
 from .stages import ENGINES, Stage, multistage_peaks, plotnikov_1999_stages
@@ -256,6 +256,7 @@ def sensor_error_monte_carlo(
     executor=None,
     progress: bool = False,
     engine: str = "compiled",
+    limits: budget.Limits | None = None,
 ) -> PeakStatistics:
     """Percentiles of the peak errors of each stage over random sensor errors.
 
@@ -282,11 +283,15 @@ def sensor_error_monte_carlo(
     executor : Executor | dask Client | None
         Where chunks run (does not change the result).
     progress : bool
-        tqdm bar on stderr.
+        Progress on stderr (:func:`strapdown.analysis.core.progress.bar`).
     engine : {"compiled", "python"}
         Implementation of the cascade: one compiled pass per trial, or the
         reference (plain-Python stage recursion, numpy in between); the two
         agree to round-off.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s, on one
+        core); a request beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -295,7 +300,8 @@ def sensor_error_monte_carlo(
     Raises
     ------
     ValueError
-        For ``n_trials < 2``, bad levels, a bad step or an unknown engine.
+        For ``n_trials < 2``, bad levels, a bad step, an unknown engine, or
+        work beyond ``limits`` (naming ``n_trials``).
     """
     stats = SensorErrorStatistics.plotnikov_1999() if statistics is None else statistics
     if not isinstance(stats, SensorErrorStatistics):
@@ -308,6 +314,11 @@ def sensor_error_monte_carlo(
     if not levels or any(not 0.0 <= v <= 100.0 for v in levels):
         raise ValueError(f"Expected `levels` in [0, 100], got {levels}")
     sc = Scenario() if scenario is None else scenario
+    steps = sc.duration / float(step)
+    what = f"`n_trials` = {n_trials:.3g} runs of {steps:.3g} steps (`step` = {float(step):g} s)"
+    runs = budget.multistage(float(n_trials + 1) * steps, what=what)  # the time of every run
+    held = budget.multistage((as_int(trials_per_block, "trials_per_block", minimum=1) + 1.0) * steps, what=what)  # the memory of one block
+    budget.check(budget.Estimate(runs.seconds, held.memory, what), limits)
     clean = replace(sc, sensors=SensorErrors())
     stages = tuple(plotnikov_1999_stages(sc.gravity, sc.earth_radius) if stages is None else stages)
     if not stages or not all(isinstance(s, Stage) for s in stages):

@@ -45,6 +45,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.validation import as_array, as_float, nonnegative, positive
 from .sensors import SensorData
@@ -695,7 +696,7 @@ def plotnikov_1999_stages(
     )
 
 
-def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.02, rng=None, engine: str = "compiled") -> MultistageResult:
+def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.02, rng=None, engine: str = "compiled", limits: budget.Limits | None = None) -> MultistageResult:
     """Sample ``scenario`` and run the cascade ``stages`` (defaults: section 5 of Plotnikov 1999).
 
     Parameters
@@ -710,11 +711,21 @@ def simulate(scenario: Scenario | None = None, stages=None, *, step: float = 0.0
         Sensor-noise source.
     engine : {"compiled", "python"}
         Implementation of the stage recursion.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
     MultistageResult
+
+    Raises
+    ------
+    ValueError
+        For a bad ``step``, or a run whose estimated memory or time exceeds
+        ``limits`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`,
+        naming the scenario's ``duration`` and ``step``).
     """
     scenario = Scenario() if scenario is None else scenario
     stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius) if stages is None else stages
-    return run_multistage(sample(scenario, step, rng=rng), stages, engine=engine)
+    return run_multistage(sample(scenario, step, rng=rng, limits=limits), stages, engine=engine)

@@ -34,8 +34,10 @@ from typing import NamedTuple
 import control
 import numpy as np
 
+from ..core import budget
 from ..core.cache import compiled
-from ..core.validation import as_array, as_float, positive
+from ..core.validation import as_array, as_float, as_int, positive
+from .response_grid import MAX_POINTS, pulse_grid
 
 __all__ = [
     "STABILITY_LABELS",
@@ -313,7 +315,7 @@ class StageLoop:
                 f"poles {bad} make the response grow without bound"
             )
 
-    def pulse_response(self, accel, duration, *, horizon=None, max_points: int = 20_000):
+    def pulse_response(self, accel, duration, *, horizon=None, max_points: int = MAX_POINTS, limits: budget.Limits | None = None):
         """Tilt error for a horizontal acceleration ``accel`` held ``duration`` s from rest.
 
         By superposition of two step responses of :meth:`error_from_accel`
@@ -328,7 +330,12 @@ class StageLoop:
         horizon : float, optional
             End of the response [s]; default ``T`` plus two Schuler periods.
         max_points : int
-            Largest number of time samples.
+            Number of time samples the grid aims at; more when the
+            acceleration is short against the horizon (the grid keeps the end
+            of the acceleration on a sample: :func:`~strapdown.analysis.multistage.response_grid.pulse_grid`).
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
@@ -339,7 +346,9 @@ class StageLoop:
         ------
         ValueError
             For a non-finite acceleration, a non-positive duration, a horizon
-            shorter than it, or an unstable loop.
+            shorter than it, an unstable loop, or a response whose estimated
+            memory or time exceeds ``limits``
+            (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``horizon``).
         """
         a = as_float(accel, "accel")
         dur = positive(duration, "accel_duration")
@@ -350,17 +359,18 @@ class StageLoop:
         # The response is exact on any uniform grid (zero-order hold of a piecewise-constant
         # input); the grid only has to resolve the peak.
         fastest = float(np.abs(self.poles()).max(initial=0.0))
-        dt = min(dur / 20.0, 0.2 / fastest if fastest > 0 else np.inf, end / 2000.0)
-        dt = max(dt, end / max_points)
-        m = max(1, int(np.ceil(dur / dt)))
-        dt = dur / m
-        n = int(np.ceil(end / dt))
-        t = np.arange(n + 1) * dt
+        dt, m, samples = pulse_grid(dur, end, fastest, max_points)
+        if horizon is not None:
+            asked = f"`horizon` = {end:.3g} s"
+        else:
+            asked = f"the default horizon, `accel_duration` = {dur:.3g} s plus two Schuler periods 2π√(`earth_radius`/`gravity`) = {self.schuler_period:.3g} s"
+        budget.check(budget.loop_response(samples, what=f"{asked} at a time step of {dt:.3g} s ({samples:.3g} samples)"), limits)
+        t = np.arange(int(samples)) * dt
         step = step_response_on_grid(self.error_from_accel(), t)
         shifted = np.concatenate([np.zeros(m), step[:-m]])
         return t, a * (step - shifted)
 
-    def peak_tilt_error(self, accel, duration, *, horizon=None) -> float:
+    def peak_tilt_error(self, accel, duration, *, horizon=None, limits: budget.Limits | None = None) -> float:
         """Largest ``|tilt error|`` [rad] of :meth:`pulse_response`.
 
         Parameters
@@ -371,6 +381,9 @@ class StageLoop:
             T [s], > 0.
         horizon : float, optional
             End of the response [s]; default ``T`` plus two Schuler periods.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
@@ -381,10 +394,10 @@ class StageLoop:
         ValueError
             As :meth:`pulse_response`.
         """
-        _, e = self.pulse_response(accel, duration, horizon=horizon)
+        _, e = self.pulse_response(accel, duration, horizon=horizon, limits=limits)
         return float(np.abs(e).max())
 
-    def drift_response(self, rate, horizon, *, points: int = 6001):
+    def drift_response(self, rate, horizon, *, points: int = 6001, limits: budget.Limits | None = None):
         """Tilt error for a constant rate disturbance from t = 0 (e.g. an Earth rate not yet in the integral).
 
         Parameters
@@ -394,7 +407,10 @@ class StageLoop:
         horizon : float
             End of the response [s], > 0.
         points : int
-            Number of time samples.
+            Number of time samples, >= 2.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
@@ -404,15 +420,17 @@ class StageLoop:
         Raises
         ------
         ValueError
-            For an unstable loop or bad arguments.
+            For an unstable loop, bad arguments, or more ``points`` than ``limits`` allow.
         """
         d = as_float(rate, "rate")
         end = positive(horizon, "horizon")
+        count = as_int(points, "points", minimum=2)
+        budget.check(budget.loop_response(count, what=f"`points` = {count:.3g} samples"), limits)
         self.require_bounded("the response to a rate disturbance")
-        t = np.linspace(0.0, end, int(points))
+        t = np.linspace(0.0, end, count)
         return t, d * step_response_on_grid(self.error_from_drift(), t)
 
-    def summary(self, accel: float = 20.0, duration: float = 20.0, *, horizon=None) -> LoopSummary:
+    def summary(self, accel: float = 20.0, duration: float = 20.0, *, horizon=None, limits: budget.Limits | None = None) -> LoopSummary:
         """Poles, damping, natural frequency, stability and peak tilt error.
 
         Parameters
@@ -423,6 +441,9 @@ class StageLoop:
             Its duration [s].
         horizon : float, optional
             End of the response [s]; default ``duration`` plus two Schuler periods.
+        limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+            Largest estimated memory and run time (default 2 GB, 300 s); a request
+            beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
         Returns
         -------
@@ -431,7 +452,8 @@ class StageLoop:
         Raises
         ------
         ValueError
-            For an unstable loop (its peak error is unbounded) or bad arguments.
+            For an unstable loop (its peak error is unbounded), bad arguments, or
+            a response beyond ``limits`` (as :meth:`pulse_response`).
         """
         wn, zeta, p = self.damp()
         dur = positive(duration, "accel_duration")
@@ -449,7 +471,7 @@ class StageLoop:
             accel=as_float(accel, "accel"),
             accel_duration=dur,
             horizon=float(end),
-            peak_tilt_error=self.peak_tilt_error(accel, dur, horizon=end),
+            peak_tilt_error=self.peak_tilt_error(accel, dur, horizon=horizon, limits=limits),
         )
 
 
@@ -533,7 +555,7 @@ def root_locus_k(l, ks) -> RootLocus:
         From ``control.root_locus_map``.
     """
     l = as_float(l, "l")
-    ks = as_array(ks, "ks")
+    ks = as_array(ks, "ks", nonempty=True)
     return RootLocus(ks, control.root_locus_map(control.tf([1.0, 0.0], [1.0, 0.0, l]), ks).loci)
 
 
@@ -553,7 +575,7 @@ def root_locus_l(k, ls) -> RootLocus:
         From ``control.root_locus_map``.
     """
     k = as_float(k, "k")
-    ls = as_array(ls, "ls")
+    ls = as_array(ls, "ls", nonempty=True)
     return RootLocus(ls, control.root_locus_map(control.tf([1.0], [1.0, k, 0.0]), ls).loci)
 
 
@@ -592,7 +614,7 @@ def responses(loop: StageLoop, time) -> LoopResponses:
     -------
     LoopResponses
     """
-    t = as_array(time, "time")
+    t = as_array(time, "time", nonempty=True)
     tf = loop.error_from_accel()
 
     def out(r):
@@ -638,7 +660,7 @@ def complementary_filter(loop: StageLoop, omega) -> FilterResponse:
     -------
     FilterResponse
     """
-    w = as_array(omega, "omega")
+    w = as_array(omega, "omega", nonempty=True)
     hg = control.frequency_response(loop.gyro_highpass(), w)
     ha = control.frequency_response(loop.accel_lowpass(), w)
     gm, gp = np.asarray(hg.magnitude).ravel(), np.asarray(hg.phase).ravel()

@@ -56,6 +56,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ...derivations.multistage.published import SECTION5
+from ..core import budget
 from ..core import quaternion as quat
 from ..core.validation import as_float, nonnegative, positive
 from . import earth
@@ -474,7 +475,7 @@ def _body_force(sc: Scenario, t):
     return quat.rotate(quat.conjugate(mu_geo), f_geo)
 
 
-def grid(scenario: Scenario, step) -> np.ndarray:
+def grid(scenario: Scenario, step, *, limits: budget.Limits | None = None) -> np.ndarray:
     """Uniform time grid of step ``step`` that contains every event of ``scenario``.
 
     Parameters
@@ -482,6 +483,9 @@ def grid(scenario: Scenario, step) -> np.ndarray:
     scenario : Scenario
     step : float
         Step H [s] of the stage recursion (one sensor sample per step: H = h).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -491,10 +495,11 @@ def grid(scenario: Scenario, step) -> np.ndarray:
     Raises
     ------
     ValueError
-        If ``step`` is not positive, does not divide the duration, or an event
-        time is not on the grid.
+        If ``step`` is not positive, does not divide the duration, an event
+        time is not on the grid, or the grid would exceed ``limits``.
     """
     h = positive(step, "step")
+    budget.check(budget.arrays(scenario.duration / h, what=_steps_text(scenario, h)), limits)
     n = int(round(scenario.duration / h))
     if n < 1 or abs(n * h - scenario.duration) > 1e-9 * scenario.duration:
         raise ValueError(f"Expected `step` to divide the `duration` of the scenario, {scenario.duration:g} s, got {h:g} s")
@@ -504,7 +509,11 @@ def grid(scenario: Scenario, step) -> np.ndarray:
     return np.arange(n + 1) * h
 
 
-def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
+def _steps_text(scenario: Scenario, h: float) -> str:
+    return f"`duration` = {scenario.duration:.3g} s of the scenario over `step` = {h:g} s ({scenario.duration / h:.3g} integration steps)"
+
+
+def sample(scenario: Scenario, step: float = 0.02, *, rng=None, limits: budget.Limits | None = None) -> SensorData:
     """Sample the truth and the sensor signals of ``scenario``.
 
     Parameters
@@ -514,6 +523,9 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
         Step H = h [s] (one sensor sample per step); must divide the duration and put every event on the grid.
     rng : numpy.random.Generator, int, SeedSequence or None
         Source of the sensor noise (see :func:`strapdown.analysis.multistage.sensors.corrupt`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a request
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -522,7 +534,7 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     Raises
     ------
     ValueError
-        For a bad ``step``.
+        For a bad ``step``, or signals that would exceed ``limits``.
 
     Examples
     --------
@@ -532,8 +544,9 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None) -> SensorData:
     """
     if not isinstance(scenario, Scenario):
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
-    t = grid(scenario, step)
-    h = float(step)
+    h = positive(step, "step")
+    budget.check(budget.multistage(scenario.duration / h, what=_steps_text(scenario, h)), limits)
+    t = grid(scenario, step, limits=limits)
     x, w = GAUSS3
     at_grid = truth(scenario, t)
     lam = at_grid.attitude_inertial

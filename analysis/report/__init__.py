@@ -1,8 +1,8 @@
 """Report generation: ``strapdown report`` regenerates ``reports/``.
 
 Each module of this package that defines ``SECTION`` and ``build`` is one
-report section (the others, :mod:`.output` and :mod:`.rendering`, are the
-machinery).  A section module defines
+report section (the others, :mod:`.output`, :mod:`.rendering` and
+:mod:`.warm_up`, are the machinery).  A section module defines
 
 ``SECTION``
     a :class:`Section` (name, title, order);
@@ -10,7 +10,10 @@ machinery).  A section module defines
     writes the section's files through the :class:`Context` ``ctx``;
 ``errata(ctx)`` (optional)
     returns a list of :class:`Erratum`, each with evidence computed by the
-    package; the ``errata`` section gathers them into ``errata.md``.
+    package; the ``errata`` section gathers them into ``errata.md``;
+``warm_up()`` (optional)
+    compiles and derives into the caches what ``build`` will need, writing
+    nothing else; a cold run does it on the second core (:mod:`.warm_up`).
 
 Reports are pure functions of (configuration, seed): figures carry no dates
 or software stamps and are rendered from coordinates rounded far below a pixel
@@ -19,7 +22,9 @@ are byte-identical, on this machine and on any other with the same matplotlib.
 
 Output is written into a staging directory and swapped into place atomically
 only when every section succeeded; a directory holding files that no earlier
-run wrote is refused, and so is a regular file (:mod:`.output`).
+run wrote is refused, and so is a regular file, and so is a report whose
+generated files were edited since (the manifest keeps the hash of every file),
+unless ``overwrite_modified`` (:mod:`.output`).
 """
 
 from __future__ import annotations
@@ -33,8 +38,8 @@ from pathlib import Path, PurePosixPath
 from typing import Any
 
 from ...derivations.reproducible import reproducible
-from . import output
-from .rendering import quantise
+from . import output, warm_up
+from .rendering import configure_matplotlib, quantise
 
 __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
 
@@ -42,7 +47,7 @@ __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "genera
 SEED = 20261122
 
 #: Modules of this package that are machinery, not sections.
-_MACHINERY = frozenset({"output", "rendering", "corrections"})
+_MACHINERY = frozenset({"output", "rendering", "corrections", "warm_up"})
 
 
 @dataclass(frozen=True)
@@ -299,30 +304,11 @@ class Context:
 
         Returns
         -------
-        tqdm.tqdm
+        tqdm.tqdm or a task of :func:`strapdown.analysis.core.progress.lines`
         """
         from ..core.progress import bar
 
         return bar(iterable, desc=desc, total=total, enabled=self.show_progress)
-
-
-def configure_matplotlib() -> None:
-    """Headless, deterministic matplotlib settings used by every figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    matplotlib.rcParams.update(
-        {
-            "svg.hashsalt": "strapdown-analysis",
-            "svg.fonttype": "path",
-            "figure.dpi": 110,
-            "axes.grid": True,
-            "grid.alpha": 0.3,
-            "font.size": 9,
-            "axes.titlesize": 10,
-            "legend.fontsize": 8,
-        }
-    )
 
 
 def section_names() -> list:
@@ -361,6 +347,8 @@ def generate(
     command: str = "strapdown report",
     sections: Sequence | None = None,
     figure_check: Callable | None = None,
+    overwrite_modified: bool = False,
+    background: bool = True,
 ) -> list[str]:
     """Regenerate the reports into ``out``, atomically and without touching foreign files.
 
@@ -391,6 +379,13 @@ def generate(
     figure_check : callable, optional, keyword-only
         ``figure_check(relpath, fig)``, called for every figure after it is written
         (:attr:`Context.figure_check`).
+    overwrite_modified : bool, keyword-only
+        Replace generated files of ``out`` that were edited since the run that
+        wrote them (by default such a run is refused and the edits kept).
+    background : bool, keyword-only
+        Fill the caches of the sections ahead of them in a second process
+        (:mod:`.warm_up`; only while they are cold, and without effect on the
+        result).
 
     Returns
     -------
@@ -404,6 +399,9 @@ def generate(
     strapdown.analysis.report.output.OutputError
         If ``out`` must not be replaced (foreign files, a regular file), another
         run holds its lock, or it cannot be written.
+    strapdown.analysis.report.output.ModifiedFilesError
+        If the run would replace generated files edited since they were written
+        (and not ``overwrite_modified``); they are named and left untouched.
     """
     from ..core.progress import bar
 
@@ -412,20 +410,24 @@ def generate(
     requested = list(names) if only is None else list(only)
     unknown = [n for n in requested if n not in names]
     if unknown or not requested:
-        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(unknown) or 'nothing'}")
+        raise ValueError(f"Expected `only` among {', '.join(names)}, got {', '.join(repr(n) for n in unknown) or 'no section'}")
     selected = set(requested) | {m.SECTION.name for m in modules if m.SECTION.gathers}
     todo = [m for m in modules if m.SECTION.name in selected]
+    replaced = None if only is None else {m.SECTION.name for m in todo}  # the sections whose files are replaced
     dest = output.prepare(out)  # refuse early, before the lock and any work
+    output.refuse_modified(dest, replaced, overwrite_modified=overwrite_modified)
     configure_matplotlib()
     with output.lock(dest):
         output.clean(dest)
         dest = output.prepare(out)  # again under the lock: another run may have replaced it meanwhile
+        output.refuse_modified(dest, replaced, overwrite_modified=overwrite_modified)
         if dest.legacy and only is not None:
             raise output.OutputError(
                 f"Expected `out` with a report manifest for --only, got {str(dest.path)!r} written before manifests existed: "
                 "regenerate it whole once, then sections one by one"
             )
         staged = output.stage(dest)
+        helper = warm_up.start(todo) if background else None
         try:
             output.fault("staged")
             kept = _carry_over(dest, staged, {m.SECTION.name for m in todo}) if only is not None else {}
@@ -444,7 +446,10 @@ def generate(
             output.check_legacy(dest, files)
             import matplotlib
 
-            manifest = output.Manifest({k: v for k, v in written.items() if v}, matplotlib.__version__)
+            previous = dest.previous.hashes if dest.previous is not None else {}
+            carried = {f for fs in kept.values() for f in fs}
+            hashes = {f: previous[f] if f in carried and f in previous else output.file_digest(staged.joinpath(*PurePosixPath(f).parts)) for f in sorted(files)}
+            manifest = output.Manifest({k: v for k, v in written.items() if v}, matplotlib.__version__, hashes)
             (staged / output.MANIFEST).write_text(manifest.to_json(), encoding="utf-8", newline="\n")
             output.fault("complete")
             output.commit(dest, staged)
@@ -453,6 +458,8 @@ def generate(
 
             shutil.rmtree(staged, ignore_errors=True)
             raise
+        finally:
+            warm_up.stop(helper)
     return [m.SECTION.name for m in todo]
 
 

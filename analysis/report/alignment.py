@@ -491,6 +491,27 @@ def alignment_lines(ctx) -> list:
     return lines
 
 
+def warm_up() -> None:
+    """Compile what :func:`build` runs: the IMU increments, the preintegration and the filter loop, on a short rocking record."""
+    from ..alignment import studies as st
+    from ..alignment.base_motion import NarrowbandMotion
+    from ..alignment.imu import Scenario
+    from ..alignment.monte_carlo import alignment_monte_carlo
+    from ..coning.kernels import available
+
+    if not available():
+        return
+    import numba  # noqa: F401 - the alignment loops run compiled once numba is loaded (as it is when the report reaches them)
+
+    e = st.NAVIGATION_GRADE
+    still = Scenario(rad(60.0), heading=rad(30.0), sample_rate=10.0, duration=10.0)
+    rocking = Scenario(rad(60.0), heading=rad(30.0), motion=NarrowbandMotion(rad(np.array([0.5, 1.0, 1.0])), 8.0, 0.1), lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
+    for method in ("analytic", "inertial"):
+        alignment_monte_carlo(rocking, e, method=method, n_trials=2, rng=0)
+    for sc in (still, rocking):
+        alignment_monte_carlo(sc, e, method="kalman", n_trials=2, rng=0, options=st.kalman_options(sc, e))
+
+
 #: The earlier version whose numbers the page lists where they changed.
 EARLIER = "0.1.0"
 

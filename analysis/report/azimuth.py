@@ -519,6 +519,18 @@ def _design_lines(curves, check, freqs) -> list:
 
 
 # ---------------------------------------------------------------- build
+def warm_up() -> None:
+    """Derive what :func:`build` needs into the caches: the mean square at zero tilt, the printed-formula checks, the second-order theory."""
+    from ...derivations.gyrocompass import azimuth_error as g
+    from ..core.cache import derived
+    from ..gyrocompass.azimuth import second_order_theory
+
+    derived("gyrocompass:mse-at-zero-tilt:v1", g.mse_at_zero_tilt)
+    derived("gyrocompass:bound14-reduces-to-15:v1", g.bound14_reduces_to_15)
+    _formula_checks()
+    second_order_theory(rad(45.0), rad(1.0), rad(0.5), rad(1.0), rad(1.0))
+
+
 def build(ctx) -> None:
     """Write ``azimuth.md`` and its figures.
 

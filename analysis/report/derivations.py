@@ -155,7 +155,7 @@ def _local_error_section() -> list:
         "products chosen in a fixed order. Dual (velocity) part by the transfer principle: each factor",
         "$\\omega^{(k)}$ in turn replaced by $a^{(k)}$ (marked °).",
         "",
-        "| algorithm | N | ρ | nonzero weights ≤ 7 | leading local error |",
+        "| algorithm | N | accuracy order ρ | nonzero weights ≤ 7 (the first: the local-error order ρ + 1) | leading local error |",
         "|---|---|---|---|---|",
     ]
     for name in names():
@@ -224,12 +224,12 @@ def _eq24_section() -> list:
     check = eq_2_4_check()
     lower = list(check.lower_weights)
     return [
-        "## 4. Sixth order: eq. (2.4) of Lebedev & Panov (1989)",
+        "## 4. Accuracy order 6: eq. (2.4) of Lebedev & Panov (1989)",
         "",
         "The nested algorithm (2.2), registered exactly as printed including $-\\tfrac{64}{45}(1 - p_2\\cdot p_3)\\,p_2\\times p_3$,",
-        f"has no local error below weight 7 (nonzero weights below 7: {lower or 'none'}): it is of sixth order. The dot-product",
+        f"has no local error below weight 7 (nonzero weights below 7: {lower or 'none'}): its local-error order is 7, its accuracy order 6. The dot-product",
         "term is essential: $(p_2\\cdot p_3)\\,p_2\\times p_3 = -h^5 x_{0001} + \\dots$ cancels the $x_{0001}$ term of the exact",
-        "increment, and without it the algorithm drops to order 4 (tested).",
+        "increment, and without it the algorithm drops to accuracy order 4 (tested).",
         "",
         "Its $h^7$ term, exact minus algorithm, compared with (2.4) as printed *by value* (as polynomials in the 21",
         "components of $\\omega^{(0)}\\dots\\omega^{(6)}$, i.e. for all ω-derivatives; the 20 printed products are linearly",
@@ -253,9 +253,9 @@ def _structure_section() -> list:
         "local error at t = 0, $A_\\rho = X_z = \\varepsilon\\nu^{\\rho+1}\\sin^2\\vartheta\\,f_\\rho$ and",
         "$B_\\rho = X_y = \\varepsilon\\nu^{\\rho+1}\\sin\\vartheta\\,g_\\rho$ (Lebedev & Panov 1989, (5.3)); the dual functions are",
         "$f_\\rho^\\circ = \\vartheta^\\circ\\partial f_\\rho/\\partial\\vartheta$, $g_\\rho^\\circ = \\vartheta^\\circ\\partial g_\\rho/\\partial\\vartheta$ (transfer principle with",
-        "$\\nu\\to\\nu+s\\nu^\\circ$, $\\vartheta\\to\\vartheta+s\\vartheta^\\circ$). Printed against derived for (2.2) truncated to orders 2 and 4:",
+        "$\\nu\\to\\nu+s\\nu^\\circ$, $\\vartheta\\to\\vartheta+s\\vartheta^\\circ$). Printed against derived for (2.2) truncated to accuracy orders 2 and 4:",
         "",
-        "| ρ | function | printed | derived | equal |",
+        "| accuracy order ρ | function | printed | derived | equal |",
         "|---|---|---|---|---|",
     ]
     checks = structure_function_checks()
@@ -279,8 +279,8 @@ def _structure_section() -> list:
     lines += [
         "",
         "The drift is $\\delta_4 h^4/r\\cdot\\varepsilon\\nu^5\\sin^2\\vartheta\\,(g_4 + f_4\\cos\\vartheta)$: for algorithms 3 and 5 the factor",
-        "is $2(1-\\varepsilon^2)$, which vanishes for coning (ε = −1) at every ϑ, ν and h — their coning drift is of",
-        "order 6.",
+        "is $2(1-\\varepsilon^2)$, which vanishes for coning (ε = −1) at every ϑ, ν and h — under coning their drift order is 6",
+        "(drift ∝ $H^6$), two above their accuracy order.",
         "",
     ]
     return lines
@@ -317,7 +317,7 @@ def _table3_table() -> list:
         "Table 3 (ϑ = 1°, f = 10 Hz, H = 0.01 s), deg/h. *u_a (paper level)* projects only $\\delta\\varphi_7$, without the",
         "transport terms; *series* keeps every term through $h^7$; *u\\* (ours)* is the simulator (20 s run).",
         "",
-        "| alg. | ε | ρ | u* printed | u* ours | u_a printed | u_a derived | derived/printed | series | u_a paper level |",
+        "| alg. | ε | drift order (the table's ρ) | u* printed | u* ours | u_a printed | u_a derived | derived/printed | series | u_a paper level |",
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
@@ -339,7 +339,7 @@ def _table3_commentary(rows) -> list:
     sci = lambda values: ", ".join(f"{v:.3g}" for v in values)  # noqa: E731
     lines = [
         "",
-        f"Every printed u_a with ρ = 4 is reproduced within {100 * agree.worst_order_4:.2g} %. For ρ = 6 (coning, algorithms "
+        f"Every printed u_a of drift order 4 is reproduced within {100 * agree.worst_order_4:.2g} %. For drift order 6 (coning, algorithms "
         f"{', '.join(str(r.printed.algorithm) for r in rho6)}) the derived u_a ({sci(deg_per_h(r.asymptotic) for r in rho6)}) agrees with the printed "
         f"simulation u* ({sci(r.printed.u_star_deg_per_h for r in rho6)}) and with ours within {100 * agree.worst_order_6_vs_simulated:.1f} %; the printed u_a "
         f"({sci(r.printed.u_a_deg_per_h for r in rho6)}) are compared with both estimates below.",
@@ -353,9 +353,9 @@ def _table3_commentary(rows) -> list:
 def _order6_section() -> list:
     est = leading_estimates()
     lines = [
-        "### The ρ = 6 cells: three estimates of u_a",
+        "### The cells of drift order 6: three estimates of u_a",
         "",
-        "Where the fourth-order drift cancels, the papers' estimate (the leading local error, here of weight 7, expanded at",
+        "Where the $H^4$ drift cancels, the papers' estimate (the leading local error, here of weight 7, expanded at",
         "the middle of the step and projected on the precession axis: Lebedev & Panov 1989, (5.2)–(5.3); the formula (3) of",
         "Budennyi et al. is lost in the stored text, which cites Panov (1995) for it) and the full leading term of the drift",
         "series differ by the transport of the weight-5 error. The small-angle term is the part of the full term of second",
@@ -400,12 +400,12 @@ def _crosscheck_section(ratios) -> list:
         "H → 0, and $|u^*/u_a - 1|$ falls by about 4 per halving of H (the next drift term is two weights higher).",
         "Two limits of the check: optimal-3 under coning has $d_5 \\propto 1 - \\cos\\vartheta$ (it is built to cancel coning",
         "drift), so its weight-7 term dominates down to much smaller steps and the ratio converges only there; and for",
-        "the ρ = 6 coning rows the periodic error from the weight-5 part (amplitude ∝ H⁴) biases the fitted slope of a",
+        "the coning rows of drift order 6 the periodic error from the weight-5 part (amplitude ∝ H⁴) biases the fitted slope of a",
         "finite run once the drift (∝ H⁶) becomes small, which is why steps below 5 ms are not shown. The test suite",
         "checks the same limit without that bias with a one-step oracle (the error one step adds along the precession",
         "axis), down to ratios within 2 % and the predicted rate.",
         "",
-        "| algorithm | ε | ρ | " + " | ".join(f"H = {h * 1e3:g} ms" for h in steps) + " |",
+        "| algorithm | ε | drift order | " + " | ".join(f"H = {h * 1e3:g} ms" for h in steps) + " |",
         "|---|---|---|" + "---|" * len(steps),
     ]
     for r in ratios:
@@ -418,7 +418,7 @@ def _crosscheck_figure(plt, ratios):
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), sharey=True)
     for ax, eps in zip(axes, (-1.0, 0.5)):
         for r in (r for r in ratios if r.eps == eps):
-            ax.loglog(r.steps * 1e3, np.maximum(r.deviations, 1e-8), "o-", ms=3, label=f"{r.algorithm} (ρ={r.order})")
+            ax.loglog(r.steps * 1e3, np.maximum(r.deviations, 1e-8), "o-", ms=3, label=f"{r.algorithm} ($H^{r.order}$)")
         steps = ratios[0].steps
         s = np.array([steps[0], steps[-1]])
         ax.loglog(s * 1e3, 0.3 * (s / s[0]) ** 2, "k--", lw=0.8, label="slope 2")
@@ -506,7 +506,7 @@ def _load_model_text(model) -> list:
             else "the work of a step spread over the step H (the average load)."
         ),
         "- **Step.** β_a: the largest step from u_a (section 6); β*: from the simulated u* at H = 0.01 s (20 s run), scaled",
-        "  with the order ρ.",
+        "  with the drift order at the motion (the power of H of its leading term).",
         "",
     ]
     return lines
@@ -628,10 +628,10 @@ def _extension(plt, quick: bool):
         "### Extension to f = 4000 Hz",
         "",
         "The paper leaves open what computer and sampling rate f = 4000 Hz (vibration at gyro mounts) requires. The same",
-        "model answers it: the same counts, the same series rule and time base; since $K \\propto \\nu^{\\rho+1}$ the step shrinks as",
+        "model answers it: the same counts, the same series rule and time base; since $K \\propto \\nu^{\\rho+1}$ (ρ the drift order) the step shrinks as",
         "$f^{-(\\rho+1)/\\rho}$, and the rule sets the series length from the angle per step. At f = 4000 Hz, ϑ = 1°, ranked by load:",
         "",
-        "| ε | [u] deg/h | algorithm | ρ | $H_{max}$ [µs] | sampling rate [kHz] | νH [rad] | φ [rad] | K | load [million op/s] |",
+        "| ε | [u] deg/h | algorithm | drift order | $H_{max}$ [µs] | sampling rate [kHz] | νH [rad] | φ [rad] | K | load [million op/s] |",
         "|---|---|---|---|---|---|---|---|---|---|",
         *table,
         "",
@@ -684,7 +684,7 @@ def _estimates_text(e) -> str:
 
 def _table3_algorithm_3(three, five, same: bool) -> Erratum:
     return Erratum(
-        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 3 under coning (ρ = 6)",
+        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 3 under coning (drift order 6)",
         f"u_a = {three.printed.u_a_deg_per_h:.3g} deg/h",
         f"the small-cone-angle estimate c ϑ² ν (ν h)⁶ (c = 2/315): {deg_per_h(abs(three.small_angle)):.4g} deg/h, "
         f"{100 * abs(three.printed_vs_small_angle):.2f} % from the print; a legitimate approximation, not a misprint",
@@ -703,7 +703,7 @@ def _table3_algorithm_3(three, five, same: bool) -> Erratum:
 
 def _table3_algorithm_5(five) -> Erratum:
     return Erratum(
-        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (ρ = 6)",
+        "Budennyi, Kalinovsky, Panov et al. (Part 2), Table 3, u_a of algorithm 5 under coning (drift order 6)",
         f"u_a = {five.printed.u_a_deg_per_h:.3g} deg/h",
         f"the papers' own estimate, the h⁷ error projected at the middle of the step: {deg_per_h(abs(five.mid_step)):.3g} deg/h, "
         f"{100 * abs(five.printed_vs_mid_step):.1f} % from the print; a legitimate, less accurate approximation, not a misprint",

@@ -100,16 +100,7 @@ class MathRenderer:
             with the source when mathtext cannot parse it.
         """
         tex = " ".join(tex.split())
-        key = tex
-        if key not in self._cache:
-            import matplotlib
-
-            from ..core.cache import derived
-
-            # the SVG depends on the expression and on matplotlib (fonts, mathtext): cached per version
-            entry = derived(f"html:math-svg:v1:{matplotlib.__version__}:{_MATH_SIZE}:{tex}", lambda: self._svg(tex))
-            self._cache[key] = entry if entry is not None else self._svg(tex)  # a failure renders again, to log its warning
-        entry = self._cache[key]
+        entry = self._entry(tex)
         kind = "display" if display else "inline"
         if entry is None:
             self.errors.append(tex)
@@ -118,6 +109,61 @@ class MathRenderer:
         self._count += 1
         svg = entry.replace("__ID__", f"m{self._count}-")
         return f'<span class="math {kind}" role="img" aria-label="{html.escape(tex, quote=True)}">{svg}</span>'
+
+    @staticmethod
+    def _key(tex: str) -> str:
+        import matplotlib
+
+        # the SVG depends on the expression and on matplotlib (fonts, mathtext): cached per version
+        return f"html:math-svg:v1:{matplotlib.__version__}:{_MATH_SIZE}:{tex}"
+
+    def _entry(self, tex: str) -> str | None:
+        """The SVG template of ``tex`` (whitespace already collapsed), or None if mathtext cannot render it."""
+        if tex not in self._cache:
+            from ..core.cache import derived
+
+            entry = derived(self._key(tex), lambda: self._svg(tex))
+            self._cache[tex] = entry if entry is not None else self._svg(tex)  # a failure renders again, to log its warning
+        return self._cache[tex]
+
+    def prefetch(self, texs) -> None:
+        """Render the expressions ``texs`` that are not cached yet, half of them in a second process.
+
+        On a cold cache a report has hundreds of expressions to render; a
+        second process renders every other one into the shared cache while
+        this one renders the rest.  The SVGs are the same either way (the
+        cache holds what :meth:`render` would draw); with few expressions to
+        render, or one CPU, everything stays in this process.
+
+        Parameters
+        ----------
+        texs : iterable of str
+            TeX expressions (without dollar signs).
+        """
+        import os
+
+        from ..core.cache import contains
+
+        missing = sorted({" ".join(t.split()) for t in texs} - set(self._cache))
+        missing = [t for t in missing if not contains(self._key(t))]
+        if len(missing) < _PARALLEL_MATH or (os.cpu_count() or 1) < 2:
+            return
+        import json
+        import subprocess
+        import sys
+
+        code = "import json, sys; from strapdown.analysis.report import html; html._render_into_cache(json.load(sys.stdin))"
+        try:
+            other = subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            other.stdin.write(json.dumps(missing[1::2]).encode())
+            other.stdin.close()
+        except OSError:  # no second process here: render them in this one, when needed
+            return
+        try:
+            for tex in missing[0::2]:
+                self._entry(tex)
+        finally:
+            other.wait()  # it only fills the cache; render() draws whatever it missed
 
     def _svg(self, tex: str) -> str | None:
         import matplotlib
@@ -139,6 +185,19 @@ class MathRenderer:
             buf = io.StringIO()
             fig.savefig(buf, format="svg", dpi=72, transparent=True, metadata={"Date": None, "Creator": None})
         return _clean_svg(buf.getvalue(), width / _MATH_SIZE, height / _MATH_SIZE, depth / _MATH_SIZE)
+
+
+#: Fewest uncached expressions for which :meth:`MathRenderer.prefetch` starts a second process.
+_PARALLEL_MATH = 40
+
+
+def _render_into_cache(texs) -> int:
+    """Render ``texs`` into the cache (the work of :meth:`MathRenderer.prefetch`'s second process); returns how many rendered."""
+    from .rendering import configure_matplotlib
+
+    configure_matplotlib()
+    renderer = MathRenderer()
+    return sum(renderer._entry(tex) is not None for tex in texs)
 
 
 def _clean_svg(svg: str, width_em: float, height_em: float, depth_em: float) -> str:
@@ -358,9 +417,14 @@ def render_site(root: Path | str, sections=()) -> tuple[str, list]:
     root = Path(root)
     math = MathRenderer()
     pages: dict = {}
-    for rel in _page_order(root, sections):
+    texts = {rel: (root / rel).read_text(encoding="utf-8") for rel in _page_order(root, sections)}
+    found: list = []
+    for text in texts.values():
+        _extract_math(text, found)
+    math.prefetch(m.tex for m in found)
+    for rel, text in texts.items():
         page = _Page(rel, _anchor_for(rel), rel[:-3])
-        _convert(page, (root / rel).read_text(encoding="utf-8"), math)
+        _convert(page, text, math)
         pages[rel] = page
     ids = {p.anchor for p in pages.values()}
     for p in pages.values():

@@ -103,7 +103,7 @@ def _series(a) -> str:
 
 def _recursion_table(rows) -> list:
     out = [
-        "| N | terms c_ij p_i×p_j | Σ c_ij (j − i) | N³/12 | order ρ | local error, exact − integrator | coning drift | remainder | measured exponent | simulated vs closed form |",
+        "| N | terms c_ij p_i×p_j | Σ c_ij (j − i) | N³/12 | accuracy order ρ | local error, exact − integrator | coning drift | remainder | measured exponent | simulated vs closed form |",
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for a in rows:
@@ -155,7 +155,7 @@ def build(ctx) -> None:
         f"{peers[0].assessment.identification.tolerance:g}), the one fraction there among denominators up to $(2t)^{{-1/2}}$ (at least",
         f"{max_denominator(peers[0].assessment.identification.tolerance)}). What the bilinear model leaves, the remainder, is measured on random",
         "windows: its size and its degree in the increments. The identified algorithm then goes through the package: the",
-        "second-order condition $\\sum c_{ij}(j-i) = N^3/12$, the exact local-error series (order ρ: error $O(h^{\\rho+1})$), the coning",
+        "second-order condition $\\sum c_{ij}(j-i) = N^3/12$, the exact local-error series (accuracy order ρ: error $O(h^{\\rho+1})$), the coning",
         "drift in closed form $u = c\\,\\alpha^2\\omega(\\omega h)^m$ (exact minus integrator, along the cone axis, as",
         "`strapdown derive coning-drift`). Last, the integrator itself — not its model — runs on the exact increments of",
         f"classical coning at several ωh and cone angles α = {', '.join(f'{a:g}' for a in CONE_ANGLES)} rad, its simulated drift is extrapolated",
@@ -170,7 +170,7 @@ def build(ctx) -> None:
         "(run with the Earth rate set to zero at rest, so that its navigation frame is inertial). Both were identified as black",
         "boxes, the loop from the matrices it outputs:",
         "",
-        "| integrator | terms | equal to the registry's savage-1+1 | sculling: dual extension | remainder | order ρ | coning drift | simulated vs closed form |",
+        "| integrator | terms | equal to the registry's savage-1+1 | sculling: dual extension | remainder | accuracy order ρ | coning drift | simulated vs closed form |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for p in peers[:2]:

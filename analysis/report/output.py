@@ -6,7 +6,7 @@ half-written report.  The rules:
 Ownership
     DIR is replaced only if it is new, empty, or holds nothing but the files
     that an earlier run wrote.  Each run leaves a manifest, :data:`MANIFEST`
-    (JSON: the files of each section), in DIR.  Any other file or directory in
+    (JSON: the files of each section and the SHA-256 of every file), in DIR.  Any other file or directory in
     DIR, a regular file given as DIR, or an unreadable manifest is refused
     with :class:`OutputError` before any work starts.  A directory written
     before manifests existed (its ``README.md`` starts with the report
@@ -14,6 +14,13 @@ Ownership
     in it is one the new run writes; that is checked once the new report is
     complete, before anything is replaced.  A partial run (``--only``) on it is
     refused: without a manifest it cannot tell the report's files from a user's.
+Nothing lost
+    A generated file whose content no longer has the hash the manifest
+    recorded has been edited since: a run that would replace it refuses
+    (:class:`ModifiedFilesError`, naming the files) before any work, and the
+    edit stays as it is, unless the caller allows the overwrite
+    (``overwrite_modified``).  A file of a section a partial run keeps is
+    carried over with its edit and its recorded hash, so it stays marked.
 Staging
     The new report is written into a staging directory next to DIR
     (``.DIR.strapdown-stage-*``, same file system), never into DIR itself.
@@ -62,7 +69,11 @@ __all__ = [
     "LEGACY_SIGNATURE",
     "FAULT_POINTS",
     "OutputError",
+    "ModifiedFilesError",
     "Manifest",
+    "file_digest",
+    "modified_files",
+    "refuse_modified",
     "Destination",
     "prepare",
     "check_legacy",
@@ -83,11 +94,52 @@ FAULT_POINTS = ("staged", "section", "complete", "before-swap", "between-renames
 _STAGE = "strapdown-stage-"
 _OLD = "strapdown-old-"
 _LOCK = "strapdown-lock"
-_FORMAT = 1
+_FORMAT = 2
+#: Manifest formats this version reads (1: no hashes, written before files were hashed).
+_READABLE = (1, 2)
 
 
 class OutputError(ValueError):
     """An output directory that must not be replaced, or cannot be written (a ``ValueError``)."""
+
+
+class ModifiedFilesError(OutputError):
+    """Generated files changed since they were written, which a run would replace (an :class:`OutputError`).
+
+    Parameters
+    ----------
+    directory : Path
+        The report directory.
+    files : list of str
+        The changed files, relative POSIX paths.
+    """
+
+    def __init__(self, directory, files):
+        self.directory = Path(directory)
+        self.files = list(files)
+        shown = ", ".join(self.files[:5]) + (f" and {len(self.files) - 5} more" if len(self.files) > 5 else "")
+        super().__init__(
+            f"Expected `out` to hold the generated files as an earlier `strapdown report` wrote them, got {len(self.files)} changed since "
+            f"in {str(self.directory)!r}: {shown}; they are left untouched: move them away, or pass `overwrite_modified=True` to replace them"
+        )
+
+
+def file_digest(path) -> str:
+    """SHA-256 of a file's bytes, as hex.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    str
+    """
+    import hashlib
+
+    with open(path, "rb") as handle:
+        return hashlib.file_digest(handle, "sha256").hexdigest()
 
 
 def fault(point: str) -> None:
@@ -117,10 +169,14 @@ class Manifest:
         Section name → sorted tuple of POSIX relative paths.
     matplotlib : str
         Version of matplotlib that rendered the figures (byte equality of figures needs the same one).
+    hashes : dict
+        Relative path → SHA-256 (hex) of the file as the run wrote it (empty for a
+        manifest written before hashes were recorded).
     """
 
     sections: dict = field(default_factory=dict)
     matplotlib: str = ""
+    hashes: dict = field(default_factory=dict)
 
     @property
     def files(self) -> set:
@@ -129,7 +185,13 @@ class Manifest:
 
     def to_json(self) -> str:
         """The manifest as deterministic JSON text (sorted keys, one trailing newline)."""
-        body = {"format": _FORMAT, "generator": "strapdown report", "matplotlib": self.matplotlib, "sections": {k: sorted(v) for k, v in sorted(self.sections.items())}}
+        body = {
+            "format": _FORMAT,
+            "generator": "strapdown report",
+            "matplotlib": self.matplotlib,
+            "sections": {k: sorted(v) for k, v in sorted(self.sections.items())},
+            "sha256": dict(sorted(self.hashes.items())),
+        }
         return json.dumps(body, indent=1, sort_keys=True, ensure_ascii=False) + "\n"
 
     @classmethod
@@ -158,11 +220,12 @@ class Manifest:
         try:
             body = json.loads(path.read_text(encoding="utf-8"))
             sections = {str(k): tuple(_relpath(f) for f in v) for k, v in body["sections"].items()}
-            if body.get("format") != _FORMAT:
+            if body.get("format") not in _READABLE:
                 raise ValueError(f"format {body.get('format')!r}")
+            hashes = {_relpath(k): str(v) for k, v in body.get("sha256", {}).items()}
         except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
             raise OutputError(f"Expected `out` to hold a readable report manifest, got an unreadable {path} ({_first_line(exc)}); move it away or choose another directory") from None
-        return cls(sections, str(body.get("matplotlib", "")))
+        return cls(sections, str(body.get("matplotlib", "")), hashes)
 
 
 def _relpath(text) -> str:
@@ -258,6 +321,8 @@ def prepare(out) -> Destination:
         ``out`` is a regular file (or anything but a directory), a file-system
         root, holds files that no earlier run wrote, or cannot be read.
     """
+    if not str(out).strip():
+        raise OutputError(f"Expected `out` to name a directory, got an empty name {str(out)!r}")
     raw = Path(out)
     path = Path(os.path.abspath(raw))
     if path.is_symlink():
@@ -307,6 +372,64 @@ def _foreign_message(raw, foreign: list, has_manifest: bool) -> str:
     shown = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
     why = "that no earlier `strapdown report` wrote" if has_manifest else "and no report manifest"
     return f"Expected `out` to be a new or empty directory or an earlier report, got {str(raw)!r} holding files {why} ({shown}); they are left untouched: choose another directory or move them away"
+
+
+def modified_files(dest: Destination, sections=None) -> list:
+    """Generated files of ``dest`` changed since the run that wrote them (their hash differs).
+
+    Parameters
+    ----------
+    dest : Destination
+        The destination.
+    sections : iterable of str, optional
+        Only the files of these sections (default: every section).
+
+    Returns
+    -------
+    list of str
+        Relative POSIX paths, sorted.  A missing file is not a change (the new
+        run restores it), and a manifest without hashes has none to compare.
+    """
+    if dest.previous is None or not dest.previous.hashes:
+        return []
+    keep = None if sections is None else set(sections)
+    files = {f for name, fs in dest.previous.sections.items() if keep is None or name in keep for f in fs}
+    out = []
+    for rel in sorted(files):
+        recorded = dest.previous.hashes.get(rel)
+        path = dest.path.joinpath(*rel.split("/"))
+        if recorded is None or not path.is_file():
+            continue
+        try:
+            if file_digest(path) != recorded:
+                out.append(rel)
+        except OSError:
+            out.append(rel)  # unreadable now: it is not what the run wrote
+    return out
+
+
+def refuse_modified(dest: Destination, sections=None, *, overwrite_modified: bool = False) -> None:
+    """Raise :class:`ModifiedFilesError` if a run would replace generated files changed since they were written.
+
+    Parameters
+    ----------
+    dest : Destination
+        The destination.
+    sections : iterable of str, optional
+        The sections the run rebuilds (default: all of them).
+    overwrite_modified : bool, keyword-only
+        Allow the run to replace them.
+
+    Raises
+    ------
+    ModifiedFilesError
+        Naming the changed files.
+    """
+    if overwrite_modified:
+        return
+    changed = modified_files(dest, sections)
+    if changed:
+        raise ModifiedFilesError(dest.path, changed)
 
 
 def check_legacy(dest: Destination, written: set) -> None:

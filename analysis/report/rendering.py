@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps"]
+__all__ = ["MANTISSA_BITS", "configure_matplotlib", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps"]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -275,3 +275,22 @@ def layout_overlaps(fig, tolerance: float = 0.01) -> list:
             if w > tolerance and h > tolerance:
                 out.append((fig.axes.index(axes[i]), fig.axes.index(axes[j]), w, h))
     return out
+
+
+def configure_matplotlib() -> None:
+    """Headless, deterministic matplotlib settings used by every figure."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    matplotlib.rcParams.update(
+        {
+            "svg.hashsalt": "strapdown-analysis",
+            "svg.fonttype": "path",
+            "figure.dpi": 110,
+            "axes.grid": True,
+            "grid.alpha": 0.3,
+            "font.size": 9,
+            "axes.titlesize": 10,
+            "legend.fontsize": 8,
+        }
+    )

@@ -826,6 +826,23 @@ def _convergence(ctx) -> list:
 
 
 # ---------------------------------------------------------------------------
+def warm_up() -> None:
+    """Derive and compile what :func:`build` needs into the caches: (3.2)–(3.4), the Schuler linearisation, the composition, the stage loops."""
+    from ...derivations.multistage import composition, lyapunov_function, schuler
+    from ..core.cache import derived
+    from ..multistage.decay_rates import simulated_rate
+    from ..multistage.stages import simulate
+    from ..multistage.tilt_loop import StageLoop
+    from ..multistage.trajectory import Scenario
+
+    derived("multistage:schuler:v1", schuler.derive)
+    simulate(Scenario(duration=20.0), step=0.2, rng=0)  # the compiled cascade
+    simulated_rate(1.0, 1.0, step=0.05, duration=1.0)  # the compiled single stage
+    StageLoop(0.01, 5e-5).summary()
+    derived("multistage:lyapunov:v1", lyapunov_function.derive)
+    derived("multistage:composition:v1", composition.derive)
+
+
 def build(ctx) -> None:
     """Write ``stability.md`` and its figures.
 

@@ -347,6 +347,48 @@ def _depth(value, level: int = 0) -> int:
     return deepest + 1 if isinstance(value, (dict, list)) and value else deepest
 
 
+def _term(table: str, key: str, coefficient: Fraction, where: str, samples: int) -> Term:
+    """The term a key of ``[cross]``, ``[triple]`` or ``[dot_cross]`` names; a cross product of a sample with itself is refused."""
+    if table == "cross":
+        i, j = _indices(key, 2, where, samples)
+        cross, dots = (i, j), ()
+    elif table == "triple":
+        i, j, k = _indices(key, 3, where, samples)
+        cross, dots = (i, (j, k)), ()
+    else:
+        if key.count(";") != 1:
+            raise ValueError(f"{where}: expected \"i,j;k,l\" for (p_i·p_j)(p_k×p_l)")
+        left, right = key.split(";")
+        i, j = _indices(left, 2, where, samples)
+        k, m = _indices(right, 2, where, samples)
+        cross, dots = (k, m), ((i, j),)
+    pair = cross if table != "triple" else cross[1]
+    if pair[0] == pair[1]:
+        term = Term(coefficient, cross, dots)
+        raise ValueError(
+            f"{where}: {_describe(term)} is zero (p_{pair[0]} × p_{pair[0]} = 0); a cross product needs two different sample indices"
+        )
+    return Term(coefficient, cross, dots)
+
+
+def _product_key(term: Term) -> tuple:
+    """What a file's term multiplies, with each pair sorted, and the sign that sorting gives.
+
+    ``p_i × p_j``, ``p_i × (p_j × p_k)`` and ``(p_i·p_j)(p_k × p_l)``: swapping the
+    factors of a cross product changes the sign, those of a dot product do not.
+    """
+    first, second = term.cross
+    pair = term.cross if isinstance(second, int) else second
+    sign = -1 if pair[0] > pair[1] else 1
+    cross = tuple(sorted(pair)) if isinstance(second, int) else (first, tuple(sorted(pair)))
+    return (cross, tuple(sorted(tuple(sorted(d)) for d in term.dots))), sign
+
+
+def _describe(term: Term) -> str:
+    """The product of a term without its coefficient, e.g. ``p1×p2``."""
+    return str(term).split(" ", 1)[1]
+
+
 class SecondOrderConditionError(ValueError):
     """A file's algorithm misses the second-order condition ``Σ c_ij (j − i) = N³/12``.
 
@@ -396,18 +438,22 @@ def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TO
     ------
     ValueError
         Malformed file (the message names the file, the key and the problem),
-        a file beyond ``limits``, a file that cannot be read (missing, a
+        a file beyond ``limits``, an empty file name, a file that cannot be read (missing, a
         directory, a device, no permission, not UTF-8).
     SecondOrderConditionError
         An algorithm that misses the second-order condition (a ``ValueError``).
     """
+    if not str(path).strip():
+        raise ValueError("Expected `path` to name a TOML file, got an empty file name")
     path = Path(path)
     data = _parse(path, limits)
     known = {"name", "samples", "description", "reference", "cross", "triple", "dot_cross"}
     extra = sorted(set(data) - known)
     if extra:
         raise ValueError(f"{path}: unknown key {_show(extra[0])} (expected one of {', '.join(sorted(known))})")
-    samples = data.get("samples")
+    if "samples" not in data:
+        raise ValueError(f"{path}: key 'samples' is missing (expected N, the number of gyro increments per step, a positive integer)")
+    samples = data["samples"]
     if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
         raise ValueError(f"{path}: key 'samples' must be a positive integer, got {_show(samples)}")
     if samples > limits.samples:
@@ -423,22 +469,21 @@ def load_toml(path, *, allow_inconsistent: bool = False, limits: TomlLimits = TO
         entries = data.get(table, {})
         if not isinstance(entries, dict):
             raise ValueError(f"{path}: [{table}] must be a table, got {type(entries).__name__}")
+        seen: dict = {}  # product (pairs sorted) -> (key, term, sign) of the key that named it first
         for key, value in entries.items():
             where = f"{path}: [{table}] key {_show(key)}"
             c = _fraction(value, where, limits)
-            if table == "cross":
-                i, j = _indices(key, 2, where, samples)
-                terms.append(Term(c, (i, j)))
-            elif table == "triple":
-                i, j, k = _indices(key, 3, where, samples)
-                terms.append(Term(c, (i, (j, k))))
-            else:
-                if key.count(";") != 1:
-                    raise ValueError(f"{where}: expected \"i,j;k,l\" for (p_i·p_j)(p_k×p_l)")
-                left, right = key.split(";")
-                i, j = _indices(left, 2, where, samples)
-                k, m = _indices(right, 2, where, samples)
-                terms.append(Term(c, (k, m), ((i, j),)))
+            term = _term(table, key, c, where, samples)
+            product, sign = _product_key(term)
+            if product in seen:
+                other, first, first_sign = seen[product]
+                relation = "= " if sign == first_sign else "= −"
+                raise ValueError(
+                    f"{where}: names the same product as key {_show(other)} ({_describe(term)} {relation}{_describe(first)}); "
+                    "give each product once"
+                )
+            seen[product] = (key, term, sign)
+            terms.append(term)
     name = data.get("name", path.stem)
     if not isinstance(name, str):
         raise ValueError(f"{path}: key 'name' must be a string, got {_show(name)}")

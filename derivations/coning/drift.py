@@ -27,7 +27,9 @@ Three levels are derived here.
   attitude at the middle of the step, ``Λ(t_m) = Λ_n ∘ exp(Δφ_1)``
   (``Δφ_1``: exact increment over the first half step), its rotation vector
   is ``e = R(−Δφ_1) log(exp(Δφ_exact) exp(−Δφ_alg))``
-  (:func:`one_step_error`), and the drift is ``n(0)·e / H``.  To first order
+  (:func:`one_step_error`), and the drift is ``n(0)·e / H`` to first order in
+  e (the composition of the steps adds terms of second order in its part
+  across n, from weight 2ρ + 1; see :func:`drift_coefficients`).  To first order
   in δφ, ``e = exp(−ad Δφ_1) J(Δφ) δφ`` with the left Jacobian
   ``J = (e^{ad Δφ} − 1)/ad Δφ``; where the leading term cancels (ρ = 6 under
   coning for the algorithms 3 and 5 of Budennyi, Kalinovsky, Panov et al.),
@@ -250,7 +252,12 @@ def drift_coefficients(algorithm: Algorithm, max_weight: int = S.DEFAULT_MAX_WEI
 
     The constant drift rate of the attitude error (exact minus algorithm)
     along the precession axis n is ``Σ_w d_w ν^w H^(w−1)`` [rad/s] (``H`` the
-    algorithm step), exact through ``max_weight`` (see :func:`one_step_error`).
+    algorithm step), the projection on n of the error one step adds, exact
+    through ``max_weight`` (see :func:`one_step_error`).  The steps compose:
+    the error after K steps is ``R^K ∘ T^K`` with ``R`` the precession over a
+    step and ``T = R⁻¹ ∘ exp(e)``, so the part of the step error across n adds
+    ``−|e_⊥|² / (4 tan(μH/2))`` per step, second order in the error and of
+    weight 2ρ + 1 and above; it is not in the ``d_w``.
 
     Parameters
     ----------
@@ -721,7 +728,7 @@ class ConingDrift:
     function : sympy.Expr
         ``D(x)`` in closed form, x = :data:`X` = ωh.
     order : int
-        Power of ωh of the leading term.
+        Power of ωh of the leading term: the coning-drift order m.
     coefficient : Fraction
         Its exact coefficient.
     taylor : tuple of Fraction

@@ -95,6 +95,8 @@ __all__ = [
     "canonical_basis",
     "ErrorCoefficients",
     "error_coefficients",
+    "ErrorTerm",
+    "error_series",
     "lie_basis_reduce",
     "word_latex",
     "series_latex",
@@ -454,7 +456,7 @@ class LocalError:
 
     @property
     def order(self) -> int | None:
-        """Order ρ of the algorithm: local error O(h^(ρ+1)); None if zero through :attr:`max_weight`."""
+        """Accuracy order ρ of the algorithm: local error O(h^(ρ+1)) (local-error order ρ + 1); None if zero through :attr:`max_weight`."""
         w = self.leading_weight
         return None if w is None else w - 1
 
@@ -543,6 +545,10 @@ def _flatten(v) -> dict:
 def express(vector, words) -> dict:
     """Coefficients ``c`` with ``vector = Σ c_w x_w`` exactly, as Fractions.
 
+    The nested products of different letter contents (the multiset of the
+    ω-derivatives a product is made of) have no monomial in common, so the
+    system is solved content by content.
+
     Parameters
     ----------
     vector : tuple of three ring polynomials
@@ -563,22 +569,50 @@ def express(vector, words) -> dict:
     """
     from sympy.polys.matrices import DomainMatrix
 
-    cols = [_flatten(nested(w)) for w in words]
-    target = _flatten(vector)
-    keys = sorted(set(target).union(*[set(c) for c in cols]))
-    rows = [[col.get(k, QQ(0)) for col in cols] + [target.get(k, QQ(0))] for k in keys]
-    if not rows:
-        return {tuple(w): Fraction(0) for w in words}
-    m = DomainMatrix(rows, (len(rows), len(words) + 1), QQ)
-    rref, pivots = m.rref()
-    if len(words) in pivots:
+    words = [tuple(w) for w in words]
+    sol = {w: Fraction(0) for w in words}
+    target: dict = {}
+    for key, c in _flatten(vector).items():
+        target.setdefault(_monomial_content(key[1]), {})[key] = c
+    by_content: dict = {}
+    for w in words:
+        by_content.setdefault(_word_content(w), []).append(w)
+    if set(target) - set(by_content):
         raise ValueError("Expected a vector in the span of the given nested products, got a nonzero residual")
-    sol = {tuple(w): Fraction(0) for w in words}
-    rr = rref.to_Matrix()
-    for r, col in enumerate(pivots):
-        val = rr[r, len(words)]
-        sol[tuple(words[col])] = Fraction(int(val.p), int(val.q))
+    for content, group in by_content.items():
+        part = target.get(content, {})
+        if not part:
+            continue
+        cols = [_nested_flat(w) for w in group]
+        keys = sorted(set(part).union(*[set(c) for c in cols]))
+        rows = [[col.get(k, QQ(0)) for col in cols] + [part.get(k, QQ(0))] for k in keys]
+        m = DomainMatrix(rows, (len(rows), len(group) + 1), QQ)
+        rref, pivots = m.rref()
+        if len(group) in pivots:
+            raise ValueError("Expected a vector in the span of the given nested products, got a nonzero residual")
+        rr = rref.to_Matrix()
+        for r, col in enumerate(pivots):
+            val = rr[r, len(group)]
+            sol[group[col]] = Fraction(int(val.p), int(val.q))
     return sol
+
+
+def _monomial_content(monom) -> tuple:
+    """Letter content of a monomial of :data:`RING`: how many factors of each ω^(k)."""
+    return tuple(sum(monom[3 * k : 3 * k + 3]) for k in range(WEIGHT_LIMIT))
+
+
+def _word_content(word) -> tuple:
+    """Letter content of a nested product, as :func:`_monomial_content` counts it."""
+    counts = [0] * WEIGHT_LIMIT
+    for k in word:
+        counts[k] += 1
+    return tuple(counts)
+
+
+@cache
+def _nested_flat(word: tuple) -> dict:
+    return _flatten(nested(word))
 
 
 #: Basis of the fourth-order local error, Budennyi, Kalinovsky, Panov et al., eq. (2):
@@ -657,7 +691,9 @@ def canonical_basis(w: int) -> tuple:
 
     Candidates are right-nested words with increasing last pair, tried in the
     order (length, word) and kept when independent (by value) of those kept
-    before.  For ``w = 5`` this is :data:`ORDER4_BASIS` up to order.
+    before.  Products of different letter contents share no monomial, so the
+    choice is made content by content (the same words as one pass over all
+    candidates).  For ``w = 5`` this is :data:`ORDER4_BASIS` up to order.
 
     Parameters
     ----------
@@ -668,23 +704,25 @@ def canonical_basis(w: int) -> tuple:
     -------
     tuple of words
     """
-    from itertools import combinations_with_replacement, permutations
+    from sympy.utilities.iterables import partitions
 
     check_max_weight(w)
-    cands = set()
-    for n in range(1, w + 1):
-        for letters in combinations_with_replacement(range(w), n):
-            if weight(letters) != w:
-                continue
-            for p in permutations(letters):
-                if n == 1 or p[-2] < p[-1]:
-                    cands.add(p)
-    echelon = _Echelon()
     basis = []
-    for cand in sorted(cands, key=lambda p: (len(p), p)):
-        if echelon.add(_flatten(nested(cand))):
-            basis.append(cand)
-    return tuple(basis)
+    for part in partitions(w):  # a content: the letters k = p − 1 of the parts p of w
+        basis += _content_basis(tuple(p - 1 for p, mult in sorted(part.items()) for _ in range(mult)))
+    return tuple(sorted(basis, key=lambda p: (len(p), p)))
+
+
+@cache
+def _content_basis(letters: tuple) -> tuple:
+    """Independent nested products of one letter content (sorted letters), in the order (length, word)."""
+    from sympy.utilities.iterables import multiset_permutations
+
+    if len(letters) == 1:
+        return (letters,)
+    candidates = sorted(tuple(p) for p in multiset_permutations(list(letters)) if p[-2] < p[-1])
+    echelon = _Echelon()
+    return tuple(c for c in candidates if echelon.add(_nested_flat(c)))
 
 
 @dataclass(frozen=True)
@@ -698,7 +736,8 @@ class ErrorCoefficients:
     Attributes
     ----------
     order : int or None
-        ρ (None if the error vanishes through ``h**max_weight``).
+        ρ, the accuracy order (None if the error vanishes through ``h**max_weight``);
+        ρ + 1 is the local-error order.
     delta : Fraction
         δ.
     coefficients : dict
@@ -729,21 +768,26 @@ class ErrorCoefficients:
         """
         if self.order is None:
             return f"\\delta\\varphi = O(h^{{{self.max_weight + 1}}})"
-        series = [(w, c) for w, c in self.coefficients.items() if c]
-        d = sp.latex(sp.Rational(self.delta.numerator, self.delta.denominator))
-        head = f"{d}\\, h^{{{self.order + 1}}}"
-        if not dual:
-            return f"\\delta\\varphi = {head} \\left({series_latex(series)}\\right)"
-        terms = []
-        for w, i, c in dual_words(series):
-            sign = "-" if c < 0 else "+"
-            mag = abs(c)
-            coef = "" if mag == 1 else f"{mag} "
-            terms.append(f"{sign} {coef}{word_latex(w, i)}")
-        body = " ".join(terms).lstrip("+ ")
-        if body.startswith("- "):
-            body = "-" + body[2:]
-        return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
+        return _error_latex(self.delta, self.order + 1, self.coefficients, dual=dual)
+
+
+def _error_latex(delta: Fraction, power: int, coefficients: dict, *, dual: bool) -> str:
+    """``δφ = δ h^power (Σ k x)`` (or its dual part) as LaTeX."""
+    series = [(w, c) for w, c in coefficients.items() if c]
+    d = sp.latex(sp.Rational(delta.numerator, delta.denominator))
+    head = f"{d}\\, h^{{{power}}}"
+    if not dual:
+        return f"\\delta\\varphi = {head} \\left({series_latex(series)}\\right)"
+    terms = []
+    for w, i, c in dual_words(series):
+        sign = "-" if c < 0 else "+"
+        mag = abs(c)
+        coef = "" if mag == 1 else f"{mag} "
+        terms.append(f"{sign} {coef}{word_latex(w, i)}")
+    body = " ".join(terms).lstrip("+ ")
+    if body.startswith("- "):
+        body = "-" + body[2:]
+    return f"\\delta\\varphi^\\circ = {head} \\left({body}\\right)"
 
 
 def error_coefficients(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> ErrorCoefficients:
@@ -780,13 +824,93 @@ def _error_coefficients(algorithm: Algorithm, max_weight: int) -> ErrorCoefficie
     rho = err.order
     if rho is None:
         return ErrorCoefficients(None, Fraction(0), {}, (), max_weight)
-    basis = ORDER4_BASIS if rho == 4 else canonical_basis(rho + 1)
-    raw = express(err.part(rho + 1, unit="h"), basis)
+    term = _error_term(algorithm, rho + 1)
+    return ErrorCoefficients(rho, term.delta, term.coefficients, term.basis, max_weight)
+
+
+@dataclass(frozen=True)
+class ErrorTerm:
+    """The local error of one weight w in the convention of Table 2: ``δ_w h^w Σ_x k_x x``.
+
+    As :class:`ErrorCoefficients` for any weight, not only the leading one:
+    ``δ_w = 1 / lcm`` of the denominators, h the sample interval (H = N h),
+    exact minus algorithm.
+
+    Attributes
+    ----------
+    weight : int
+        w, the power of h.
+    delta : Fraction
+        δ_w.
+    coefficients : dict
+        ``{word: Fraction}`` (integers under this normalisation).
+    basis : tuple of words
+        The nested products of the expansion (:data:`ORDER4_BASIS` at w = 5,
+        :func:`canonical_basis` otherwise).
+    """
+
+    weight: int
+    delta: Fraction
+    coefficients: dict
+    basis: tuple
+
+    def latex(self, *, dual: bool = False) -> str:
+        """``δφ_w = δ_w h^w (Σ k x)`` as LaTeX.
+
+        Parameters
+        ----------
+        dual : bool, keyword-only
+            Give its dual part by the transfer principle instead.
+
+        Returns
+        -------
+        str
+        """
+        return _error_latex(self.delta, self.weight, self.coefficients, dual=dual)
+
+
+def error_series(algorithm: Algorithm, max_weight: int = DEFAULT_MAX_WEIGHT) -> tuple:
+    """The local error weight by weight, every nonzero weight through ``max_weight`` (Table 2 convention).
+
+    ``Δφ_exact − Δφ_algorithm = Σ_w δ_w h^w Σ_x k_x x + O(h^(max_weight+1))``; the
+    first term is :func:`error_coefficients`.
+
+    Parameters
+    ----------
+    algorithm : Algorithm
+        The algorithm (sample indices ≤ 0 allowed).
+    max_weight : int
+        Highest weight kept, 1 … :data:`WEIGHT_LIMIT`.
+
+    Returns
+    -------
+    tuple of ErrorTerm
+        One per nonzero weight, in increasing weight.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a bad ``algorithm`` or ``max_weight``.
+
+    Examples
+    --------
+    >>> from strapdown.derivations.coning.registry import get
+    >>> [(t.weight, str(t.delta)) for t in error_series(get("two-sample"))]
+    [(5, '1/90'), (7, '1/3780')]
+    """
+    err = local_error(algorithm, max_weight)
+    return tuple(_error_term(err.algorithm, w) for w, part in enumerate(err.parts) if any(part))
+
+
+@cache
+def _error_term(algorithm: Algorithm, w: int) -> ErrorTerm:
+    basis = ORDER4_BASIS if w == 5 else canonical_basis(w)
+    raw = express(_local_error(algorithm, w).part(w, unit="h"), basis)
     lcm = 1
     for c in raw.values():
         lcm = lcm * c.denominator // math.gcd(lcm, c.denominator)
     delta = Fraction(1, lcm)
-    return ErrorCoefficients(rho, delta, {w: c / delta for w, c in raw.items()}, tuple(basis), max_weight)
+    return ErrorTerm(w, delta, {word: c / delta for word, c in raw.items()}, tuple(basis))
 
 
 # ---------------------------------------------------------------------------

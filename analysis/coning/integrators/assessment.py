@@ -183,7 +183,7 @@ class Assessment:
     consistency : Consistency
         First- and second-order conditions.
     order : int or None
-        ρ: local error ``O(h^(ρ+1))`` (series of the identified algorithm, or
+        ρ, the accuracy order: local error ``O(h^(ρ+1))`` (series of the identified algorithm, or
         the linear part's error when it leads); None when zero through h⁷.
     local_error : ErrorCoefficients or None
         The leading term of the exact local-error series of the identified
@@ -242,14 +242,15 @@ class Assessment:
                 "second_order_expected": _text(con.second_order_expected),
                 "second_order_defect": _text(con.second_order_sum - con.second_order_expected),
             },
-            "local_error_order": self.order,
+            "accuracy_order": self.order,
+            "local_error_order": None if self.order is None else self.order + 1,
             "local_error": _series(self.local_error),
             "local_error_exponent": _finite(self.local_error_exponent),
-            "order": None,
+            "coning_drift_order": None,
             "coefficient": None,
             "coefficient_float": None,
             "step_coefficient": None,
-            "drift_note": "coning drift u = coefficient * alpha^2 * omega * (omega*h)^order, exact minus integrator, along the cone axis (as derive coning-drift)",
+            "drift_note": "coning drift u = coefficient * alpha^2 * omega * (omega*h)^coning_drift_order, exact minus integrator, along the cone axis (as derive coning-drift)",
             "remainder": _remainder(ident.remainder),
             "verification": _check(self.check),
             "sculling": None,
@@ -257,7 +258,7 @@ class Assessment:
         }
         if self.coning is not None:
             c, ch = self.coning.coefficient, self.coning.step_coefficient
-            out.update(order=self.coning.order, coefficient=_text(c), coefficient_float=float(c), step_coefficient=_text(ch), exact_function=str(self.coning.function))
+            out.update(coning_drift_order=self.coning.order, coefficient=_text(c), coefficient_float=float(c), step_coefficient=_text(ch), exact_function=str(self.coning.function))
         else:
             out["drift_note"] = "no alpha^2 closed form: the linear part is not p_1 + ... + p_N"
         if self.sculling is not None:
@@ -278,7 +279,7 @@ def _series(e) -> dict | None:
     if e is None or e.order is None:
         return None
     return {
-        "convention": "exact minus integrator, delta * h^(order+1) * sum k_w x_w, h the sample interval, x_w nested products of the rate derivatives (as derive local-error)",
+        "convention": "exact minus integrator, delta * h^(accuracy_order+1) * sum k_w x_w, h the sample interval, x_w nested products of the rate derivatives (as derive local-error)",
         "delta": _text(e.delta),
         "coefficients": {"x" + "".join(str(k) for k in w): _text(c) for w, c in e.coefficients.items() if c},
         "latex": e.latex(),

@@ -1,0 +1,243 @@
+"""Work guards of the API and the command line: huge or empty inputs are refused by name, before any work.
+
+Every public function whose allocation or run time grows with a scalar argument
+estimates its work first (:mod:`strapdown.analysis.core.budget`) and raises a
+``ValueError`` (:class:`~strapdown.analysis.core.budget.BudgetExceeded`) whose
+message names the argument, instead of numpy's allocation error or an
+hour-long run.  Empty arrays get a message that says they are empty.  Each
+call below runs under ``tracemalloc``: a refusal must come before the arrays
+it would have allocated (the peak stays far below a gigabyte).
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import tracemalloc
+
+import numpy as np
+import pytest
+
+from strapdown.analysis.core import budget
+from strapdown.derivations.coning.registry import get
+
+ALG = get("panov-4s-1")
+CONING = dict(eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
+
+
+def _coning():
+    from strapdown.analysis.coning.precession import RegularPrecession
+
+    return RegularPrecession(**CONING)
+
+
+def _loop():
+    from strapdown.analysis.multistage.tilt_loop import StageLoop
+
+    return StageLoop.schuler(9.81, 6.371e6)
+
+
+def _scenario(duration):
+    from strapdown.analysis.multistage.trajectory import Scenario
+
+    return Scenario(duration=duration)
+
+
+def _alignment_scenario(duration):
+    from strapdown.analysis.alignment.imu import Scenario
+
+    return Scenario(math.radians(45.0), duration=duration)
+
+
+def _narrowband():
+    from strapdown.analysis.gyrocompass.rocking import rocking_model
+
+    return rocking_model("narrowband", math.radians(1.0), math.radians(1.0))
+
+
+def _sweep_case():
+    from strapdown.analysis.gyrocompass.bound_sweep import SweepCase
+
+    return SweepCase(latitude=math.radians(45.0), sigma=math.radians(1.0))
+
+
+def _bound_case():
+    from strapdown.analysis.gyrocompass.studies import BoundCase
+
+    return BoundCase("white", "normal", math.radians(45.0), 0.0, 0.0, math.radians(1.0))
+
+
+# (call, the argument its message must name); each call would allocate gigabytes or run for hours.
+HUGE = {
+    "coning.simulate duration": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["simulate"]).simulate(ALG, _coning(), 0.0025, 1e12), "duration"),
+    "coning.simulate sample_interval": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["simulate"]).simulate(ALG, _coning(), 1e-12, 100.0), "sample_interval"),
+    "coning.sample_increments steps": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["x"]).sample_increments(_coning(), 0.0025, 10**12, 4), "steps"),
+    "coning.window_index steps": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["x"]).window_index(10**12, 4, 1), "steps"),
+    "RegularPrecession.grid_increments count": (lambda: _coning().grid_increments(0.0025, 0, 10**12), "count"),
+    "ScullingMotion.grid_increments count": (
+        lambda: __import__("strapdown.analysis.coning.sculling_motion", fromlist=["x"]).ScullingMotion(0.01, 1.0, 2 * np.pi).grid_increments(0.0025, 0, 10**12, dual=True),
+        "count",
+    ),
+    "coning.simulate_batch duration": (
+        lambda: __import__("strapdown.analysis.coning.batch", fromlist=["x"]).simulate_batch(ALG, -1.0, 2 * np.pi * 10, np.radians([0.5, 1.0]), 0.0025, 1e30),
+        "duration",
+    ),
+    "coning.simulate_batch steps with series": (
+        lambda: __import__("strapdown.analysis.coning.batch", fromlist=["x"]).simulate_batch(ALG, -1.0, 2 * np.pi * 10, np.radians(1.0), 0.0025, steps=10**12, series=True),
+        "steps",
+    ),
+    "coning.simulate_batch broadcast points": (
+        lambda: __import__("strapdown.analysis.coning.batch", fromlist=["x"]).simulate_batch(ALG, -np.ones((100_000, 1)), 2 * np.pi * np.ones((1, 100_000)), np.radians(1.0), 0.0025, 1.0),
+        "eps",
+    ),
+    "coning.drift_terms max_weight": (lambda: __import__("strapdown.analysis.coning.drift_theory", fromlist=["x"]).drift_terms(ALG, -1.0, 0.1, max_weight=20), "max_weight"),
+    "coning.asymptotic_drift max_weight": (
+        lambda: __import__("strapdown.analysis.coning.drift_theory", fromlist=["x"]).asymptotic_drift(ALG, eps=-1.0, nu=10.0, nutation=0.1, step=0.01, max_weight=19),
+        "max_weight",
+    ),
+    "coning.simulator_check periods": (lambda: __import__("strapdown.analysis.coning.frequency_response", fromlist=["x"]).simulator_check(ALG, 0.1, periods=10**12), "periods"),
+    "StageLoop.summary horizon": (lambda: _loop().summary(20.0, 20.0, horizon=3e9), "horizon"),
+    "StageLoop.pulse_response horizon": (lambda: _loop().pulse_response(20.0, 20.0, horizon=3e9), "horizon"),
+    "StageLoop.drift_response points": (lambda: _loop().drift_response(1e-5, 100.0, points=10**10), "points"),
+    "multistage.simulate duration": (lambda: __import__("strapdown.analysis.multistage.stages", fromlist=["x"]).simulate(_scenario(1e9)), "duration"),
+    "multistage.simulate step": (lambda: __import__("strapdown.analysis.multistage.stages", fromlist=["x"]).simulate(_scenario(1300.0), step=1e-7), "step"),
+    "multistage.trajectory.grid duration": (lambda: __import__("strapdown.analysis.multistage.trajectory", fromlist=["x"]).grid(_scenario(1e12), 0.02), "duration"),
+    "multistage.simulated_rate duration": (lambda: __import__("strapdown.analysis.multistage.decay_rates", fromlist=["x"]).simulated_rate(1.0, 1.0, duration=1e9), "duration"),
+    "multistage.sensor_error_monte_carlo n_trials": (lambda: __import__("strapdown.analysis.multistage.sensor_statistics", fromlist=["x"]).sensor_error_monte_carlo(n_trials=10**9), "n_trials"),
+    "multistage.check_printed_formulas samples": (lambda: __import__("strapdown.analysis.multistage.formula_checks", fromlist=["x"]).check_printed_formulas(samples=10**10), "samples"),
+    "gyrocompass.azimuth_monte_carlo n_samples": (
+        lambda: __import__("strapdown.analysis.gyrocompass.azimuth", fromlist=["x"]).azimuth_monte_carlo(math.radians(45.0), 0.0, 0.0, _narrowband(), 10**12, rng=1),
+        "n_samples",
+    ),
+    "rocking.sample n_trials": (lambda: _narrowband().sample(1, 10**6, 10**6, 0.1), "n_trials"),
+    "rocking.mean_variance_factor n_steps": (lambda: __import__("strapdown.analysis.gyrocompass.rocking", fromlist=["x"]).mean_variance_factor(_narrowband(), 10**12, 0.1), "n_steps"),
+    "finite_sample.variance_factors max_samples": (lambda: __import__("strapdown.analysis.gyrocompass.finite_sample", fromlist=["x"]).variance_factors(_narrowband(), 10**12, 0.1), "max_samples"),
+    "finite_sample.sample_mean_statistics n_samples": (
+        lambda: __import__("strapdown.analysis.gyrocompass.finite_sample", fromlist=["x"]).sample_mean_statistics(_narrowband(), 10**12, 0.1),
+        "n_samples",
+    ),
+    "finite_sample.required_averaging max_samples": (
+        lambda: __import__("strapdown.analysis.gyrocompass.finite_sample", fromlist=["x"]).required_averaging(1e-3, math.radians(45.0), _narrowband(), 0.1, max_samples=10**12),
+        "max_samples",
+    ),
+    "bound_sweep.sweep n_samples": (lambda: __import__("strapdown.analysis.gyrocompass.bound_sweep", fromlist=["x"]).sweep([_sweep_case()], n_samples=10**12), "n_samples"),
+    "studies.run_cases n_samples": (lambda: __import__("strapdown.analysis.gyrocompass.studies", fromlist=["x"]).run_cases([_bound_case()], n_samples=10**12), "n_samples"),
+    "gyrocompass.check_printed_formulas n_points": (lambda: __import__("strapdown.analysis.gyrocompass.formula_checks", fromlist=["x"]).check_printed_formulas(n_points=10**10), "n_points"),
+    "alignment.simulate_imu n_trials": (lambda: __import__("strapdown.analysis.alignment.imu", fromlist=["x"]).simulate_imu(_alignment_scenario(600.0), n_trials=10**7), "n_trials"),
+    "alignment.simulate_imu duration": (lambda: __import__("strapdown.analysis.alignment.imu", fromlist=["x"]).simulate_imu(_alignment_scenario(1e9), n_trials=1), "duration"),
+    "alignment.alignment_monte_carlo n_trials": (
+        lambda: __import__("strapdown.analysis.alignment.monte_carlo", fromlist=["x"]).alignment_monte_carlo(_alignment_scenario(600.0), method="kalman", n_trials=10**9),
+        "n_trials",
+    ),
+    "base_motion.draw n_trials": (lambda: _alignment_scenario(60.0).motion.draw(1, 10**6, 10**6, 0.1), "n_trials"),
+}
+
+
+def _run(call):
+    tracemalloc.start()
+    try:
+        with pytest.raises(ValueError) as info:
+            call()
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    return info.value, peak
+
+
+@pytest.mark.parametrize("name", sorted(HUGE))
+def test_a_huge_request_is_refused_by_name_before_it_allocates(name):
+    call, argument = HUGE[name]
+    exc, peak = _run(call)
+    assert isinstance(exc, budget.BudgetExceeded), f"{type(exc).__name__}: {exc}"
+    assert f"`{argument}`" in str(exc), str(exc)
+    assert "exceeds the limit" in str(exc)
+    assert peak < 2e8, f"{peak / 1e6:.0f} MB traced before the refusal"
+
+
+def test_larger_limits_let_a_request_through():
+    from strapdown.analysis.coning.simulator import simulate
+
+    small = budget.Limits(seconds=300.0, memory=1e5)
+    with pytest.raises(budget.BudgetExceeded, match="`duration`"):
+        simulate(ALG, _coning(), 0.0025, 10.0, limits=small)
+    run = simulate(ALG, _coning(), 0.0025, 10.0, limits=budget.Limits(seconds=300.0, memory=1e9))
+    assert run.steps == 1000
+
+
+def test_limits_of_the_wrong_type_are_refused():
+    from strapdown.analysis.coning.simulator import simulate
+
+    with pytest.raises(TypeError, match="`limits`"):
+        simulate(ALG, _coning(), 0.0025, 1.0, limits=2e9)
+
+
+def test_the_estimate_of_a_large_run_is_checked_and_passes():
+    """A run of 2e5 s at h = 2.5 ms (2e7 steps, about 1 GB of error series) is estimated and within the defaults."""
+    steps = 2e5 / (ALG.samples * 0.0025)
+    est = budget.coning_simulation(steps, window=ALG.window, degree_sum=sum(t.degree for t in ALG.terms), velocity=False, chunk_steps=65536, what="")
+    assert 0.5e9 < est.memory <= budget.DEFAULT_MEMORY_LIMIT
+    budget.check(est)
+
+
+# (call, the argument its message must name, a word of the message)
+EMPTY = {
+    "simulate_batch nutation=[]": (lambda: __import__("strapdown.analysis.coning.batch", fromlist=["x"]).simulate_batch(ALG, -1.0, 2 * np.pi * 10, [], 0.0025, 1.0), "nutation", "empty"),
+    "drift_rate time=[]": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["x"]).drift_rate([], np.zeros((0, 3))), "time", "two"),
+    "responses time=[]": (lambda: __import__("strapdown.analysis.multistage.tilt_loop", fromlist=["x"]).responses(_loop(), []), "time", "empty"),
+    "complementary_filter omega=[]": (lambda: __import__("strapdown.analysis.multistage.tilt_loop", fromlist=["x"]).complementary_filter(_loop(), []), "omega", "empty"),
+    "root_locus_k ks=[]": (lambda: __import__("strapdown.analysis.multistage.tilt_loop", fromlist=["x"]).root_locus_k(1e-3, []), "ks", "empty"),
+    "root_locus_l ls=[]": (lambda: __import__("strapdown.analysis.multistage.tilt_loop", fromlist=["x"]).root_locus_l(1e-3, []), "ls", "empty"),
+    "validity_map latitudes=[]": (lambda: __import__("strapdown.analysis.gyrocompass.bound_sweep", fromlist=["x"]).validity_map([], [0.01], n_samples=100), "latitudes", "empty"),
+    "sweep cases=[]": (lambda: __import__("strapdown.analysis.gyrocompass.bound_sweep", fromlist=["x"]).sweep([], n_samples=100), "cases", "none"),
+    "preintegrate dtheta=[]": (lambda: __import__("strapdown.analysis.alignment.preintegration", fromlist=["x"]).preintegrate([], [], 0.01, 10), "dtheta", "shape"),
+    "load_toml path=''": (lambda: __import__("strapdown.derivations.coning.algorithms", fromlist=["x"]).load_toml(""), "path", "empty"),
+    "report generate out=''": (lambda: __import__("strapdown.analysis.report", fromlist=["x"]).generate(""), "out", "empty"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(EMPTY))
+def test_an_empty_input_gets_a_message_that_says_so(name):
+    call, argument, word = EMPTY[name]
+    exc, _ = _run(call)
+    assert f"`{argument}`" in str(exc), str(exc)
+    assert word in str(exc), str(exc)
+
+
+# --------------------------------------------------------------------------- command line
+def _cli(*argv):
+    return subprocess.run([sys.executable, "-m", "strapdown.analysis", *argv], capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize(
+    ("argv", "option"),
+    [
+        (("stability", "--schuler", "--accel-m-s2", "20", "--accel-duration", "20", "--horizon", "3e9"), "--horizon"),
+        (("derive", "local-error", "--algorithm", "savage-1+1", "--max-order", "20"), "--max-order"),
+        (("multistage", "--duration", "1e9"), "--duration"),
+    ],
+)
+def test_a_command_refuses_a_huge_request_naming_the_option(argv, option):
+    r = _cli(*argv)
+    assert r.returncode == 2, r.stderr
+    assert option in r.stderr and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (("report", "--out", ""), ("--out", "empty name")),
+        (("drift", "--algorithm-file", "", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "1"), ("--algorithm-file", "empty file name")),
+        (("derive", "coning-drift", "--algorithm", "savage-1+1", "--omega-h-rad", "0.1,inf"), ("--omega-h-rad", "finite", "'inf'")),
+        (("derive", "coning-drift", "--algorithm", "savage-1+1", "--omega-h-rad", ""), ("--omega-h-rad", "empty")),
+        (("velocity-error", "--algorithm", "savage-1+1", "--motion", "sculling", "--freq-hz", "20", "--sample-interval", "0.0025", "--duration", "1", "--w0-m-s", "inf,0,0"), ("--w0-m-s", "finite")),
+        (("report", "--only", ""), ("--only", "''")),
+    ],
+)
+def test_a_command_says_what_is_wrong_with_an_empty_or_infinite_value(argv, words):
+    r = _cli(*argv)
+    assert r.returncode == 2, r.stderr
+    for w in words:
+        assert w in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
