@@ -14,8 +14,9 @@ The public arguments say which one they mean: ``sample_interval`` is h,
 ``step`` is H. The multistage stages of Plotnikov (1999) take one sample per
 step, so there ``h = H`` and the argument is ``step``.
 
-Quoting a result against the wrong one is an easy slip: for a fourth-order
-drift, a factor N in the interval is a factor N⁴ in the drift.
+Quoting a result against the wrong one is an easy slip: where the drift goes
+as H⁴ (drift order 4, :doc:`04_three_orders`), a factor N in the interval is a
+factor N⁴ in the drift.
 """
 
 import numpy as np
@@ -44,7 +45,7 @@ print(f"asymptotic drift u_a = {deg_per_h(u_a):.3f} deg/h   (step = H)")
 
 # %%
 # Passing H where h is meant runs the algorithm on a gyro four times slower.
-# Where the leading term of a fourth-order drift dominates that costs a factor
+# Where the leading term of a drift of order 4 dominates that costs a factor
 # 4⁴ = 256; here ``ωH`` becomes 2.5 rad, beyond that regime, and the factor is
 # still two orders of magnitude:
 wrong = simulate(algorithm, coning, sample_interval=H, duration=20.0)
@@ -60,15 +61,15 @@ print(f"sample_interval = H by mistake: {deg_per_h(wrong.drift_rate):.1f} deg/h,
 # are exact fractions:
 for name in ("two-sample", "miller-3", "panov-4s-1"):
     d = coning_drift(get(name))
-    print(f"{name:>11}: N = {d.samples}, m = {d.order}, c = {d.coefficient}, c_H = {d.step_coefficient}")
+    print(f"{name:>11}: N = {d.samples}, coning-drift order m = {d.order}, c = {d.coefficient}, c_H = {d.step_coefficient}")
 
 # %%
 # Same data rate, different steps
 # -------------------------------
 # At one gyro rate, 400 Hz (h = 2.5 ms), under 1° of coning at 10 Hz, the
-# drift depends on the order m and the coefficient c together; the number of
-# samples alone says little (``panov-4s-1`` is a fourth-order algorithm with a
-# large coefficient, ``miller-3`` a sixth-order one):
+# drift depends on the coning-drift order m and the coefficient c together;
+# the number of samples alone says little (``panov-4s-1`` has m = 4 with a
+# large coefficient, ``miller-3`` m = 6):
 for name in ("two-sample", "miller-3", "panov-4s-1"):
     alg = get(name)
     u = coning_drift_rate(alg, cone_angle=np.radians(1.0), nu=2 * np.pi * 10, sample_interval=h)

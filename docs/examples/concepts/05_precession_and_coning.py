@@ -28,6 +28,10 @@ part ``ω (1 − cos α)``.
 Classical coning **is** the regular precession with ε = −1, ϑ = α, ν = ω: the
 spin and the precession cancel except for the small axial rate. The cone axis
 (the direction of the mean angular velocity of the body in I) is −n.
+``strapdown drift`` takes either description: ``--eps`` and ``--nutation-deg``
+for a regular precession, or ``--half-angle-deg`` for classical coning (with
+``--freq-hz`` the coning frequency), and quotes a coning drift along the cone
+axis.
 """
 
 import matplotlib.pyplot as plt
@@ -85,8 +89,8 @@ print(f"precession series (ε, ν, ϑ, H): {deg_per_h(u_precession):.5e} deg/h  
 # -----------------------------
 # The other case of Table 3, ε = 0.5, spins and precesses in the same sense:
 # the body rate is large along the body z axis. It has less symmetry than
-# coning, and an algorithm whose fourth-order drift cancels under coning
-# drifts at fourth order there (see :doc:`04_three_orders`).
+# coning, and an algorithm whose H⁴ drift cancels under coning (drift order 6
+# there) has drift order 4 at ε = 0.5 (see :doc:`04_three_orders`).
 precession = RegularPrecession(eps=0.5, nu=omega, nutation=alpha)
 for name in ("panov-4s-3", "panov-4s-1"):
     a = get(name)

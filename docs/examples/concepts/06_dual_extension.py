@@ -98,9 +98,9 @@ print("largest |M − dΛ/dφ · φ°|:", np.abs(theta_bq.du - numeric).max(), "
 # (``velocity=True``): biquaternion steps from the dual increments, against the
 # closed-form biquaternion of the motion (4.4)–(4.5). Here the dual motion
 # above (ν = 2π s⁻¹, ϑ = 10°, ν° = 1 m/s², ϑ° = 0.5 m/s), 10 s on a 400 Hz
-# gyro, with the fourth- and sixth-order algorithms of Lebedev & Panov (1989),
-# eq. (2.2); the numpy engine of the simulator needs no compilation for a run
-# this short.
+# gyro, with the algorithms of accuracy order 4 and 6 of Lebedev & Panov
+# (1989), eq. (2.2); the numpy engine of the simulator needs no compilation for
+# a run this short.
 for name in ("lebedev-panov-4", "lebedev-panov-6"):
     run = simulate(get(name), motion, sample_interval=0.0025, duration=10.0, velocity=True, engine="numpy")
     print(f"{name}: |ΔW_E| = {run.final_dw_body:.3e} m/s, |ΔW_I| = {run.final_dw_inertial:.3e} m/s after {run.time[-1]:g} s")

@@ -41,7 +41,8 @@ budget = rad_per_s(1e-3)  # [rad/s]
 # 1. The ranking of the drift theory
 # ----------------------------------
 # Every algorithm of the registry, cheapest first. ρ is the drift order at this
-# motion; the rate is the gyro rate N/H.
+# motion (:doc:`../concepts/04_three_orders`), the power of H in ``u_a = K H^ρ``;
+# the rate is the gyro rate N/H.
 rows = design(budget, coning, algorithms=names(library=True))
 print(f"{'algorithm':>16} {'ρ':>2} {'gyro rate':>10} {'load':>12}")
 for r in rows[:10]:
@@ -64,13 +65,13 @@ for r in shortlist:
 
 # %%
 # The coning-optimised algorithms (Ignagni's, the "compressed" family,
-# ``miller-3``, ``optimal-3``) miss the budget by two to three orders of
-# magnitude at the rates of the ranking. Their α² drift is of high order in
-# ``ωh``; at 1° the leading term of their drift series is the α⁴ term, of order
-# 4 and with a small coefficient, and the rule ``u_a = K H^ρ`` puts the step
-# where the α² term, not the α⁴ one, is the drift. ``panov-4s-3`` and
-# ``two-sample``, whose leading term does dominate, meet the budget within
-# the few per cent that separate u_a from the drift.
+# ``miller-3``, ``optimal-3``) miss the budget at the rates of the ranking,
+# most of them by two orders of magnitude or more. Their coning-drift order m
+# is high (6 to 10); at 1° the leading term of their drift series is the α⁴
+# term, of drift order 4 and with a small coefficient, and the rule
+# ``u_a = K H^ρ`` puts the step where the α² term, not the α⁴ one, is the
+# drift. ``panov-4s-3`` and ``two-sample``, whose leading term does dominate,
+# meet the budget within the few per cent that separate u_a from the drift.
 #
 # 3. The rate each algorithm needs, by simulation
 # -----------------------------------------------

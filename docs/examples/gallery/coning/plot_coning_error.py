@@ -6,8 +6,8 @@ The five four-sample algorithms of Budennyi, Kalinovsky, Panov et al. under
 the coning of their Table 3 (ϑ = 1°, f = 10 Hz, H = 4h = 0.01 s): the norm of
 the attitude error ``δφ_I = rotvec(Λ_exact ∘ Λ̄_computed)`` against time, from
 :func:`~strapdown.analysis.coning.papers.budennyi_table3.coning_error_histories`.
-Algorithms 3 and 5 cancel their fourth-order drift under coning and stay two
-orders of magnitude below the others.
+Algorithms 3 and 5 cancel their H⁴ drift under coning (their drift order
+there is 6) and stay two orders of magnitude below the others.
 
 Report figure ``algorithms-coning-error.png``; the runs here use the numpy
 engine of the simulator.

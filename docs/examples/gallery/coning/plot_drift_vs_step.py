@@ -5,7 +5,8 @@ Drift against the step: the observed orders
 The constant drift of every algorithm of the source papers against the step
 H, under coning (ε = −1) and a regular precession with ε = 0.5, at the
 conditions of Lebedev & Panov (1989) (ν = 2π s⁻¹, ϑ = 10°). The fitted slope
-on log–log axes is the drift order at that motion
+on log–log axes is the observed order, an estimate of the drift order at that
+motion
 (:func:`~strapdown.analysis.coning.order_study.drift_orders`; see
 :doc:`../../concepts/04_three_orders`).
 

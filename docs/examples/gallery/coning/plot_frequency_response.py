@@ -9,7 +9,8 @@ drift of any algorithm is ``u = α² ω D(ωh) + O(α⁴)`` with ``D`` exact in 
 simulator at three points, where it runs and the drift is above the round-off
 of the run (:func:`~strapdown.analysis.coning.frequency_response.coning_frequency_response`).
 Solid: the published algorithms of the registry; dashed: the optimal coning
-class derived by the package.
+class derived by the package. The legend gives the leading term ``c·x^m`` of
+each ``D(x)``, m the coning-drift order.
 
 Report figure ``frequency-response-coning.png`` (80 points per curve, as in
 the quick report). Numpy engine.

@@ -10,10 +10,10 @@ the budget [u] = 10⁻³ deg/h, at ϑ = 1°
 
 The step follows the paper's rule, the leading term of the drift series. For
 an algorithm whose leading term does not dominate at that step —
-``optimal-3`` under coning (ε = −1), where the α⁴ term of order 4 leads but
-the α² term of order 6 is the drift — the rule places the step too long; the
-task page :doc:`../../tasks/01_algorithm_and_rate` shows the check by
-simulation that finds it.
+``optimal-3`` under coning (ε = −1), where the α⁴ term leads (drift order 4)
+but the α² term (coning-drift order 6) is the drift — the rule places the step
+too long; the task page :doc:`../../tasks/01_algorithm_and_rate` shows the
+check by simulation that finds it.
 
 Report figure ``derivations-load-vs-frequency.png`` (the quick report's 12
 frequencies).

@@ -10,11 +10,11 @@ first order in θ₀A, exact in νh
 (:func:`~strapdown.analysis.coning.papers.published_check.sculling_error_curve`;
 the fitted slope in brackets); the crosses are the simulator
 (:func:`~strapdown.analysis.coning.papers.published_check.sculling_simulation_checks`).
-The sculling orders equal the coning orders of the same algorithms
-(Ignagni's 1998 duality).
+The slopes, the powers of νh of the sculling error, are the coning-drift
+orders m of the same algorithms (Ignagni's 1998 duality).
 
-Report figure ``published-algorithms-sculling.png`` (the quick report's 12
-points per curve and three simulator checks).
+Report figure ``published-algorithms-sculling.png`` (the full report's 30
+points per curve, the quick report's three simulator checks).
 """
 
 import matplotlib.pyplot as plt
@@ -24,7 +24,7 @@ from strapdown.analysis.coning.papers.published_check import sculling_error_curv
 
 algorithms = ("one-sample", "savage-1+1", "two-sample", "miller-3", "compressed-3", "ignagni-1996-1", "ignagni-1996-2",
               "ignagni-1996-5", "compressed-4", "ignagni-1996-6", "compressed-5", "polynomial-4")  # fmt: skip
-curves = sculling_error_curve(algorithms, np.geomspace(0.02, 1.0, 12))
+curves = sculling_error_curve(algorithms, np.geomspace(0.02, 1.0, 30))
 points = sculling_simulation_checks((("savage-1+1", 0.1), ("two-sample", 0.2), ("miller-3", 0.3)), cycles=20)
 for p in points:
     print(f"{p.algorithm}, νh = {p.nu_h:g}: theory {p.theory:.6e}, simulated {p.simulated:.6e} m/s² ({p.relative_difference:+.1e})")

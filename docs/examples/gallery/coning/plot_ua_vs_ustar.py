@@ -7,7 +7,8 @@ the papers print — against the drift u* of the simulation, for every
 algorithm of the source papers, as the step shrinks
 (:func:`~strapdown.analysis.coning.drift_crosscheck.drift_ratios`). The
 relative difference falls by about four per halving of H: the next term of
-the series is two powers of H higher. ϑ = 10°, f = 10 Hz.
+the series is two powers of H higher. The legend gives ``u_a ∝ H^ρ``, ρ the
+drift order at the motion. ϑ = 10°, f = 10 Hz.
 
 Report figure ``derivations-ua-vs-ustar.png`` (the quick report's steps).
 Numpy engine.
@@ -29,7 +30,7 @@ ratios = drift_ratios(motions, steps=steps, duration=8.0, engine="numpy")
 fig, axes = plt.subplots(1, 2, figsize=(9, 3.8), sharey=True, layout="constrained")
 for ax, eps in zip(axes, (-1.0, 0.5)):
     for r in (r for r in ratios if r.eps == eps):
-        ax.loglog(r.steps * 1e3, np.maximum(r.deviations, 1e-8), "o-", ms=3, label=f"{r.algorithm} (ρ={r.order})")
+        ax.loglog(r.steps * 1e3, np.maximum(r.deviations, 1e-8), "o-", ms=3, label=f"{r.algorithm} ($H^{r.order}$)")
     s = np.array([steps[0], steps[-1]])
     ax.loglog(s * 1e3, 0.3 * (s / s[0]) ** 2, "k--", lw=0.8, label="slope 2")
     ax.set_title(f"ε = {eps:g}, ϑ = 10°, f = 10 Hz")
