@@ -70,6 +70,23 @@ def _inventory(path: Path) -> dict:
 
 
 # --------------------------------------------------------------------------- the API reference, built
+def _copy_repository_pages(work: Path) -> None:
+    """Copy the Markdown and reST files of the repository outside docs/ into ``work``, at their paths.
+
+    A page may link to such a file (``../reports/algorithms.md``); the site
+    shows the link as the file's path when the file exists beside ``docs/``
+    (``docs/_ext/repository_links.py``), and a ``-W`` build fails when it does not.
+    """
+    for path in sorted(ROOT.rglob("*")):
+        relative = path.relative_to(ROOT)
+        if path.suffix not in (".md", ".rst") or not path.is_file() or relative.parts[0] == "docs":
+            continue
+        if any(part.startswith(".") or part in ("build", "dist") or part.endswith(".egg-info") for part in relative.parts[:-1]):
+            continue
+        (work / relative).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(path, work / relative)
+
+
 @pytest.fixture(scope="module")
 def api_site(tmp_path_factory) -> Path:
     """The site built from a copy of docs/, the pages of the user guide and the gallery not executed."""
@@ -81,6 +98,7 @@ def api_site(tmp_path_factory) -> Path:
         return [n for n in names if n == "__pycache__" or (Path(folder) == DOCS and n in generated)]
 
     shutil.copytree(DOCS, source, ignore=ignore)
+    _copy_repository_pages(work)
     out = work / "html"
     cmd = [sys.executable, "-m", "sphinx", "-b", "html", "-q", "-W", "-D", "plot_gallery=0", str(source), str(out)]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=1200)
