@@ -19,6 +19,7 @@ import tracemalloc
 import numpy as np
 import pytest
 
+from strapdown.analysis.coning.environment_examples import QUALIFICATION
 from strapdown.analysis.core import budget
 from strapdown.derivations.coning.registry import get
 
@@ -215,6 +216,8 @@ def _cli(*argv):
         (("stability", "--schuler", "--accel-m-s2", "20", "--accel-duration", "20", "--horizon", "3e9"), "--horizon"),
         (("derive", "local-error", "--algorithm", "savage-1+1", "--max-order", "20"), "--max-order"),
         (("multistage", "--duration", "1e9"), "--duration"),
+        # a gigahertz sample rate: the spectrum's response integral cannot converge; refused in seconds, not minutes and gigabytes
+        (("environment-drift", "--algorithm", "two-sample", "--environment", str(QUALIFICATION), "--sample-interval", "1e-9", "--quiet"), "--sample-interval"),
     ],
 )
 def test_a_command_refuses_a_huge_request_naming_the_option(argv, option):

@@ -43,8 +43,11 @@ def test_only_keeps_other_sections_and_rebuilds_the_gathering_ones(tmp_path):
     out = tmp_path / "reports"
     assert report.generate(out, only=["errata"], show_progress=False) == ["errata", "index", "html"]
     errata = (out / "errata.md").read_bytes()
-    (out / "errata.md").write_text("an earlier errata page\n")  # a file this package wrote: replaced only if rebuilt
-    assert report.generate(out, only=["index"], show_progress=False) == ["errata", "index", "html"]
+    (out / "errata.md").write_text("an earlier errata page\n")  # a file this package wrote, edited since
+    with pytest.raises(ValueError, match="errata.md"):  # the edit is not lost silently
+        report.generate(out, only=["index"], show_progress=False)
+    assert (out / "errata.md").read_text() == "an earlier errata page\n"
+    assert report.generate(out, only=["index"], show_progress=False, overwrite_modified=True) == ["errata", "index", "html"]
     assert (out / "errata.md").read_bytes() == errata  # errata gathers every section: rebuilt too
     assert "index.html" in {p.name for p in out.iterdir()}
 

@@ -16,7 +16,7 @@ SIMULATION_OPTIONS = (
     "--heading-deg", "--beta0-deg", "--gamma0-deg", "--rocking", "--amplitude-deg", "--period", "--damping", "--bandwidth-hz", "--lever-arm",
     "--tilt-channel-only", "--gyro-bias-deg-per-h", "--accel-bias-m-s2", "--gyro-scale-ppm", "--accel-scale-ppm", "--gyro-quantum-arcsec",
     "--accel-quantum-m-s", "--sample-rate-hz", "--duration", "--trials", "--workers", "--disturbance", "--assumed-period", "--assumed-damping",
-    "--assumed-amplitude-deg", "--lever-arm-known", "--progress",
+    "--assumed-amplitude-deg", "--lever-arm-known",
 )  # fmt: skip
 
 

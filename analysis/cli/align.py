@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from ..core import budget
 from . import Result, UsageError
-from ._options import add_limits, check_work, count
+from ._options import add_limits, check_work, count, limits_from
 
 __all__ = ["register"]
 
@@ -203,7 +203,7 @@ def _align(args) -> Result:
 
         executor = ProcessPoolExecutor(workers)
     try:
-        mc = alignment_monte_carlo(scenario, errors, method=args.method, n_trials=trials, rng=seed, options=options, executor=executor, progress=args.progress)
+        mc = alignment_monte_carlo(scenario, errors, method=args.method, n_trials=trials, rng=seed, options=options, executor=executor, progress=args.progress, limits=limits_from(args))
     finally:
         if executor is not None:
             executor.shutdown()

@@ -11,7 +11,7 @@ import math
 
 from ..core import budget
 from . import Result, UsageError
-from ._options import add_limits, check_work, count
+from ._options import add_limits, check_work, count, limits_from
 
 __all__ = ["register", "check_rocking_domain"]
 
@@ -84,7 +84,7 @@ def _azimuth(args) -> Result:
 
         executor = process_pool(workers)
     try:
-        mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress)
+        mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress, limits=limits_from(args))
     finally:
         if executor is not None:
             executor.shutdown()

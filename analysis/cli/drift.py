@@ -43,7 +43,7 @@ from ..coning.simulator import simulate
 from ..core.units import deg_per_h
 from ..core.validation import positive
 from . import Result, UsageError
-from ._options import add_algorithm, add_motion, algorithm_from, count, motion_parameters, number, run_summary
+from ._options import add_algorithm, add_motion, algorithm_from, count, limits_from, motion_parameters, number, run_summary
 
 #: Smallest ``--max-order``: the drift starts at weight 3 (a first-order algorithm).
 MIN_ORDER = 3
@@ -66,7 +66,7 @@ def _run(args) -> Result:
     alg = algorithm_from(args)
     params = motion_parameters(args, alg)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
-    r = simulate(alg, motion, args.sample_interval, args.duration)
+    r = simulate(alg, motion, args.sample_interval, args.duration, limits=limits_from(args))
     data, header = run_summary(alg, r, params)
     theory = {"eps": params["eps"], "nu": params["nu"], "nutation": params["nutation"], "step": r.step}
     terms = converged_drift_series(alg, **theory, rtol=rtol, max_weight=K)

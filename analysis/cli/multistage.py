@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..core import budget
 from . import Result
-from ._options import add_limits, check_work, count
+from ._options import add_limits, check_work, count, limits_from
 
 
 def _scenario(args):
@@ -39,7 +39,7 @@ def _run(args) -> Result:
     c = None if args.stage1_c is None else positive(args.stage1_c, "--stage1-c")
     components = (1, 3) if args.stage1_components == "horizontal" else (0, 1, 2, 3)
     stages = plotnikov_1999_stages(scenario.gravity, scenario.earth_radius, stage1_reference=args.stage1_reference, stage1_c=c, stage1_components=components, switch=args.switch)
-    result = simulate(scenario, stages, step=args.step, rng=args.seed)
+    result = simulate(scenario, stages, step=args.step, rng=args.seed, limits=limits_from(args))
     peaks = result.peaks()
     data = {
         "duration_s": scenario.duration,

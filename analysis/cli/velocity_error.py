@@ -22,7 +22,7 @@ from ..coning.simulator import simulate
 from ..core.units import RAD_PER_DEG, deg_per_h
 from ..core.validation import as_float, in_open_interval, positive
 from . import Result, UsageError
-from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, run_summary, sculling_parameters, unit_quaternion
+from ._options import SCULLING_DEFAULTS, add_algorithm, add_run, add_sculling, algorithm_from, check_run_work, floats, limits_from, run_summary, sculling_parameters, unit_quaternion
 
 #: Options of one motion only (refused with the other, :meth:`Commands.only_with`).
 _PRECESSION_ONLY = ("--eps", "--nutation-deg", "--nu-dual-m-s2", "--nutation-dual-m-s")
@@ -58,7 +58,7 @@ def _run(args) -> Result:
     motion, shown = _sculling(args) if args.motion == "sculling" else _precession(args)
     w0 = floats(args.w0_m_s, "--w0-m-s", 3)
     lam0 = unit_quaternion(args.attitude0, "--attitude0")
-    r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True)
+    r = simulate(alg, motion, args.sample_interval, args.duration, attitude0=lam0, w_inertial0=w0, velocity=True, limits=limits_from(args))
     params = {"eps": motion.eps, "nu": motion.nu} if args.motion == "precession" else None
     data, header = run_summary(alg, r, params)
     data |= shown | {

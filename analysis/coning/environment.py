@@ -61,14 +61,12 @@ Public API
 from __future__ import annotations
 
 import math
-import os
-import stat
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from ...derivations.toml_files import read_toml
 from ..core.units import DEG, STANDARD_GRAVITY
 from ..core.validation import as_array, as_float, positive
 from .sensor_dynamics import ANALOG_KINDS, DIGITAL_KINDS, ChannelFilter, Sensor, analog_filter, digital_filter
@@ -438,6 +436,10 @@ class Environment:
 
 
 # --------------------------------------------------------------------------- files
+#: Deepest nesting of an environment file [levels]: [[spectrum]] → table = [[f, [re, im]], …].
+_MAX_DEPTH = 8
+
+
 @dataclass(frozen=True)
 class EnvironmentLimits:
     """Limits of an environment file, checked before any arithmetic.
@@ -574,30 +576,8 @@ class _Reader:
 
 
 def _read_file(path: Path, limits: EnvironmentLimits) -> dict:
-    try:
-        info = os.stat(path)
-        if stat.S_ISDIR(info.st_mode):
-            raise ValueError(f"{path}: is a directory, expected a TOML environment file")
-        if not stat.S_ISREG(info.st_mode):
-            raise ValueError(f"{path}: not a regular file, expected a TOML environment file")
-        if info.st_size > limits.file_bytes:
-            raise ValueError(f"{path}: {info.st_size} bytes, more than the limit of {limits.file_bytes} bytes for an environment file")
-        with open(path, "rb") as f:
-            raw = f.read(limits.file_bytes + 1)
-    except FileNotFoundError:
-        raise ValueError(f"{path}: file not found") from None
-    except OSError as exc:
-        raise ValueError(f"{path}: cannot be read ({exc.strerror or type(exc).__name__})") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not UTF-8 text (undecodable byte at offset {exc.start})") from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({str(exc).splitlines()[0] if str(exc) else 'parse error'})") from None
-    except (RecursionError, ValueError) as exc:
-        raise ValueError(f"{path}: not valid TOML ({type(exc).__name__})") from None
+    # lines and spectra are arrays of tables holding arrays of pairs: four levels at most
+    return read_toml(path, max_bytes=limits.file_bytes, max_depth=_MAX_DEPTH, kind="environment file")
 
 
 def _array_of_tables(path: Path, data: dict, key: str) -> list:

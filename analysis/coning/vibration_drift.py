@@ -256,8 +256,10 @@ def response_integrals(environment: Environment, sample_interval: float, functio
     TypeError
         If ``environment`` is not an :class:`Environment`.
     ValueError
-        For a non-positive sample interval, or a digital filter whose cut-off
-        lies above the sensor's Nyquist frequency at this interval.
+        For a non-positive sample interval, a digital filter whose cut-off
+        lies above the sensor's Nyquist frequency at this interval, or an
+        interval at which a spectrum's integral does not converge (naming
+        ``sample_interval``).
     """
     if not isinstance(environment, Environment):
         raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")
@@ -271,7 +273,13 @@ def response_integrals(environment: Environment, sample_interval: float, functio
         values.extend(_integrand(environment, h, functions, freq, power))
         parts.extend(("line", " + ".join(ln.label for ln in g), (g[0].frequency, g[0].frequency)) for g in groups)
     for s in environment.spectra:
-        values.append(_spectrum_integral(environment, h, functions, s, rtol))
+        try:
+            values.append(_spectrum_integral(environment, h, functions, s, rtol))
+        except ValueError as exc:
+            raise ValueError(
+                f"Expected `sample_interval` = {h:g} s to give a response integral over spectrum {s.label!r} that converges; "
+                f"it does not ({exc}): the sensors' and the algorithm's responses are not resolved at this interval"
+            ) from None
         parts.append(("spectrum", s.label, s.band))
     n = len(parts)
     arr = np.zeros((n, 4 + 2 * len(functions), 3)) if not values else np.stack(values)

@@ -9,6 +9,8 @@ vectorised calls, where an adaptive scalar routine would call it node by node.
 
 Public API
 ----------
+MAX_VALUE_BYTES
+    Largest array of integrand values one evaluation may produce.
 integrate
     ``∫ f(x) dx`` over consecutive intervals, for ``f`` returning ``(..., M)`` values at ``M`` nodes.
 """
@@ -19,7 +21,7 @@ import numpy as np
 
 from .validation import as_array, positive
 
-__all__ = ["integrate"]
+__all__ = ["MAX_VALUE_BYTES", "integrate"]
 
 _ORDER = 16
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(_ORDER)
@@ -35,6 +37,10 @@ def _panels(edges: np.ndarray, per_interval: np.ndarray):
     s, w = np.concatenate(starts), np.concatenate(widths)
     x = s[:, None] + 0.5 * w[:, None] * (_NODES[None, :] + 1.0)
     return x.ravel(), (0.5 * w[:, None] * _WEIGHTS[None, :]).ravel()
+
+
+#: Largest array of integrand values one evaluation may produce [bytes] (it bounds the nodes for a wide integrand).
+MAX_VALUE_BYTES = 2**25
 
 
 def integrate(f, edges, *, rtol: float = 1e-10, atol: float = 0.0, panels: int = 64, max_nodes: int = 2**21) -> np.ndarray:
@@ -56,7 +62,8 @@ def integrate(f, edges, *, rtol: float = 1e-10, atol: float = 0.0, panels: int =
     panels : int
         Panels to start with, shared among the intervals by their widths.
     max_nodes : int
-        Most nodes evaluated at once.
+        Most nodes evaluated at once; fewer for an integrand of many values per
+        node, so that one evaluation stays within :data:`MAX_VALUE_BYTES`.
 
     Returns
     -------
@@ -85,7 +92,9 @@ def integrate(f, edges, *, rtol: float = 1e-10, atol: float = 0.0, panels: int =
     previous, agreed = None, 0
     while True:
         x, w = _panels(e, k)
-        value = np.asarray(f(x)) @ w
+        values = np.asarray(f(x))
+        value = values @ w
+        max_nodes = min(max_nodes, max(MAX_VALUE_BYTES // max(values.nbytes // x.size, 1), 4 * _ORDER))
         if previous is not None:
             if np.all(np.abs(value - previous) <= atol + rtol * np.abs(value)):
                 agreed += 1
@@ -95,6 +104,10 @@ def integrate(f, edges, *, rtol: float = 1e-10, atol: float = 0.0, panels: int =
                 agreed = 0
         if 2 * k.sum() * _ORDER > max_nodes:
             before = value if previous is None else previous
-            raise ValueError(f"Expected an integrand resolved by {max_nodes} nodes (rtol {rtol:g}); the estimate still changes: {np.ravel(value)[:3].tolist()} after {np.ravel(before)[:3].tolist()}")
+            worst = int(np.argmax(np.abs(value - before) - rtol * np.abs(value)))
+            raise ValueError(
+                f"Expected an integrand resolved by {max_nodes} nodes (rtol {rtol:g}, atol {atol:g}); its worst element still changes: "
+                f"{np.ravel(value)[worst]:.10g} after {np.ravel(before)[worst]:.10g}"
+            )
         previous = value
         k = 2 * k

@@ -196,11 +196,7 @@ def in_open_interval(x, name: str, low: float, high: float, *, text: str | None 
     ...
     ValueError: Expected `nutation` in (0, π), got 4.2
     """
-    value = as_float(x, name)
-    if not (low < value < high):
-        span = text or f"({low:g}, {high:g})"
-        raise ValueError(f"Expected `{name}` in {span}, got {value:g}")
-    return value
+    return _in_interval(x, name, low, high, closed=False, text=text)
 
 
 def in_closed_interval(x, name: str, low: float, high: float, *, text: str | None = None) -> float:
@@ -235,9 +231,14 @@ def in_closed_interval(x, name: str, low: float, high: float, *, text: str | Non
     ...
     ValueError: Expected `tolerance` in [1e-06, 0.5], got 1e-09
     """
+    return _in_interval(x, name, low, high, closed=True, text=text)
+
+
+def _in_interval(x, name: str, low: float, high: float, *, closed: bool, text: str | None) -> float:
     value = as_float(x, name)
-    if not (low <= value <= high):
-        span = text or f"[{low:g}, {high:g}]"
+    inside = low <= value <= high if closed else low < value < high
+    if not inside:
+        span = text or (f"[{low:g}, {high:g}]" if closed else f"({low:g}, {high:g})")
         raise ValueError(f"Expected `{name}` in {span}, got {value:g}")
     return value
 

@@ -80,6 +80,8 @@ def _deg(v, scale: float = 0.0) -> str:
 
 def _signed(v: float, scale: float, digits: int) -> str:
     # A sum that cancels exactly (a nulled drift) leaves round-off whose digits depend on the instruction set.
+    if v == 0.0 and scale == 0.0:
+        return "0"  # nothing to cancel: an exact zero (a line without coning)
     return "0 (round-off)" if abs(v) <= 1e-9 * abs(scale) else f"{v:+.{digits}g}"
 
 

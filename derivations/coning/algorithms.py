@@ -49,13 +49,12 @@ terms unchanged, since every increment is expanded about the same instant.
 
 from __future__ import annotations
 
-import os
 import re
-import stat
-import tomllib
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
+
+from ..toml_files import read_toml
 
 __all__ = ["Term", "Algorithm", "MAX_HISTORY", "TOML_LIMITS", "TomlLimits", "load_toml", "second_order_defect", "SecondOrderConditionError"]
 
@@ -300,51 +299,7 @@ def _indices(key: str, count: int, where: str, samples: int) -> tuple:
 
 def _parse(path: Path, limits: TomlLimits) -> dict:
     """Read and parse ``path`` within ``limits``: a regular UTF-8 file, small, shallow."""
-    try:
-        info = os.stat(path)
-        if stat.S_ISDIR(info.st_mode):
-            raise ValueError(f"{path}: is a directory, expected a TOML file")
-        if not stat.S_ISREG(info.st_mode):
-            raise ValueError(f"{path}: not a regular file (a device, pipe or socket), expected a TOML file")
-        if info.st_size > limits.file_bytes:
-            raise ValueError(f"{path}: {info.st_size} bytes, more than the limit of {limits.file_bytes} bytes for an algorithm file")
-        with open(path, "rb") as f:
-            raw = f.read(limits.file_bytes + 1)
-    except FileNotFoundError:
-        raise ValueError(f"{path}: file not found") from None
-    except OSError as exc:
-        raise ValueError(f"{path}: cannot be read ({exc.strerror or type(exc).__name__})") from None
-    if len(raw) > limits.file_bytes:
-        raise ValueError(f"{path}: more than the limit of {limits.file_bytes} bytes for an algorithm file")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not UTF-8 text (undecodable byte at offset {exc.start})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({str(exc).splitlines()[0] if str(exc) else 'parse error'})") from None
-    except RecursionError:
-        raise ValueError(f"{path}: nested deeper than the limit of {limits.depth} levels") from None
-    except ValueError as exc:  # e.g. an integer literal of more than 4300 digits
-        raise ValueError(f"{path}: not valid TOML ({str(exc).splitlines()[0] if str(exc) else 'bad value'})") from None
-    depth = _depth(data)
-    if depth > limits.depth:
-        raise ValueError(f"{path}: nested {depth} levels deep, more than the limit of {limits.depth} ([table] then key = value)")
-    return data
-
-
-def _depth(value, level: int = 0) -> int:
-    """Nesting depth of tables and arrays (iterative: a hostile file cannot exhaust the stack)."""
-    deepest, stack = level, [(value, level)]
-    while stack:
-        item, d = stack.pop()
-        children = item.values() if isinstance(item, dict) else item if isinstance(item, list) else None
-        if children is None:
-            continue
-        deepest = max(deepest, d)
-        stack.extend((child, d + 1) for child in children if isinstance(child, (dict, list)))
-    return deepest + 1 if isinstance(value, (dict, list)) and value else deepest
+    return read_toml(path, max_bytes=limits.file_bytes, max_depth=limits.depth, kind="algorithm file")
 
 
 def _term(table: str, key: str, coefficient: Fraction, where: str, samples: int) -> Term:

@@ -10,12 +10,11 @@ pyins (``python-ins`` on the package index)
     rest at the equator (no specific force, ``with_altitude=False``), the
     transport rate is zero and its frame is inertial: its matrices are our Λ
     (E → I), multiplied on the right by each step, as ours.  Setting the rate
-    changes pyins's module in this process; its loop, compiled with that rate,
-    is cached by numba (next to pyins's source, or in numba's cache directory)
-    like this package's kernels, so that later processes do not compile it
-    again (pyins used without this adapter neither reads nor writes that
-    cache).  Its "before" sample is zero (the record starts from rest).  The attitude after every
-    N-th sample is its output.
+    changes pyins's module in this process; its loop is compiled with that rate
+    once per process (about 4.5 s) and never cached to disk, so that other
+    processes and other users of the installation see pyins unchanged.  Its
+    "before" sample is zero (the record starts from rest).  The attitude after
+    every N-th sample is its output.
     :func:`pyins_increments` is its increment function alone
     (``compute_increments_from_imu``, one sample per step): rotation vector
     and velocity increment, coning and sculling.
