@@ -31,10 +31,11 @@ subpackage         analysis (numerics)                         derivations (SymP
                    rocking models, azimuth Monte Carlo, bound  (14)–(15), published formulas
                    sweeps, finite-sample statistics of (16),
                    admissible rocking
-``alignment``      self-alignment of the whole system: rocking gains of the linearised analytic
-                   base and IMU model, analytic, inertial and  alignment
-                   Kalman alignment, theory of every error
-                   term, admissible rocking per method
+``alignment``      self-alignment of the whole system:         gains of the linearised analytic
+                   rocking base and IMU model, analytic,       alignment
+                   inertial and Kalman alignment, theory of
+                   every error term, admissible rocking per
+                   method
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================
@@ -44,8 +45,8 @@ function, an object updated one sample at a time, a compiled C function, a
 peer's integrator) through one black-box interface, identifies them as exact
 algorithms and runs the ``coning`` machinery on them (``strapdown identify``).
 
-Conventions (stated once, used everywhere in :mod:`analysis` and :mod:`derivations`)
------------------------------------------------------------------------------------
+Conventions (stated once, used everywhere in :mod:`strapdown.analysis` and :mod:`strapdown.derivations`)
+--------------------------------------------------------------------------------------------------------
 Quaternions
     Scalar first, ``(q0, q1, q2, q3)``, stored as arrays of shape ``(..., 4)``.
     The product ``∘`` is Hamilton's (``i*j = k``).

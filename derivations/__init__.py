@@ -1,9 +1,9 @@
-"""Symbolic derivations (SymPy only) behind :mod:`analysis`.
+"""Symbolic derivations (SymPy only) behind :mod:`strapdown.analysis`.
 
-This package never imports :mod:`analysis`; the dependency runs the other way.
+This package never imports :mod:`strapdown.analysis`; the dependency runs the other way.
 The conventions (quaternion order, frames E and I, rotation vectors, dual
 numbers, local errors exact minus algorithm) are those stated in the
-:mod:`analysis` package docstring.
+:mod:`strapdown.analysis` package docstring.
 
 SymPy symbols are module constants, in capitals, listed in the module's
 ``__all__`` and created once (``EPS, THETA = sp.symbols(...)``), so that every

@@ -1,8 +1,8 @@
 """GNSS-aided in-motion alignment: a navigator on a manoeuvring vehicle and the Kalman filter that aligns it.
 
 A strapdown navigator (attitude, NED velocity, latitude, longitude, height)
-runs on the epoch increments (:mod:`.preintegration`) of a vehicle driving a
-:class:`.trajectory.Manoeuvre`, from an initial attitude, velocity and
+runs on the epoch increments (:mod:`~strapdown.analysis.alignment.preintegration`) of a vehicle driving a
+:class:`~strapdown.analysis.alignment.trajectory.Manoeuvre`, from an initial attitude, velocity and
 position with errors drawn from the filter's prior.  Every GNSS epoch its
 velocity and position are compared with the GNSS fixes (the truth plus white
 noise), and a closed-loop error-state filter over

@@ -1,8 +1,8 @@
 """Coarse-to-fine alignment: the Kalman filter starts from the inertial-frame coarse result and its covariance.
 
 The first ``T_c`` seconds of a record go to the inertial-frame alignment
-(:mod:`.inertial`); its attitude at ``T_c`` is where the fine-alignment filter
-(:mod:`.fine`) starts on the rest of the record, and the filter's prior is the
+(:mod:`~strapdown.analysis.alignment.inertial`); its attitude at ``T_c`` is where the fine-alignment filter
+(:mod:`~strapdown.analysis.alignment.fine`) starts on the rest of the record, and the filter's prior is the
 coarse result's own error covariance, not a draw from an assumed prior.
 
 That covariance (:class:`CoarseModel`) has two parts.  To first order the
@@ -10,7 +10,7 @@ coarse attitude error is ``φ_c = G b + n``: a linear response G to the sensor
 biases (NED-resolved, as the filter's bias states), which the fine filter must
 know as a correlation between its attitude and bias states, because the
 azimuth error the coarse stage leaves *is* the east gyro bias over
-``Ω cos φ`` (the unobservable direction, :mod:`.observability`); and a part n
+``Ω cos φ`` (the unobservable direction, :mod:`~strapdown.analysis.alignment.observability`); and a part n
 from everything else (white noise, quantisation, rocking).  G is computed by
 central differences of the coarse method on a noise-free record (it is linear
 to the order kept); the covariance of n is measured on calibration trials of

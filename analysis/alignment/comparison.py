@@ -5,22 +5,22 @@ of the comparison runs on that same record (common random numbers), so their
 differences are not sampling noise.  The methods:
 
 ``analytic``
-    formula (2) with the averaged outputs (:mod:`.analytic`);
+    formula (2) with the averaged outputs (:mod:`~strapdown.analysis.alignment.analytic`);
 ``inertial``
-    inertial-frame alignment over the whole record (:mod:`.inertial`);
+    inertial-frame alignment over the whole record (:mod:`~strapdown.analysis.alignment.inertial`);
 ``kalman``
-    the fine-alignment filter from an attitude drawn from its prior (:mod:`.fine`);
+    the fine-alignment filter from an attitude drawn from its prior (:mod:`~strapdown.analysis.alignment.fine`);
 ``coarse-to-fine``
     the inertial-frame alignment on the first T_c seconds, then the filter
-    from its result and covariance (:mod:`.coarse_to_fine`);
+    from its result and covariance (:mod:`~strapdown.analysis.alignment.coarse_to_fine`);
 ``compass``
-    the compass loop (:mod:`.compass_loop`) from the same coarse result.
+    the compass loop (:mod:`~strapdown.analysis.alignment.compass_loop`) from the same coarse result.
 
 Every self-alignment method ends, given time, on the *bias floor* of its
 trial: the azimuth error ``−ε_E/(Ω cos φ) + tan φ ∇_E/g`` of the trial's own
 biases at the stable attitude (:func:`trial_floors`, the gains of
 :func:`strapdown.analysis.alignment.theory.analytic_gain_values`), which no
-measurement at rest can remove (:mod:`.observability`).  The comparison reports
+measurement at rest can remove (:mod:`~strapdown.analysis.alignment.observability`).  The comparison reports
 each method's azimuth error, its residual over the floor (whose mean is zero
 when the floor is reached) and, for the two filters, the NEES and NIS against
 their χ² bands.  Trials run in blocks through

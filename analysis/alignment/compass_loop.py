@@ -21,7 +21,7 @@ Each loop has the characteristic polynomial ``(s + ω)(s² + 2ζω s + ω²)``
 (``k1 = ω(1 + 2ζ)``, ``k2 = ω²(1 + 2ζ)``, ``k3 = ω³``), with its own bandwidth ω
 and damping ζ (:class:`CompassLoopDesign`); the vertical velocity is damped at
 the levelling k1.  The navigator runs on epoch increments
-(:mod:`.preintegration`), one step per epoch vectorised over trials.
+(:mod:`~strapdown.analysis.alignment.preintegration`), one step per epoch vectorised over trials.
 
 :func:`compass_loop_system` is the linear closed loop as a python-control state
 space, and :func:`compass_loop_theory` its response to the fixed biases and

@@ -6,7 +6,7 @@ the axes in the proportions ``pattern`` = (yaw, β, γ)) for which
 
 * the rms azimuth error stays within the budget, and
 * the azimuth error stays within the budget with probability ``level``
-  (a percentile of |error|).
+  (a percentile of ``|error|``).
 
 To first order the rocking term is linear in ``a`` and independent of the
 sensor errors, ``e(a) = e_0 + a u``:
@@ -332,11 +332,11 @@ def _amplitude_interval(errors_at, a, lo, hi, cap):
 
 
 def _analytic_percentile(th, budget, level, cap, rocking):
-    """Largest a whose first-order |error| percentile is within the budget (rocking term linear in a).
+    """Largest a whose first-order ``|error|`` percentile is within the budget (rocking term linear in a).
 
     With a Gaussian part the percentile reaches the budget where
     ``P(|e| ≤ budget)`` falls to the level: one probability per step of the
-    root search in a (:func:`.error_distribution.abs_error_probability`), not a
+    root search in a (:func:`~strapdown.analysis.gyrocompass.error_distribution.abs_error_probability`), not a
     percentile (itself a root search); without one, the percentile of the
     phase grid.
     """

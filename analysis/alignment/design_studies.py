@@ -583,7 +583,7 @@ class LargeHeadingStudy:
     unscented : ndarray
         ``(n, K)`` the unscented filter's heading error then [rad].
     error_state : ndarray
-        ``(n, K)`` the error-state filter's (:mod:`.fine`) [rad].
+        ``(n, K)`` the error-state filter's (:mod:`~strapdown.analysis.alignment.fine`) [rad].
     unscented_sigma, error_state_sigma : ndarray
         ``(K,)`` their own azimuth σ then (trial 0's for the unscented filter) [rad].
     """

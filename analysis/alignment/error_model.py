@@ -13,7 +13,7 @@ gyro biases           resolved in NED (ε_N, ε_E, ε_D: constant while the atti
                       body axes (ε_x, ε_y, ε_z: constant while the block turns) [rad/s]
 accelerometer biases  ∇_N, ∇_E, ∇_D or ∇_x, ∇_y, ∇_z [m/s²]
 rocking (optional)    angle and rate of the shaping filter of each rocking axis (the rocking
-                      the filter of :mod:`.fine` assumes) [rad, rad/s]
+                      the filter of :mod:`~strapdown.analysis.alignment.fine` assumes) [rad, rad/s]
 ====================  =====================================================================
 
 with the dynamics (Savage 2007, ch. 12; Groves 2013, sec. 14.2)
@@ -25,7 +25,7 @@ with the dynamics (Savage 2007, ch. 12; Groves 2013, sec. 14.2)
 where ``ω_in = ω_ie + ω_en``, ``C = C_b^n`` for body-axis biases (the identity
 for NED biases) and ``M δv = (δv_E, −δv_N, −δv_E tan φ)/R`` the error of the
 transport rate (only with ``transport=True``, the in-motion model; the
-stationary model of :mod:`.fine` omits it, as it omits the Schuler coupling).
+stationary model of :mod:`~strapdown.analysis.alignment.fine` omits it, as it omits the Schuler coupling).
 The measurements are the velocity (zero velocity at rest, or a GNSS velocity)
 and, with the position block, the position.
 
@@ -37,7 +37,7 @@ moving vehicle at one instant.
 Each state also has an *equivalent-angle scale*: the error of that state that
 acts like an attitude error of one radian (a gyro bias of Ω, an accelerometer
 bias of g, a velocity error of g/Ω, a position error of g/Ω², a rocking rate of
-ω0); :mod:`.observability` compares states in these units.
+ω0); :mod:`~strapdown.analysis.alignment.observability` compares states in these units.
 
 References
 ----------

@@ -476,7 +476,7 @@ def epoch_record(record: ImuRecord, samples_per_epoch: int, *, truth: str = "epo
 
 
 def draw_epoch_record(scenario: Scenario, errors: SensorErrors | None, *, n_trials: int, rng=None, chunk: int = 32) -> tuple:
-    """The random numbers of :func:`simulate_epoch_record`: one :class:`.imu.ImuDraws` per chunk of trials.
+    """The random numbers of :func:`simulate_epoch_record`: one :class:`~strapdown.analysis.alignment.imu.ImuDraws` per chunk of trials.
 
     Parameters
     ----------
@@ -624,10 +624,10 @@ def fine_alignment(
         all it needs (``epoch_record(..., truth="ends")``).
     compiled : bool or None, keyword-only
         Run the epochs of all trials in one compiled loop
-        (:func:`.alignment_kernels.fine_alignment_loop`) or in the numpy loop
+        (:func:`~strapdown.analysis.alignment.kernels.fine_alignment_loop`) or in the numpy loop
         over epochs vectorised over trials, kept as the reference (equal to
         round-off); None (default): the loop when it pays off
-        (:func:`.alignment_kernels.use_compiled`; an epoch of the filter counts
+        (:func:`~strapdown.analysis.alignment.kernels.use_compiled`; an epoch of the filter counts
         as 30 samples).
     initial_attitude : array_like, optional, keyword-only
         ``(n, 3, 3)`` attitudes ``C̃_b^n`` the navigator starts from (a coarse
@@ -714,7 +714,7 @@ def fine_alignment(
 
 
 def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever_arm_known, Fdd, H, gains, Pinv, Sinv):
-    """The numpy reference of :func:`.alignment_kernels.fine_alignment_loop` (same arguments): one step per epoch, vectorised over trials."""
+    """The numpy reference of :func:`~strapdown.analysis.alignment.kernels.fine_alignment_loop` (same arguments): one step per epoch, vectorised over trials."""
     n, E = dR.shape[0], dR.shape[1]
     dim, shaping = H.shape[1], Fdd.shape[0] > 0
     eps, acc = np.zeros((n, 3)), np.zeros((n, 3))

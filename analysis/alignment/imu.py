@@ -126,7 +126,7 @@ class Scenario:
     Parameters
     ----------
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     heading : float
         Stable heading ψ0 [rad].
     beta0, gamma0 : float
@@ -259,9 +259,9 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     motion : MotionRealisation
         The rocking of n trials (:meth:`strapdown.analysis.alignment.base_motion.SineMotion.draw` and kin).
     compiled : bool or None, keyword-only
-        Fused compiled loop (:mod:`.kernels`) or the numpy form,
+        Fused compiled loop (:mod:`~strapdown.analysis.alignment.kernels`) or the numpy form,
         kept as the reference (equal to round-off); None (default): the loop
-        when it pays off (:func:`.alignment_kernels.use_compiled`).
+        when it pays off (:func:`~strapdown.analysis.alignment.kernels.use_compiled`).
 
     Returns
     -------

@@ -4,14 +4,14 @@ The hot paths of the self-alignment Monte Carlo are a few dozen flops per
 sample or epoch, which numpy spreads over dozens of small array operations:
 
 * :func:`accumulate_ideal_increments` adds one Gauss node's share of the ideal
-  gyro and accelerometer increments (the rates of :mod:`.imu`: attitude,
+  gyro and accelerometer increments (the rates of :mod:`~strapdown.analysis.alignment.imu`: attitude,
   body rate, Earth rate in body axes, gravity, lever-arm terms), fused in one
   loop over trials and samples;
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
-  (the coning- and sculling-compensated sums of :mod:`.preintegration`), and
+  (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
-  :mod:`.fine` over the epochs of every trial, with gains computed
+  :mod:`~strapdown.analysis.alignment.fine` over the epochs of every trial, with gains computed
   before (by filterpy), and scores it against the truth (NEES, NIS).
 
 They are compiled with numba on first use (the machine code is cached on disk,
@@ -20,7 +20,7 @@ cached code still costs about half a second per process, more than a small
 run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
-forms stay in :mod:`.imu`, :mod:`.preintegration` and :mod:`.fine` as
+forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration` and :mod:`~strapdown.analysis.alignment.fine` as
 the references the tests compare these loops against (equal to round-off).
 """
 
@@ -533,7 +533,7 @@ def fine_alignment_loop(
     C0, v0, dR, velocity, moment, noise, end_rate, C_true, v_true, eps_true, acc_true, rock_true,
     earth_turn, earth_rate_skew, gravity, epoch, lever_arm, lever_arm_known, F_rocking, H, gains, posterior_inv, innovation_inv,
 ):  # fmt: skip
-    """The epoch loop of the fine-alignment filter for every trial (the loop of :func:`.fine_alignment.fine_alignment`).
+    """The epoch loop of the fine-alignment filter for every trial (the loop of :func:`~strapdown.analysis.alignment.fine.fine_alignment`).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """Observability of the alignment error states: the rank, the unobservable directions in words, the degree.
 
-A *problem* is a linear error model (:mod:`.error_model`) that may change at
+A *problem* is a linear error model (:mod:`~strapdown.analysis.alignment.error_model`) that may change at
 given instants (a block turned on a table into several positions), with the
 prior, the measurement noise and the epoch of the filter that would estimate
 it.  :func:`observability` answers three questions about it:

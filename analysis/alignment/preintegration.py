@@ -82,10 +82,10 @@ def preintegrate(dtheta, dv, dt: float, samples_per_epoch: int, *, compiled: boo
     samples_per_epoch : int
         M, at least 1.
     compiled : bool or None, keyword-only
-        One compiled loop over trials and samples (:mod:`.kernels`)
+        One compiled loop over trials and samples (:mod:`~strapdown.analysis.alignment.kernels`)
         or the numpy form vectorised over trials and epochs, kept as the
         reference (equal to round-off); None (default): the loop when it pays
-        off (:func:`.alignment_kernels.use_compiled`).
+        off (:func:`~strapdown.analysis.alignment.kernels.use_compiled`).
 
     Returns
     -------
@@ -135,9 +135,9 @@ def chain_rotations(start, rotations, *, compiled: bool | None = None) -> np.nda
     rotations : ndarray
         ``(n, E, 4)`` epoch rotations.
     compiled : bool or None, keyword-only
-        One compiled loop (:mod:`.kernels`) or the numpy loop over
+        One compiled loop (:mod:`~strapdown.analysis.alignment.kernels`) or the numpy loop over
         epochs, kept as the reference (equal to round-off); None (default):
-        the loop when it pays off (:func:`.alignment_kernels.use_compiled`).
+        the loop when it pays off (:func:`~strapdown.analysis.alignment.kernels.use_compiled`).
 
     Returns
     -------

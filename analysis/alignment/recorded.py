@@ -22,10 +22,10 @@ methods); ``description``.  Rates are turned into increments as rate × interval
 
 :func:`align_log` runs a method on a log once (no Monte Carlo): ``analytic``,
 ``inertial``, ``kalman`` (the inertial-frame coarse stage, then the filter
-from its result and covariance, :mod:`.coarse_to_fine`) or ``compass``.
+from its result and covariance, :mod:`~strapdown.analysis.alignment.coarse_to_fine`) or ``compass``.
 :func:`recorded_problem` finds the positions of the log's motion (turns larger
 than a threshold between still stretches) and builds the multi-position
-observability problem of :mod:`.observability`.
+observability problem of :mod:`~strapdown.analysis.alignment.observability`.
 
 Public API
 ----------

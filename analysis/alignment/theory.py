@@ -243,7 +243,7 @@ def _norm(x) -> float:
 
 
 def quantisation_variance(total, spread, quantum) -> np.ndarray:
-    """Variance of the quantisation error of a telescoped sum [same units as ``quantum``²].
+    """Variance of the quantisation error of a telescoped sum [unit of ``quantum`` squared].
 
     Parameters
     ----------

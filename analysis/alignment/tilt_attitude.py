@@ -76,7 +76,7 @@ def attitude_matrix(angles) -> np.ndarray:
 
 
 def angles_from_matrix(C) -> TiltAngles:
-    """Heading and tilts of ``C_b^n`` (inverse of :func:`attitude_matrix` for |β| < π/2).
+    """Heading and tilts of ``C_b^n`` (inverse of :func:`attitude_matrix` for ``|β|`` < π/2).
 
     Parameters
     ----------

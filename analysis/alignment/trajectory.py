@@ -18,9 +18,9 @@ sensors measure
     ω_ib^b = C_n^b (ω_ie^n + ω_en^n) + ψ' e_z,
     f^b = C_n^b (v̇^n + (2ω_ie^n + ω_en^n) × v^n − g^n),
 
-``C_b^n = R_z(ψ)``, g^n the normal gravity of :mod:`.earth` (with its
+``C_b^n = R_z(ψ)``, g^n the normal gravity of :mod:`~strapdown.analysis.alignment.earth` (with its
 free-air decrease with height).  The increments over each sample interval are
-the two-point Gauss–Legendre quadrature of these rates, as in :mod:`.imu`.
+the two-point Gauss–Legendre quadrature of these rates, as in :mod:`~strapdown.analysis.alignment.imu`.
 
 The peak horizontal acceleration of the weave, ``s · A · 2π/P``, measures the
 manoeuvre (:attr:`Manoeuvre.lateral_acceleration`).

@@ -1,13 +1,13 @@
 """Alignment from a large initial heading error: filterpy's unscented Kalman filter on the whole navigation state.
 
-The error-state filter of :mod:`.fine` linearises the attitude error (``sin φ_D ≈
+The error-state filter of :mod:`~strapdown.analysis.alignment.fine` linearises the attitude error (``sin φ_D ≈
 φ_D``); from a heading error of tens of degrees the linearisation is wrong and
 the filter can settle far from the truth.  Here the state is the navigation
 state itself,
 
     x = (ψ, β, γ, v_N, v_E, v_D, ε_x, ε_y, ε_z, ∇_x, ∇_y, ∇_z),
 
-the attitude in the angles of :mod:`.tilt_attitude` (ψ any angle; the
+the attitude in the angles of :mod:`~strapdown.analysis.alignment.tilt_attitude` (ψ any angle; the
 biases in body axes, stored in units of their prior standard deviations so
 that the covariance stays well conditioned), propagated through the strapdown
 equations of the epoch increments for every sigma point, and the zero velocity
@@ -19,7 +19,7 @@ One filter per trial (filterpy runs one state at a time), at a coarse epoch
 (the Earth rate reveals the heading over tens of seconds).
 
 What the comparison in ``reports/alignment-design.md`` finds: from a small
-heading error this filter and the error-state filter of :mod:`.fine` have the
+heading error this filter and the error-state filter of :mod:`~strapdown.analysis.alignment.fine` have the
 same covariance (the same information); from tens of degrees both converge,
 but the closed-loop error-state filter, whose gains are those of its large
 prior for longer, converges faster — its closed loop re-centres the error at

@@ -1,5 +1,8 @@
+"""``python -m strapdown.analysis.cli``: the ``strapdown`` command line."""
+
 import sys
 
 from . import main
 
-sys.exit(main())
+if __name__ == "__main__":  # importing the module (documentation tools do) runs nothing
+    sys.exit(main())

@@ -60,7 +60,7 @@ def _amplitude(text, flag: str, rocking: str, b0: float, g0: float):
     """A rocking amplitude typed in degrees (one value or yaw,beta,gamma), >= 0.
 
     The peak (the amplitude of sine rocking, 4 sigma of the random models) stays
-    below 90 - |tilt0| degrees in the tilts and below 180 degrees in yaw.
+    below 90 - ``|tilt0|`` degrees in the tilts and below 180 degrees in yaw.
     """
     import numpy as np
 

@@ -13,7 +13,7 @@ Two rules close the model, both stated here and both parameters of
 
 * **Series length.**  Truncating the half-angle series after K terms changes
   the rotation angle of a step by ``δθ_K ≈ 4K (φ/2)^(2K+1) / (2K+1)!``
-  (:func:`truncation_error`), φ = |Δφ| ≈ |ω| H the angle turned in a step.
+  (:func:`truncation_error`), φ = ``|Δφ|`` ≈ ``|ω|`` H the angle turned in a step.
   K is the smallest number of terms whose error, spread over the step,
   stays below a fraction f of the drift budget: ``δθ_K / H ≤ f [u]``
   (:func:`series_terms`; f = 0.1 by default, the order-of-magnitude margin the
@@ -303,14 +303,14 @@ def truncation_error(angle, terms):
     Parameters
     ----------
     angle : float or array_like
-        φ = |Δφ| [rad], ≥ 0.
+        φ = ``|Δφ|`` [rad], ≥ 0.
     terms : int
         K ≥ 1.
 
     Returns
     -------
     float or ndarray
-        |δθ_K| [rad].
+        ``|δθ_K|`` [rad].
 
     Examples
     --------
@@ -504,7 +504,7 @@ class DesignRow:
     sample_rate : float
         Gyro sampling rate N / H [Hz].
     angle : float
-        φ = |ω| H, the angle turned in a step [rad].
+        φ = ``|ω|`` H, the angle turned in a step [rad].
     series_terms : int
         K, terms of each half-angle series (0 when a fixed quaternion cost was given).
     algorithm_cost : float
@@ -546,7 +546,7 @@ def step_load(algorithm, step: float, required_drift: float, motion: RegularPrec
     required_drift : float
         [u] [rad/s], > 0 (sets the series length).
     motion : RegularPrecession
-        The motion (4.1) (sets the angle per step, φ = |ω| H).
+        The motion (4.1) (sets the angle per step, φ = ``|ω|`` H).
     order : int, keyword-only, optional
         ρ to report; default the order of the drift at the motion.
     model : LoadModel, keyword-only, optional

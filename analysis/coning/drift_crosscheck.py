@@ -4,7 +4,7 @@ For each algorithm and motion, the ratio u*/u_a of the parallel computation
 (:func:`strapdown.analysis.coning.simulator.simulate`) to the leading term of
 the drift series (:func:`strapdown.analysis.coning.drift_theory.asymptotic_drift`)
 tends to 1 as H → 0; the next drift term is two weights higher, so
-|u*/u_a − 1| falls by about 4 per halving of H.
+``|u*/u_a − 1|`` falls by about 4 per halving of H.
 
 References
 ----------
@@ -52,11 +52,11 @@ class DriftRatios(NamedTuple):
 
     @property
     def deviations(self) -> np.ndarray:
-        """|u*/u_a − 1| at each step."""
+        """``|u*/u_a − 1|`` at each step."""
         return np.abs(self.ratios - 1)
 
 
-def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 8.0, algorithms=None) -> tuple:
+def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 8.0, algorithms=None, engine: str = "auto") -> tuple:
     """u*/u_a for every algorithm and motion over a grid of steps.
 
     Parameters
@@ -69,6 +69,10 @@ def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 
         Length of each simulated run [s].
     algorithms : sequence of str or Algorithm, keyword-only, optional
         Default: the whole registry.
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -90,7 +94,7 @@ def drift_ratios(motions, *, steps=(0.04, 0.02, 0.01, 0.005), duration: float = 
         for alg in algs:
             ratios = []
             for H in big_h:
-                r = simulate(alg, motion, H / alg.samples, duration)
+                r = simulate(alg, motion, H / alg.samples, duration, engine=engine)
                 ua = float(asymptotic_drift(alg, eps=motion.eps, nu=motion.nu, nutation=motion.nutation, step=H))
                 ratios.append(float(np.linalg.norm(r.drift)) / ua)
             out.append(DriftRatios(alg.name, motion.eps, int(asymptotic_order(alg, motion.eps, motion.nutation)), big_h, np.array(ratios)))

@@ -130,7 +130,7 @@ def _check_run(algorithm: Algorithm, steps: float, periods, x: float, limits) ->
 
 
 def simulator_check(
-    algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, limits: budget.Limits | None = None
+    algorithm: Algorithm, omega_h: float, *, cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto", limits: budget.Limits | None = None
 ) -> SimulatorCheck:
     """Simulate classical coning and compare the drift along the cone axis with ``α² ω D(ωh)``.
 
@@ -152,6 +152,10 @@ def simulator_check(
         Coning rate ω [rad/s], > 0.
     periods : int, keyword-only
         Length of the run in coning periods 2π/ω (≥ 1).
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
         Largest estimated memory and run time of the simulation (default 2 GB,
         300 s); a request beyond them raises
@@ -187,7 +191,7 @@ def simulator_check(
         return SimulatorCheck(**common, simulated=None, note="drift below the round-off floor of the run")
     motion = RegularPrecession(-1.0, nu, alpha)
     try:
-        run = simulate(algorithm, motion, h, duration, limits=limits)
+        run = simulate(algorithm, motion, h, duration, engine=engine, limits=limits)
     except budget.BudgetExceeded:
         raise
     except ValueError as exc:
@@ -301,7 +305,9 @@ class FrequencyResponse:
         return max((abs(c.relative_difference) for c in self.simulated_checks), default=float("nan"))
 
 
-def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50) -> ConingResponse:
+def coning_response(
+    algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto"
+) -> ConingResponse:
     """The coning drift ``D(ωh)`` of one algorithm, with simulator checks.
 
     Parameters
@@ -312,7 +318,7 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
         x = ωh [rad], > 0.
     check_omega_h : sequence of float, keyword-only
         Points x [rad] of the parallel computation.
-    cone_angle, nu, periods : keyword-only
+    cone_angle, nu, periods, engine : keyword-only
         As in :func:`simulator_check`.
 
     Returns
@@ -329,7 +335,7 @@ def coning_response(algorithm: Algorithm, omega_h, *, check_omega_h=(0.25, 0.5, 
         raise ValueError(f"Expected `omega_h` > 0, got {x[x <= 0].ravel()[0]:g}")
     order, coefficient, q_order, q_coeff = derived(f"coning:leading-coning-terms:v1:{algorithm_key(algorithm)}", lambda: _leading_terms(algorithm))
     values = np.asarray(coning_drift_function(algorithm)(x), dtype=float)
-    checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods) for c in check_omega_h)
+    checks = tuple(simulator_check(algorithm, float(c), cone_angle=cone_angle, nu=nu, periods=periods, engine=engine) for c in check_omega_h)
     return ConingResponse(algorithm, order, coefficient, x, values, checks, q_order, q_coeff)
 
 
@@ -343,7 +349,7 @@ def _leading_terms(algorithm: Algorithm) -> tuple:
 
 
 def coning_frequency_response(
-    algorithms, omega_h=None, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50
+    algorithms, omega_h=None, *, check_omega_h=(0.25, 0.5, 1.0), cone_angle: float = CHECK_CONE_ANGLE, nu: float = 2 * math.pi * 10.0, periods: int = 50, engine: str = "auto"
 ) -> FrequencyResponse:
     """Coning drift against ωh for several algorithms (see :func:`coning_response`).
 
@@ -355,7 +361,7 @@ def coning_frequency_response(
         x = ωh [rad]; default 200 points from 10⁻² to π/2, log-spaced.
     check_omega_h : sequence of float, keyword-only
         Points x [rad] of the parallel computation.
-    cone_angle, nu, periods : keyword-only
+    cone_angle, nu, periods, engine : keyword-only
         As in :func:`simulator_check`.
 
     Returns
@@ -381,7 +387,7 @@ def coning_frequency_response(
         if not isinstance(a, Algorithm):
             raise TypeError(f"Expected `algorithms` to hold Algorithm objects, got {type(a).__name__}")
     x = np.geomspace(1e-2, math.pi / 2, 200) if omega_h is None else as_array(omega_h, "omega_h")
-    responses = tuple(coning_response(a, x, check_omega_h=check_omega_h, cone_angle=cone_angle, nu=nu, periods=periods) for a in algorithms)
+    responses = tuple(coning_response(a, x, check_omega_h=check_omega_h, cone_angle=cone_angle, nu=nu, periods=periods, engine=engine) for a in algorithms)
     return FrequencyResponse(x, responses)
 
 

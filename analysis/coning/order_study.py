@@ -3,10 +3,10 @@
 * :func:`drift_orders`: the constant drift rate of each algorithm against the
   step H on log–log axes; the slope of the least-squares line is the order of
   the drift.
-* :func:`local_error_exponents`: the exponent of the one-step error |δφ|
+* :func:`local_error_exponents`: the exponent of the one-step error ``|δφ|``
   against H on a motion with no symmetry
   (:class:`strapdown.analysis.coning.local_error.TumblingMotion`): an algorithm
-  of order ρ gives ρ + 1.  Regular precession has |ω| constant, which hides
+  of order ρ gives ρ + 1.  Regular precession has ``|ω|`` constant, which hides
   errors of dot-product terms; the tumbling motion does not
   (:mod:`strapdown.analysis.coning.papers.lebedev_panov_dot_term` uses it on
   the printed sixth-order algorithm (2.2)).
@@ -53,7 +53,7 @@ class DriftOrder(NamedTuple):
     slope: float
 
 
-def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), duration: float = 20.0, algorithms=None) -> tuple:
+def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), duration: float = 20.0, algorithms=None, engine: str = "auto") -> tuple:
     """Drift rate against the step for each algorithm under ``motion``, with the fitted order.
 
     Parameters
@@ -66,6 +66,10 @@ def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), d
         Length of each run [s].
     algorithms : sequence of str or Algorithm, keyword-only, optional
         Default: the whole registry.
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -83,7 +87,7 @@ def drift_orders(motion: RegularPrecession, *, steps=(0.16, 0.08, 0.04, 0.02), d
     big_h = np.array([positive(H, "steps") for H in steps])
     out = []
     for alg in (get(a) if isinstance(a, str) else a for a in (algorithms if algorithms is not None else names())):
-        drifts = np.array([float(np.linalg.norm(simulate(alg, motion, H / alg.samples, duration).drift, axis=-1)) for H in big_h])
+        drifts = np.array([float(np.linalg.norm(simulate(alg, motion, H / alg.samples, duration, engine=engine).drift, axis=-1)) for H in big_h])
         out.append(DriftOrder(alg.name, big_h, drifts, float(np.polyfit(np.log(big_h), np.log(drifts), 1)[0])))
     return tuple(out)
 
@@ -96,7 +100,7 @@ class LocalErrorExponents(NamedTuple):
     algorithm : str
         Algorithm name.
     exponents : tuple of float
-        Slope of log |δφ| against log H at each instant (ρ + 1 for order ρ).
+        Slope of log ``|δφ|`` against log H at each instant (ρ + 1 for order ρ).
     """
 
     algorithm: str
@@ -114,7 +118,7 @@ class LocalErrorExponents(NamedTuple):
 
 
 def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None = None, times=(0.3, 1.1, 2.4), steps=(0.2, 0.1, 0.05)) -> LocalErrorExponents:
-    """Exponent of the one-step error |δφ| against H, at each of ``times``.
+    """Exponent of the one-step error ``|δφ|`` against H, at each of ``times``.
 
     Parameters
     ----------

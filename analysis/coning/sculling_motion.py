@@ -325,7 +325,7 @@ class ScullingMotion:
 
 
 def _bessel_terms(x: float) -> int:
-    """Highest Bessel order needed so that J_n(x) is below 1e-18 · max(|J_0|, |J_1|)."""
+    """Highest Bessel order needed so that J_n(x) is below 1e-18 · max(``|J_0|``, ``|J_1|``)."""
     ref = max(abs(float(jv(0, x))), abs(float(jv(1, x))), 1e-300)
     n = 1
     while n < 10 or abs(float(jv(n, x))) > 1e-18 * ref or n < abs(x):

@@ -174,7 +174,7 @@ def identity(shape=()):
 
     Returns
     -------
-    ndarray, shape (*shape, 4)
+    ndarray, shape ``(*shape, 4)``
         ``(1, 0, 0, 0)`` everywhere.
     """
     q = np.zeros(tuple(np.atleast_1d(shape)) + (4,) if shape != () else (4,))

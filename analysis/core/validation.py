@@ -316,7 +316,7 @@ def as_vector(x, name: str) -> np.ndarray:
 
 
 def as_quaternion(q, name: str, *, unit: bool = False, atol: float = 1e-9) -> np.ndarray:
-    """Return ``q`` as a finite ``(..., 4)`` float array; with ``unit``, require |q| = 1.
+    """Return ``q`` as a finite ``(..., 4)`` float array; with ``unit``, require ``|q|`` = 1.
 
     Parameters
     ----------

@@ -27,7 +27,7 @@ sample mean keeps the variance ``v(f, T) Dξ``:
 
 Criteria.  The rms of Δ (second-order theory of
 :mod:`strapdown.derivations.gyrocompass.azimuth_error`, with ``Dξ → v Dξ``;
-its first-order value in closed form), and percentiles of |Δ| to first order
+its first-order value in closed form), and percentiles of ``|Δ|`` to first order
 (:mod:`strapdown.analysis.gyrocompass.error_distribution`: arcsine residues
 for the sine, Gaussian for narrow-band rocking).
 """
@@ -162,7 +162,7 @@ def admissible_amplitude(
     budget : float
         Azimuth error budget δmax [rad], > 0 (on the rms, and on the percentile).
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     averaging_time : float
         Averaging time T of the estimates (16) [s].
     frequencies : array_like
@@ -190,7 +190,7 @@ def admissible_amplitude(
     ------
     ValueError
         For a non-positive budget, time, rate or frequency, a frequency at or
-        above the Nyquist frequency, |latitude| ≥ 90°, or an unknown rocking model.
+        above the Nyquist frequency, ``|latitude|`` ≥ 90°, or an unknown rocking model.
 
     References
     ----------

@@ -55,7 +55,7 @@ __all__ = [
 
 
 def check_latitude(latitude) -> float:
-    """Return ``latitude`` [rad] if |φ| < π/2, else raise ValueError naming it.
+    """Return ``latitude`` [rad] if ``|φ|`` < π/2, else raise ValueError naming it.
 
     Parameters
     ----------
@@ -69,7 +69,7 @@ def check_latitude(latitude) -> float:
     Raises
     ------
     ValueError
-        If |latitude| ≥ π/2 or it is not finite.
+        If ``|latitude|`` ≥ π/2 or it is not finite.
     """
     return in_open_interval(latitude, "latitude", -math.pi / 2, math.pi / 2, text="(-π/2, π/2) rad, i.e. |latitude| < 90°")
 
@@ -80,7 +80,7 @@ _QUARTER_PI = 0.25 * math.pi
 def _cos_from_sin(angle, sine):
     """``cos(angle)`` as ``√(1 − sin²)`` (one transcendental call instead of two on the hot path).
 
-    Used for |angle| ≤ π/4, where the cosine is at least 1/√2 and the square
+    Used for ``|angle|`` ≤ π/4, where the cosine is at least 1/√2 and the square
     root adds no cancellation (error ≤ 2 ulp); larger tilts, rare under
     rocking, fall back to ``np.cos``.
     """
@@ -168,7 +168,7 @@ def tilt_correction(beta, gamma, latitude):
     gamma : array_like
         Tilt γ [rad].
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
 
     Returns
     -------
@@ -302,7 +302,7 @@ def bound14(latitude, beta0, gamma0, sigma_xi, sigma_eta) -> float:
     Raises
     ------
     ValueError
-        For |latitude| ≥ π/2, a negative sigma or non-finite input.
+        For ``|latitude|`` ≥ π/2, a negative sigma or non-finite input.
 
     References
     ----------
@@ -392,7 +392,7 @@ def second_order_theory(latitude, beta0, gamma0, sigma_xi, sigma_eta, *, kappa_x
     Raises
     ------
     ValueError
-        For |latitude| ≥ π/2, a negative sigma or non-finite input.
+        For ``|latitude|`` ≥ π/2, a negative sigma or non-finite input.
 
     >>> t = second_order_theory(math.radians(45), 0.0, 0.0, 0.01, 0.0)
     >>> round(t.rms_first_order, 12), t.bias
@@ -834,7 +834,7 @@ def azimuth_monte_carlo(
     Parameters
     ----------
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     beta0, gamma0 : float
         Stable tilts [rad].
     rocking : rocking model
@@ -873,7 +873,7 @@ def azimuth_monte_carlo(
     Raises
     ------
     ValueError
-        For |latitude| ≥ 90°, negative sigmas, ``n_samples < 2``, a negative
+        For ``|latitude|`` ≥ 90°, negative sigmas, ``n_samples < 2``, a negative
         ``control_degree``, too small a pilot, non-finite input, or a run whose
         estimate exceeds ``limits`` (naming ``n_samples``).
 
@@ -967,7 +967,7 @@ def far_rocking_probability(latitude, beta0, gamma0, rocking) -> float:
     Parameters
     ----------
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     beta0, gamma0 : float
         Stable tilts [rad].
     rocking : GaussianRocking | SineRocking | NarrowbandRocking

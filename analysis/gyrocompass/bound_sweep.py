@@ -58,7 +58,7 @@ class SweepCase:
     Parameters
     ----------
     latitude : float
-        Latitude φ [rad], |φ| < π/2.
+        Latitude φ [rad], ``|φ|`` < π/2.
     sigma : float
         Standard deviation of ξ and of η [rad], ≥ 0.
     model : str

@@ -134,7 +134,7 @@ class GaussianRocking:
     name = "normal"
     #: fourth moment over the squared variance, E ξ⁴ / (E ξ²)²
     kappa = 3.0
-    #: peak excursion in standard deviations used by the tilt-domain check (P(|ξ| > 4σ) = 6e-5)
+    #: peak excursion in standard deviations used by the tilt-domain check (``P(|ξ| > 4σ) = 6e-5``)
     peak_factor = 4.0
 
     def __post_init__(self):

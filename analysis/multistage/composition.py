@@ -68,9 +68,9 @@ class CompositeIdentity:
     max_difference : float
         Largest ``|P − P_gyro|`` over the run (components of unit quaternions).
     stage1_yaw_peak : float
-        Peak |Δψ| of stage 1 alone [rad] (to show that stage 1 did act).
+        Peak ``|Δψ|`` of stage 1 alone [rad] (to show that stage 1 did act).
     composite_yaw_peak : float
-        Peak |Δψ| of the composite [rad].
+        Peak ``|Δψ|`` of the composite [rad].
     """
 
     max_difference: float
@@ -126,9 +126,9 @@ class YawReading:
     two_stage_yaw : ndarray
         Δψ after two stages at ``times`` [rad].
     stage1_peak : float
-        Peak |Δψ| after stage 1 over the run [rad].
+        Peak ``|Δψ|`` after stage 1 over the run [rad].
     two_stage_peak : float
-        Peak |Δψ| after two stages over the run [rad].
+        Peak ``|Δψ|`` after two stages over the run [rad].
     true_yaw_end : float
         True yaw relative to η at the end of the run [rad].
     series_time : ndarray

@@ -121,7 +121,7 @@ def _strict_build():
 
 
 def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
-    """Guaranteed decay rate of |x| for any body rate with ``|ω(t)| ≤ ϖ``.
+    """Guaranteed decay rate of ``|x|`` for any body rate with ``|ω(t)| ≤ ϖ``.
 
     With ``W = V + εz·y`` and ``ξ = (|z|, |y|)``: ``−W' ≥ ξᵀMξ`` and
     ``W ≤ ξᵀP₊ξ``.  If ``P₋ > 0`` (so W is positive definite) and γ is the
@@ -136,7 +136,7 @@ def strict_rate_bound(k, l, omega_max, *, samples: int = 400) -> tuple:
     l : float
         Integral gain [1/s²], > 0.
     omega_max : float
-        Bound ϖ on |ω| [rad/s], >= 0.
+        Bound ϖ on ``|ω|`` [rad/s], >= 0.
     samples : int
         Grid size for ε.
 

@@ -102,7 +102,7 @@ def check_printed_formulas(*, samples: int = 500, small_angle: float = 1e-3, rng
     Parameters
     ----------
     samples : int
-        Number of random attitudes (ψ = 0, |θ|, |γ| ≤ 0.6 rad) and of small rotations.
+        Number of random attitudes (ψ = 0, ``|θ|``, ``|γ|`` ≤ 0.6 rad) and of small rotations.
     small_angle : float
         Bound of the small error angles (α, β, χ) of the (3.7) check [rad].
     rng : numpy.random.Generator, int, SeedSequence or None

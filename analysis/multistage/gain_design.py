@@ -333,7 +333,7 @@ class SchulerErrorBudget:
         return np.stack([d2 * tau, pitch + 0.0 * tau, roll + 0.0 * tau], axis=-1)
 
     def peaks(self, until: float) -> StagePeaks:
-        """Peak |errors| over ``[start, until]`` (dense evaluation of the closed form).
+        """Peak ``|errors|`` over ``[start, until]`` (dense evaluation of the closed form).
 
         Parameters
         ----------
@@ -450,9 +450,9 @@ class BudgetCheck:
     predicted : ndarray, shape (N, 3)
         Closed form [rad].
     max_difference : float
-        Largest |simulated − predicted| [rad].
+        Largest ``|simulated − predicted|`` [rad].
     scale : float
-        Largest |predicted| [rad].
+        Largest ``|predicted|`` [rad].
     """
 
     time: np.ndarray
@@ -606,7 +606,7 @@ class DesignCheck:
     predicted : ndarray
         ``e0`` × the step response of ``H_g = s²/(s² + Ks + L)`` (python-control) [rad].
     max_difference : float
-        Largest |simulated − predicted| [rad].
+        Largest ``|simulated − predicted|`` [rad].
     """
 
     gains: StageGains

@@ -580,7 +580,7 @@ def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, 
     Returns
     -------
     peaks : ndarray, shape (m, 4)
-        Largest |Δψ|, |Δθ|, |Δγ| and √(Δθ² + Δγ²) after 1, …, m stages [rad].
+        Largest ``|Δψ|``, ``|Δθ|``, ``|Δγ|`` and √(Δθ² + Δγ²) after 1, …, m stages [rad].
     nus, composite : ndarray, shape (m, N+1, 4)
         Normalised stage estimates and composites (shape (m, 0, 4) without ``store``).
     errors : ndarray, shape (m, N+1, 3)

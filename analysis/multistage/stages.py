@@ -1,13 +1,13 @@
 """Corrected multistage quaternion attitude equations of Plotnikov (1999).
 
-Stage 1, eqs. (1.5)–(1.6):
+Stage 1, eqs. (1.5)–(1.6)::
 
     2ν' = ν∘ω_x + μ⁺∘(ω_μ − ω_x) + k (μ⁺ − cν) + l ∫(μ⁺ − cν) dτ + ρ(1 − |ν|²) ν.
 
 Stages 2, 3, … (2.1)–(2.4) have the same form without the kinematic term; the
 input of stage j+1 is the frame η^(j) modelled by stage j: its absolute rate
 ``ω_η(j) = ν_j∘(ω − ω^(j))∘ν̄_j`` and the specific force re-projected on it,
-``μ_j⁺ = ν_j∘μ⁺∘ν̄_j``.  The attitude after m stages is the product (2.6)
+``μ_j⁺ = ν_j∘μ⁺∘ν̄_j``.  The attitude after m stages is the product (2.6)::
 
     ν⁺ = ν_{m−1} ∘ … ∘ ν_1 ∘ ν.
 
@@ -365,7 +365,7 @@ class StagePeaks(NamedTuple):
     Attributes
     ----------
     yaw, pitch, roll : float
-        Peaks of |Δψ|, |Δθ|, |Δγ|.
+        Peaks of ``|Δψ|``, ``|Δθ|``, ``|Δγ|``.
     tilt : float
         Peak of √(Δθ² + Δγ²).
     """
@@ -430,7 +430,7 @@ class MultistageResult:
     truth: np.ndarray
 
     def peak(self, since: float = 0.0, until: float = np.inf) -> np.ndarray:
-        """Largest |error| per stage and angle for ``since <= t <= until``.
+        """Largest ``|error|`` per stage and angle for ``since <= t <= until``.
 
         Parameters
         ----------
@@ -477,7 +477,7 @@ class MultistageResult:
         Returns
         -------
         tuple of StagePeaks
-            Times [s] of the largest |Δψ|, |Δθ|, |Δγ| and tilt (the first, if repeated).
+            Times [s] of the largest ``|Δψ|``, ``|Δθ|``, ``|Δγ|`` and tilt (the first, if repeated).
         """
         sel = np.flatnonzero((self.time >= since) & (self.time <= until))
         t = self.time[sel]
@@ -622,7 +622,7 @@ def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> n
     Returns
     -------
     ndarray, shape (m, 4)
-        Largest |Δψ|, |Δθ|, |Δγ| and √(Δθ² + Δγ²) after 1, …, m stages [rad].
+        Largest ``|Δψ|``, ``|Δθ|``, ``|Δγ|`` and √(Δθ² + Δγ²) after 1, …, m stages [rad].
 
     Raises
     ------

@@ -29,9 +29,9 @@ class ConvergenceStudy:
     steps : tuple of float
         Steps [s], coarse to fine; the last is the reference.
     composite_difference : tuple of float
-        Largest |Δν⁺| (all stages) of each coarser run from the reference.
+        Largest ``|Δν⁺|`` (all stages) of each coarser run from the reference.
     angle_difference : tuple of float
-        Largest |Δ(angle error)| [rad] of each coarser run from the reference.
+        Largest ``|Δ(angle error)|`` [rad] of each coarser run from the reference.
     ratios : tuple of float
         ``composite_difference[i] / composite_difference[i + 1]`` (about 4 for second order).
     """

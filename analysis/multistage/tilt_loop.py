@@ -94,7 +94,7 @@ def classify_poles(poles, *, rtol: float = 1e-9) -> str:
     poles : array_like of complex
         Poles [1/s].
     rtol : float
-        Relative tolerance for "on the imaginary axis" (scaled by the largest |pole|).
+        Relative tolerance for "on the imaginary axis" (scaled by the largest ``|pole|``).
 
     Returns
     -------
@@ -371,7 +371,7 @@ class StageLoop:
         return t, a * (step - shifted)
 
     def peak_tilt_error(self, accel, duration, *, horizon=None, limits: budget.Limits | None = None) -> float:
-        """Largest |tilt error| [rad] of :meth:`pulse_response`.
+        """Largest ``|tilt error|`` [rad] of :meth:`pulse_response`.
 
         Parameters
         ----------
@@ -506,7 +506,7 @@ class LoopSummary:
     horizon : float
         End of the response [s].
     peak_tilt_error : float
-        Largest |tilt error| [rad].
+        Largest ``|tilt error|`` [rad].
     """
 
     k: float

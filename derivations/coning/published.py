@@ -275,13 +275,13 @@ class LebedevPanovCell(NamedTuple):
     Attributes
     ----------
     quantity : str
-        ``"drift"`` (constant drift rate δφ° [deg/h]), ``"dW_E"`` or ``"dW_I"`` (|ΔW_E|, |ΔW_I| at t = 100 s [m/s]).
+        ``"drift"`` (constant drift rate δφ° [deg/h]), ``"dW_E"`` or ``"dW_I"`` (``|ΔW_E|``, ``|ΔW_I|`` at t = 100 s [m/s]).
     order : int
         ρ of the algorithm.
     eps : float
         ε of the motion.
     variants : tuple of int
-        The variants the printed value stands for (the drift row covers 1–3, |ΔW_I| one cell for 2 and 3).
+        The variants the printed value stands for (the drift row covers 1–3, ``|ΔW_I|`` one cell for 2 and 3).
     value : float
         The printed value, in :attr:`unit` [deg/h or m/s].
     """
@@ -294,11 +294,11 @@ class LebedevPanovCell(NamedTuple):
 
     @property
     def unit(self) -> str:
-        """Unit of :attr:`value` as printed: ``"deg/h"`` for the drift, ``"m/s"`` for |ΔW_E|, |ΔW_I|."""
+        """Unit of :attr:`value` as printed: ``"deg/h"`` for the drift, ``"m/s"`` for ``|ΔW_E|``, ``|ΔW_I|``."""
         return "deg/h" if self.quantity == "drift" else "m/s"
 
 
-#: The table of section 6 (the ρ = 6 rows of |ΔW_E|, |ΔW_I| do not reproduce: errata).
+#: The table of section 6 (the ρ = 6 rows of ``|ΔW_E|``, ``|ΔW_I|`` do not reproduce: errata).
 LEBEDEV_PANOV_TABLE = (
     LebedevPanovCell("drift", 4, -1.0, (1, 2, 3), 1.590e-1),
     LebedevPanovCell("drift", 4, 0.5, (1, 2, 3), 8.216e-2),

@@ -7,7 +7,7 @@ the frame modelled by stage 1, (2.2),
     ω_η(1) = ν∘(ω − ω⁽¹⁾)∘ν̄,    ω⁽¹⁾ = 2 ν̄∘ν',
 
 and obeys ``2ν₁' = ν₁∘ω_η(1) + C₁``.  For the composite ``P = ν₁∘ν`` of (2.6)
-this module derives, with SymPy quaternions,
+this module derives, with SymPy quaternions::
 
     2P' = P∘ω + C₁∘ν + (|ν|² − 1) P∘ω + 2(1 − |ν|⁴) ν₁∘ν',
 
@@ -94,9 +94,9 @@ class CompositionDerivation:
     residual_structure : list
         ``(|ν|² − 1) P∘ω + 2(1 − |ν|⁴) ν₁∘ν'`` (ν' from (1.5)).
     cancels_unit_norm : bool
-        ``residual − residual_structure`` expands to 0 (so the residual vanishes for |ν| = 1).
+        ``residual − residual_structure`` expands to 0 (so the residual vanishes for ``|ν|`` = 1).
     stage1_correction_free : bool
-        No component of C appears in ``composite_rate`` once |ν| = 1 is used,
+        No component of C appears in ``composite_rate`` once ``|ν|`` = 1 is used,
         i.e. in ``composite_rate − residual_structure``.
     cancels_any_norm_with_inverse : bool
         With ν⁻¹ for ν̄ in (2.2), ``2P' − P∘ω − C₁∘ν`` expands to exactly 0.

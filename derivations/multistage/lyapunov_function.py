@@ -17,7 +17,7 @@ algebra in SymPy (:class:`sympy.algebras.quaternion.Quaternion`):
 * the characteristic polynomial for ω = 0, ``(2s² + ks + l)⁴``, whose roots
   give the exponential rate in terms of k and l.
 
-``V'`` is only negative *semi*definite (it does not contain y), so the
+``V'`` is only negative semidefinite (it does not contain y), so the
 Lyapunov theorem gives stability, not asymptotic stability: the paper's
 conclusion (3.4) needs the LaSalle step (autonomous case, ω constant) or the
 strict function W (time-varying ω).
@@ -59,7 +59,7 @@ class LyapunovSymbols(NamedTuple):
     epsilon : sympy.Symbol
         Weight ε of the cross term of the strict Lyapunov function.
     varpi : sympy.Symbol
-        Bound ϖ on |ω|.
+        Bound ϖ on ``|ω|``.
     s : sympy.Symbol
         Laplace variable.
     """
@@ -121,7 +121,7 @@ def _along(f, states, rates):
 
 
 def strict_bound_matrices(k, l, eps, wbar):
-    """Quadratic-form bounds of the strict Lyapunov function in (|z|, |y|).
+    """Quadratic-form bounds of the strict Lyapunov function in (``|z|``, ``|y|``).
 
     With ``|ω| ≤ ϖ`` and Cauchy–Schwarz, ``−W' ≥ [a b] M [a b]ᵀ`` and
     ``[a b] P₋ [a b]ᵀ ≤ W ≤ [a b] P₊ [a b]ᵀ`` for ``a = |z|``, ``b = |y|``.
@@ -133,7 +133,7 @@ def strict_bound_matrices(k, l, eps, wbar):
     eps : sympy.Expr
         Weight ε of the cross term.
     wbar : sympy.Expr
-        Bound ϖ on |ω|.
+        Bound ϖ on ``|ω|``.
 
     Returns
     -------

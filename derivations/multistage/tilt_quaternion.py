@@ -1,7 +1,7 @@
 """The tilt quaternion (1.9)–(1.10) of Plotnikov (1999), derived from (1.7)–(1.8).
 
 With ψ = 0, the load factors ``n = W/g`` of (1.8),
-``n₁ = sin θ``, ``n₂ = cos θ cos γ``, ``n₃ = −cos θ sin γ`` (for |n| = 1; in
+``n₁ = sin θ``, ``n₂ = cos θ cos γ``, ``n₃ = −cos θ sin γ`` (for ``|n|`` = 1; in
 general divided by ``n = |n|``), give
 
     sin θ = n₁/n,  cos θ = h/n,  sin γ = −n₃/h,  cos γ = n₂/h,   h = √(n₂² + n₃²),

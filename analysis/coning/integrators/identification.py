@@ -100,7 +100,7 @@ __all__ = [
     "identify",
 ]
 
-#: Largest tolerance of the rational reconstruction [dimensionless]: |c − p/q| ≤ 1e-9, q ≤ 22 360 at most.
+#: Largest tolerance of the rational reconstruction [dimensionless]: ``|c − p/q| ≤ 1e-9``, q ≤ 22 360 at most.
 TOLERANCE = 1e-9
 #: A coefficient's own tolerance is this many times its uncertainty (when smaller than the largest tolerance).
 UNCERTAINTY_FACTOR = 4.0

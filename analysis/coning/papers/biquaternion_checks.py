@@ -40,17 +40,17 @@ class PrintedFormulaChecks(NamedTuple):
     Attributes
     ----------
     unit_condition_plus : float
-        max |λ·μ| (= λ0μ0 + λ1μ1 + λ2μ2 + λ3μ3, the dual part of |Λ|² = 1) of the package's biquaternion.
+        max ``|λ·μ|`` (= λ0μ0 + λ1μ1 + λ2μ2 + λ3μ3, the dual part of ``|Λ|² = 1``) of the package's biquaternion.
     unit_condition_printed : float
-        max |λ0μ0 − λ1μ1 − λ2μ2 − λ3μ3| of the same biquaternion: the condition as printed.
+        max ``|λ0μ0 − λ1μ1 − λ2μ2 − λ3μ3|`` of the same biquaternion: the condition as printed.
     mu0_error : float
-        max |μ0 printed − μ0|.
+        max ``|μ0 printed − μ0|``.
     mu_vec_error_printed : float
-        max |μ_i printed − μ_i|.
+        max ``|μ_i printed − μ_i|``.
     mu_vec_error_fixed : float
-        max |μ_i − μ_i| with the sign of the second term of the printed μ_i flipped.
+        max ``|μ_i − μ_i|`` with the sign of the second term of the printed μ_i flipped.
     u_inertial_error : float
-        max |U_I printed − 2 R ∘ Q̄| [m/s], reading the garbled Λ° of (4.7) as ν°.
+        max ``|U_I printed − 2 R ∘ Q̄|`` [m/s], reading the garbled Λ° of (4.7) as ν°.
     points : int
         Random dual vectors on which (1.12) and its condition are checked.
     times : int

@@ -401,7 +401,7 @@ class ErrorHistory(NamedTuple):
     time : ndarray
         Step ends [s].
     error : ndarray
-        |δφ_I| [rad], the norm of the error rotation vector in frame I.
+        ``|δφ_I|`` [rad], the norm of the error rotation vector in frame I.
     """
 
     algorithm: str
@@ -409,7 +409,7 @@ class ErrorHistory(NamedTuple):
     error: np.ndarray
 
 
-def coning_error_histories(*, conditions: Table3Conditions | None = None, duration: float = 10.0) -> tuple:
+def coning_error_histories(*, conditions: Table3Conditions | None = None, duration: float = 10.0, engine: str = "auto") -> tuple:
     """Attitude error of the five algorithms of Table 3 under its coning motion.
 
     Parameters
@@ -418,6 +418,10 @@ def coning_error_histories(*, conditions: Table3Conditions | None = None, durati
         Default :func:`table3_conditions`.
     duration : float, keyword-only
         Length of each run [s].
+    engine : {"auto", "numpy", "compiled"}, keyword-only
+        Simulator engine (:func:`strapdown.analysis.coning.simulator.simulate`);
+        ``"numpy"`` compiles nothing, the right choice for a few short runs on a
+        cold cache.
 
     Returns
     -------
@@ -428,7 +432,7 @@ def coning_error_histories(*, conditions: Table3Conditions | None = None, durati
     motion = c.motion(c.coning_eps)
     out = []
     for k in range(1, 6):
-        r = simulate(get(f"panov-4s-{k}"), motion, c.sample_interval, positive(duration, "duration"))
+        r = simulate(get(f"panov-4s-{k}"), motion, c.sample_interval, positive(duration, "duration"), engine=engine)
         out.append(ErrorHistory(r.algorithm.name, r.time, np.linalg.norm(r.attitude_error, axis=-1)))
     return tuple(out)
 
@@ -453,7 +457,7 @@ class LeadingEstimates(NamedTuple):
     transport : float
         ``full − mid_step``: the transport of the weight-5 error [rad/s].
     simulated : float
-        |u*| by parallel computation [rad/s].
+        ``|u*|`` by parallel computation [rad/s].
     small_angle : float
         The ϑ² part of ``full``: ``lim d_7/ϑ² · ϑ² ν⁷ H⁶`` [rad/s].
     """

@@ -1,7 +1,7 @@
 """The dot-product term of the sixth-order algorithm (2.2) of Lebedev & Panov (1989), as printed.
 
 The last term of (2.2), ``−64/45 (1 − p2·p3) p2 × p3``, carries a dot product.
-Regular precession has |ω| constant, which hides errors of dot-product terms,
+Regular precession has ``|ω|`` constant, which hides errors of dot-product terms,
 so :func:`dot_term_study` measures the local-error exponents on the tumbling
 motion (:class:`strapdown.analysis.coning.local_error.TumblingMotion`,
 :func:`strapdown.analysis.coning.order_study.local_error_exponents`) for

@@ -5,7 +5,7 @@ The experiment of the paper: the dual regular precession (4.2)–(4.3) over
 variants of ν°, ϑ°, W_I(0), Λ(0); the nested algorithm (2.2) of order ρ = 4 or
 6 and its dual extension (2.5) run beside the exact solution
 (:func:`strapdown.analysis.coning.simulator.simulate`).  The table gives the
-constant drift rate and |ΔW_E|, |ΔW_I| at t = 100 s.
+constant drift rate and ``|ΔW_E|``, ``|ΔW_I|`` at t = 100 s.
 
 :func:`reproduce_table` sets every printed cell beside the simulation;
 :func:`convergence_study` halves h for one cell (a method of order ρ shrinks
@@ -55,7 +55,7 @@ __all__ = [
     "cell_evidence",
 ]
 
-#: The quantities of the table: the drift rate [rad/s] and |ΔW_E|, |ΔW_I| at the end of the run [m/s].
+#: The quantities of the table: the drift rate [rad/s] and ``|ΔW_E|``, ``|ΔW_I|`` at the end of the run [m/s].
 QUANTITIES = ("drift", "dW_E", "dW_I")
 
 
@@ -179,9 +179,9 @@ class CellValues(NamedTuple):
     drift : float
         Constant drift rate of the attitude [rad/s].
     dW_E : float
-        |ΔW_E| at the end of the run [m/s].
+        ``|ΔW_E|`` at the end of the run [m/s].
     dW_I : float
-        |ΔW_I| at the end of the run [m/s].
+        ``|ΔW_I|`` at the end of the run [m/s].
     """
 
     drift: float
@@ -284,7 +284,7 @@ class TableReproduction:
 
     @property
     def worst_reproduced(self) -> float:
-        """Largest |difference| among the reproduced cells."""
+        """Largest ``|difference|`` among the reproduced cells."""
         return max(abs(c.worst) for c in self.reproduced)
 
 
@@ -369,7 +369,7 @@ def convergence_study(quantity: str, order: int, eps: float, variant: int, sampl
 
 
 class VelocityErrors(NamedTuple):
-    """|ΔW_E| and |ΔW_I| at the end of the run.
+    """``|ΔW_E|`` and ``|ΔW_I|`` at the end of the run.
 
     Attributes
     ----------
@@ -385,7 +385,7 @@ class VelocityErrors(NamedTuple):
 
 @cache
 def asymptotic_values(order: int, eps: float, variant: int) -> VelocityErrors:
-    """|ΔW_E|, |ΔW_I| at the end of the run from the asymptotic error theory (5.1)–(5.6), no simulation.
+    """``|ΔW_E|``, ``|ΔW_I|`` at the end of the run from the asymptotic error theory (5.1)–(5.6), no simulation.
 
     Parameters
     ----------
@@ -414,7 +414,7 @@ def asymptotic_values(order: int, eps: float, variant: int) -> VelocityErrors:
 
 
 def theory_agreement(order: int) -> float:
-    """Largest |theory / simulation − 1| over the velocity cells of order ``order``, every variant.
+    """Largest ``|theory / simulation − 1|`` over the velocity cells of order ``order``, every variant.
 
     Parameters
     ----------
