@@ -165,8 +165,8 @@ def test_lebedev_panov_bad_input():
 # --------------------------------------------------------------------------- orders
 def test_dot_term_study_and_drift_orders():
     study = dot_term_study()
-    assert [r.local_order for r in study.rows] == [3, 5, 7, 5]
-    assert study.printed_is_sixth_order and study.without_dot.order == 4
+    assert [r.local_error_order for r in study.rows] == [3, 5, 7, 5]
+    assert study.printed_is_sixth_order and study.without_dot.accuracy_order == 4
     study = drift_orders(RegularPrecession(0.5, 2 * np.pi, np.radians(10.0)), steps=(0.08, 0.04, 0.02), algorithms=["lebedev-panov-4"])
     assert study[0].slope == pytest.approx(4.0, abs=0.1)
     with pytest.raises(TypeError, match="`motion`"):

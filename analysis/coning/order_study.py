@@ -100,21 +100,21 @@ class LocalErrorExponents(NamedTuple):
     algorithm : str
         Algorithm name.
     exponents : tuple of float
-        Slope of log ``|δφ|`` against log H at each instant (ρ + 1 for order ρ).
+        Slope of log ``|δφ|`` against log H at each instant (ρ + 1 for accuracy order ρ).
     """
 
     algorithm: str
     exponents: tuple
 
     @property
-    def local_order(self) -> int:
-        """The mean exponent rounded: ρ + 1 for an algorithm of order ρ."""
+    def local_error_order(self) -> int:
+        """The observed local-error order: the mean exponent rounded, ρ + 1 for accuracy order ρ."""
         return round(sum(self.exponents) / len(self.exponents))
 
     @property
-    def order(self) -> int:
-        """The (global) order ρ: :attr:`local_order` − 1."""
-        return self.local_order - 1
+    def accuracy_order(self) -> int:
+        """The observed accuracy order ρ: :attr:`local_error_order` − 1 (package docstring, "Orders")."""
+        return self.local_error_order - 1
 
 
 def local_error_exponents(algorithm: Algorithm, *, motion: TumblingMotion | None = None, times=(0.3, 1.1, 2.4), steps=(0.2, 0.1, 0.05)) -> LocalErrorExponents:

@@ -314,8 +314,8 @@ def _lp6_section() -> list:
     )
     out += [
         "",
-        f"The term as printed gives local-error order {study.printed.local_order} (accuracy order {study.printed.order}); without its",
-        f"dot-product part the local-error order is {study.without_dot.local_order}. {verdict}",
+        f"The term as printed gives local-error order {study.printed.local_error_order} (accuracy order {study.printed.accuracy_order}); without its",
+        f"dot-product part the local-error order is {study.without_dot.local_error_order}. {verdict}",
         "",
     ]
     return out

@@ -48,7 +48,7 @@ class DotTermStudy(NamedTuple):
     @property
     def printed_is_sixth_order(self) -> bool:
         """True when the printed form has a local error O(H⁷): the order the paper states."""
-        return self.printed.order == 6
+        return self.printed.accuracy_order == 6
 
 def dot_term_study(**kwargs) -> DotTermStudy:
     """Local-error exponents of (2.2) at orders 2, 4, 6, and of order 6 without its dot-product term.
