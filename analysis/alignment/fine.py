@@ -51,6 +51,7 @@ from ..core.validation import as_array, as_float, as_int, nonnegative, positive
 from ..gyrocompass.rocking import as_generator
 from . import kernels
 from .earth import earth_rate_ned, gravity_ned
+from .error_model import alignment_error_model, skew
 from .estimate import AlignmentEstimate
 from .imu import ImuRecord, Scenario, SensorErrors, draw_imu, simulate_imu
 from .preintegration import EpochIncrements, preintegrate
@@ -81,10 +82,6 @@ DISTURBANCE_KINDS = ("none", "white", "shaping")
 #: Smallest damping of the assumed shaping filter: a sinusoid is modelled as a lightly damped
 #: oscillator, so that the filter keeps following the harmonics a rocking block adds to it.
 MIN_DAMPING = 0.02
-
-
-def _skew(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
 
 @dataclass(frozen=True)
@@ -232,29 +229,18 @@ def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel
     """
     M = max(1, int(round(tuning.epoch / scenario.dt)))
     dt = M * scenario.dt
-    W = earth_rate_ned(scenario.latitude)
-    fn = -gravity_ned(scenario.latitude)
+    # the continuous model (A, Qc, H and the state names, shaping states included) is the error model's
+    model = alignment_error_model(scenario, tuning)
+    A, Qc, H, names = model.A, model.Qc, model.H, model.names
     dist = tuning.disturbance
     axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.kind == "shaping" else ()
-    n = 12 + 2 * len(axes)
-    A = np.zeros((n, n))
-    A[0:3, 0:3] = -_skew(W)
-    A[0:3, 6:9] = -np.eye(3)
-    A[3:6, 0:3] = _skew(fn)
-    A[3:6, 3:6] = -2.0 * _skew(W)
-    A[3:6, 9:12] = np.eye(3)
-    Qc = np.zeros((n, n))
-    Qc[0:3, 0:3] = tuning.gyro_noise**2 * np.eye(3)
-    Qc[3:6, 3:6] = tuning.accel_noise**2 * np.eye(3)
+    n = A.shape[0]
     P0 = np.zeros((n, n))
     P0[0:3, 0:3] = np.diag([tuning.prior_tilt**2, tuning.prior_tilt**2, tuning.prior_heading**2])
     P0[3:6, 3:6] = tuning.prior_velocity**2 * np.eye(3)
     P0[6:9, 6:9] = tuning.gyro_bias**2 * np.eye(3)
     P0[9:12, 9:12] = tuning.accel_bias**2 * np.eye(3)
-    H = np.zeros((3, n))
-    H[:, 3:6] = np.eye(3)
     R = tuning.measurement_noise**2 * np.eye(3)
-    names = ("phi_N", "phi_E", "phi_D", "dv_N", "dv_E", "dv_D", "eps_N", "eps_E", "eps_D", "acc_N", "acc_E", "acc_D")
     w = 2.0 * math.pi / dist.period
     s2 = dist.sigma**2
     L = lever_matrix(scenario)
@@ -263,24 +249,17 @@ def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel
         R = R + np.diag(np.diag(Pv))
         P0[3:6, 3:6] += Pv
     elif axes:
-        z = dist.damping
         for k, i in enumerate(axes):
             a, b = 12 + 2 * k, 13 + 2 * k
-            A[a, b] = 1.0
-            A[b, a], A[b, b] = -w * w, -2.0 * z * w
-            Qc[b, b] = 4.0 * z * w**3 * s2[i]
             P0[a, a], P0[b, b] = s2[i], (w * w) * s2[i]
         rates = slice(13, n, 2)
         if not tuning.lever_arm_known:
             La = L[:, list(axes)]
-            H[:, rates] = La
             # v_INS(0) = 0, so δv(0) = −L θ_r'(0)
             Pr = np.diag(w * w * s2[list(axes)])
             P0[3:6, 3:6] += La @ Pr @ La.T
             P0[3:6, rates] = -La @ Pr
             P0[rates, 3:6] = -(La @ Pr).T
-        labels = ("psi_r", "beta_r", "gamma_r")
-        names = names + tuple(x for i in axes for x in (labels[i], labels[i] + "'"))
     F, Q = kalman.discretise(A, Qc, dt)
     return FineAlignmentModel(F, Q, H, R, P0, dt, M, names, axes)
 
@@ -299,7 +278,7 @@ def lever_matrix(scenario: Scenario) -> np.ndarray:
         ``(3, 3)``: NED velocity per (ψ', β', γ').
     """
     C0 = attitude_matrix(scenario.stable_angles)
-    return -C0 @ _skew(scenario.lever_arm) @ euler_rate_matrix(scenario.stable_angles)
+    return -C0 @ skew(scenario.lever_arm) @ euler_rate_matrix(scenario.stable_angles)
 
 
 def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
@@ -667,7 +646,7 @@ def fine_alignment(
     elif draws.measurement.shape != (n, E, 3):
         raise ValueError(f"Expected `draws` for {n} trials of {E} epochs, got shape {draws.measurement.shape}")
     W, gn = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude)
-    Wx = _skew(W)
+    Wx = skew(W)
     E_earth = _rodrigues(-W * D)
     # everything that does not depend on the filter, for all epochs at once
     dR = _quat_to_matrix(ep.rotation)  # (n, E, 3, 3)
