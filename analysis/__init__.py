@@ -23,6 +23,12 @@ subpackage         analysis (numerics)                         derivations (SymP
                    (Budennyi et al. Tables 1–5, Lebedev &
                    Panov (1989) section 6, (1.12), (2.2),
                    (4.7), published coefficients)
+``vibration``      the vibration environment: sensor filters   none (uses the coning derivations)
+                   and decimation, lines and cross-spectra,
+                   mean coning drift and sculling
+                   rectification in closed form, DOP853 and
+                   Monte Carlo checks, tuned algorithms,
+                   sample rate for a drift budget
 ``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data

@@ -107,12 +107,12 @@ def guard_rows():
     from strapdown.analysis.alignment.aided import AidedTuning, aided_sequence
     from strapdown.analysis.alignment.sensor_models import GRADES, simulate_sensor_errors
     from strapdown.analysis.alignment.trajectory import Manoeuvre, trajectory_increments
-    from strapdown.analysis.coning.environment import load_environment
-    from strapdown.analysis.coning.environment_examples import QUALIFICATION
     from strapdown.analysis.coning.integrators.adapters import algorithm_integrator
     from strapdown.analysis.coning.integrators.verification import coning_drift_rate
-    from strapdown.analysis.coning.vibration_monte_carlo import BAND_COMPONENTS, draw_components, monte_carlo_drift
-    from strapdown.analysis.coning.vibration_simulation import filtered_coning_check
+    from strapdown.analysis.vibration.environment import load_environment
+    from strapdown.analysis.vibration.examples import QUALIFICATION
+    from strapdown.analysis.vibration.monte_carlo import BAND_COMPONENTS, draw_components, monte_carlo_drift
+    from strapdown.analysis.vibration.simulation import filtered_coning_check
 
     rows = []
     env = load_environment(QUALIFICATION)

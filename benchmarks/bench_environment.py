@@ -29,11 +29,11 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from strapdown.analysis.coning.environment import Environment, Spectrum, coning_line, load_environment  # noqa: E402
-from strapdown.analysis.coning.environment_examples import QUALIFICATION  # noqa: E402
-from strapdown.analysis.coning.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter  # noqa: E402
-from strapdown.analysis.coning.vibration_drift import environment_drift  # noqa: E402
-from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift  # noqa: E402
+from strapdown.analysis.vibration.drift import environment_drift  # noqa: E402
+from strapdown.analysis.vibration.environment import Environment, Spectrum, coning_line, load_environment  # noqa: E402
+from strapdown.analysis.vibration.examples import QUALIFICATION  # noqa: E402
+from strapdown.analysis.vibration.monte_carlo import monte_carlo_drift  # noqa: E402
+from strapdown.analysis.vibration.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter  # noqa: E402
 from strapdown.derivations.coning.registry import get  # noqa: E402
 
 

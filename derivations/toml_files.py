@@ -1,7 +1,7 @@
 """Small TOML files from users, read defensively: a regular UTF-8 file, bounded in size and nesting.
 
 An algorithm file (:mod:`strapdown.derivations.coning.algorithms`) and an
-environment file (:mod:`strapdown.analysis.coning.environment`) are written by
+environment file (:mod:`strapdown.analysis.vibration.environment`) are written by
 hand or by other tools; before their contents are interpreted, the file itself
 must be a regular file of bounded size, UTF-8, valid TOML, and not nested
 deeper than the format needs.  Every failure is a ``ValueError`` whose message

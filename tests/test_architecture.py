@@ -32,10 +32,10 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = {"analysis": "strapdown.analysis", "derivations": "strapdown.derivations"}
 
 #: Modules that may use a private module of their own subpackage, with the reason.
-#: ``_kernel_template`` and ``_vibration_kernel`` are code templates, not APIs: ``kernels`` and
-#: ``vibration_monte_carlo`` copy their functions into generated modules (their docstrings say
+#: ``coning._kernel_template`` and ``vibration._kernel`` are code templates, not APIs: ``kernels`` and
+#: ``vibration.monte_carlo`` copy their functions into generated modules (their docstrings say
 #: so, and their ``__all__`` is empty).
-PRIVATE_MODULE_USERS = {("analysis/coning/kernels.py", "_kernel_template"), ("analysis/coning/vibration_monte_carlo.py", "_vibration_kernel")}
+PRIVATE_MODULE_USERS = {("analysis/coning/kernels.py", "_kernel_template"), ("analysis/vibration/monte_carlo.py", "_kernel")}
 
 #: The one module whose job is the conversion to and from degrees.
 UNIT_CONVERSIONS = frozenset({"analysis/core/units.py"})

@@ -19,8 +19,8 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from strapdown.analysis.coning.environment_examples import QUALIFICATION
 from strapdown.analysis.core import budget
+from strapdown.analysis.vibration.examples import QUALIFICATION
 from strapdown.derivations.coning.registry import get
 
 ALG = get("panov-4s-1")
@@ -64,7 +64,7 @@ def _sweep_case():
 
 
 def _environment():
-    from strapdown.analysis.coning.environment import load_environment
+    from strapdown.analysis.vibration.environment import load_environment
 
     return load_environment(QUALIFICATION)
 
@@ -167,15 +167,15 @@ HUGE = {
         "n_trials",
     ),
     "base_motion.draw n_trials": (lambda: _alignment_scenario(60.0).motion.draw(1, 10**6, 10**6, 0.1), "n_trials"),
-    "vibration monte_carlo_drift pairs": (lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=10**9, duration=10.0, rng=1), "pairs"),
-    "vibration monte_carlo_drift duration": (lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=4, duration=1e9, rng=1), "duration"),
+    "vibration monte_carlo_drift pairs": (lambda: _module("vibration.monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=10**9, duration=10.0, rng=1), "pairs"),
+    "vibration monte_carlo_drift duration": (lambda: _module("vibration.monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-3, pairs=4, duration=1e9, rng=1), "duration"),
     "vibration monte_carlo_drift sample_interval": (
-        lambda: _module("coning.vibration_monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-9, pairs=4, duration=10.0, rng=1),
+        lambda: _module("vibration.monte_carlo").monte_carlo_drift(get("two-sample"), _environment(), 1e-9, pairs=4, duration=10.0, rng=1),
         "sample_interval",
     ),
-    "vibration draw_components count": (lambda: _module("coning.vibration_monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
+    "vibration draw_components count": (lambda: _module("vibration.monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
     "filtered_coning_check periods": (
-        lambda: _module("coning.vibration_simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
+        lambda: _module("vibration.simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
         "periods",
     ),
     "trajectory.position_solution duration": (lambda: _module("alignment.trajectory").position_solution(_module("alignment.trajectory").Manoeuvre(), 1e9), "duration"),
@@ -276,7 +276,7 @@ EMPTY = {
     "preintegrate dtheta=[]": (lambda: __import__("strapdown.analysis.alignment.preintegration", fromlist=["x"]).preintegrate([], [], 0.01, 10), "dtheta", "shape"),
     "load_toml path=''": (lambda: __import__("strapdown.derivations.coning.algorithms", fromlist=["x"]).load_toml(""), "path", "empty"),
     "drift_across_band frequency=[]": (
-        lambda: _module("coning.tuning").drift_across_band([get("two-sample")], _environment(), 1e-3, [], half_angle=0.01),
+        lambda: _module("vibration.tuning").drift_across_band([get("two-sample")], _environment(), 1e-3, [], half_angle=0.01),
         "frequency",
         "empty",
     ),

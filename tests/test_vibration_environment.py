@@ -11,14 +11,14 @@ import sympy as sp
 from scipy import integrate
 
 from strapdown.analysis.coning.drift_theory import coning_drift_rate
-from strapdown.analysis.coning.environment import Environment, Spectrum, VibrationLine, coning_line, load_environment, sculling_line
-from strapdown.analysis.coning.rate_design import rate_design
 from strapdown.analysis.coning.sculling_motion import ScullingMotion, rectification_error
-from strapdown.analysis.coning.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
-from strapdown.analysis.coning.tuning import drift_across_band, tune, tuned_drift
-from strapdown.analysis.coning.vibration_drift import coning_vector, environment_drift
-from strapdown.analysis.coning.vibration_simulation import filtered_coning_check
 from strapdown.analysis.core.units import RAD_PER_S_TO_DEG_PER_H
+from strapdown.analysis.vibration.drift import coning_vector, environment_drift
+from strapdown.analysis.vibration.environment import Environment, Spectrum, VibrationLine, coning_line, load_environment, sculling_line
+from strapdown.analysis.vibration.rate_design import rate_design
+from strapdown.analysis.vibration.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
+from strapdown.analysis.vibration.simulation import filtered_coning_check
+from strapdown.analysis.vibration.tuning import drift_across_band, tune, tuned_drift
 from strapdown.derivations.coning.drift import X
 from strapdown.derivations.coning.registry import get
 from strapdown.derivations.coning.tuned import CUTOFF, RHO, lowpass_null_coefficient, two_sample_null_coefficient
@@ -260,7 +260,7 @@ SPECTRUM_FILE = """
 def test_monte_carlo_interval_covers_the_closed_form(tmp_path, name):
     """Two lines and a continuous band, mismatched analog filters, a digital filter and decimation."""
     pytest.importorskip("numba")
-    from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift
+    from strapdown.analysis.vibration.monte_carlo import monte_carlo_drift
 
     env = load_environment(_write(tmp_path, SPECTRUM_FILE))
     alg, h = get(name), 2e-3
@@ -279,7 +279,7 @@ def test_monte_carlo_interval_covers_the_closed_form(tmp_path, name):
 
 def test_monte_carlo_rectification_of_a_sculling_line_through_filters():
     pytest.importorskip("numba")
-    from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift
+    from strapdown.analysis.vibration.monte_carlo import monte_carlo_drift
 
     env = Environment((sculling_line(25.0, 0.5 * DEG, 5.0),), gyro=Sensor((_lowpass(100.0),) * 3), accelerometer=Sensor((_lowpass(60.0),) * 3))
     d = environment_drift(get("two-sample"), env, 1e-3)
@@ -291,7 +291,7 @@ def test_monte_carlo_rectification_of_a_sculling_line_through_filters():
 
 def test_monte_carlo_does_not_depend_on_chunking():
     pytest.importorskip("numba")
-    from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift
+    from strapdown.analysis.vibration.monte_carlo import monte_carlo_drift
 
     env = Environment((coning_line(12.0, DEG),), gyro=Sensor((_lowpass(80.0),) * 3))
     a = monte_carlo_drift(get("two-sample"), env, 2e-3, pairs=6, duration=0.2, rng=3, chunk=6)
@@ -300,7 +300,7 @@ def test_monte_carlo_does_not_depend_on_chunking():
 
 
 def test_draws_with_one_stream_per_realisation_are_the_single_draws(tmp_path):
-    from strapdown.analysis.coning.vibration_monte_carlo import draw_components
+    from strapdown.analysis.vibration.monte_carlo import draw_components
 
     env = load_environment(_write(tmp_path, SPECTRUM_FILE))
     seeds = np.random.SeedSequence(3).spawn(4)
@@ -315,8 +315,8 @@ def test_draws_with_one_stream_per_realisation_are_the_single_draws(tmp_path):
 def test_monte_carlo_phases_advanced_between_anchors_agree_with_direct_evaluation():
     """Phases advanced by e^{iω h_s} between direct evaluations every REANCHOR samples, against sines and cosines at every node."""
     pytest.importorskip("numba")
-    from strapdown.analysis.coning.environment_examples import QUALIFICATION
-    from strapdown.analysis.coning.vibration_monte_carlo import REANCHOR, monte_carlo_drift
+    from strapdown.analysis.vibration.examples import QUALIFICATION
+    from strapdown.analysis.vibration.monte_carlo import REANCHOR, monte_carlo_drift
 
     env = load_environment(QUALIFICATION)  # lines, a spectrum, second-order analog and digital filters, decimation by 4
     run = dict(pairs=3, duration=0.5, rng=11, velocity=True)
@@ -335,8 +335,8 @@ def test_the_pair_kernel_runs_the_negative_member_as_its_own_realisation(tmp_pat
 
     The template is run as plain Python (two-sample placeholder, attitude), so the test needs no numba.
     """
-    from strapdown.analysis.coning import _vibration_kernel as template
-    from strapdown.analysis.coning.vibration_monte_carlo import draw_components, sensor_matrices
+    from strapdown.analysis.vibration import _kernel as template
+    from strapdown.analysis.vibration.monte_carlo import draw_components, sensor_matrices
 
     env = load_environment(_write(tmp_path, SPECTRUM_FILE))  # mismatched analog filters, a digital filter, decimation
     h, rng = 2e-3, np.random.default_rng(4)
@@ -361,7 +361,7 @@ def test_monte_carlo_rotation_series_agree_with_the_closed_forms(angle):
     """The kernel's exp(θ) and rotation vector switch to Taylor series below 0.1 and 0.02 rad; both sides agree with scipy."""
     from scipy.spatial.transform import Rotation
 
-    from strapdown.analysis.coning import _vibration_kernel as template
+    from strapdown.analysis.vibration import _kernel as template
 
     for axis in np.random.default_rng(1).normal(size=(8, 3)):
         v = angle * axis / np.linalg.norm(axis)
@@ -466,7 +466,7 @@ def test_rate_design_finds_the_lowest_admissible_rate():
 def test_monte_carlo_quadrature_of_the_sensor_samples_has_converged():
     """The Gauss–Legendre rule over each sensor sample (ωh_s ≈ 0.94 here): three nodes agree with six, two do not (fixed draws)."""
     pytest.importorskip("numba")
-    from strapdown.analysis.coning.vibration_monte_carlo import monte_carlo_drift
+    from strapdown.analysis.vibration.monte_carlo import monte_carlo_drift
 
     env = Environment((coning_line(150.0, 0.2 * DEG),), gyro=Sensor((_lowpass(200.0), _lowpass(260.0), _lowpass(200.0))))
     three = monte_carlo_drift(get("two-sample"), env, 1e-3, pairs=2, duration=0.3, rng=9, quadrature_points=3)

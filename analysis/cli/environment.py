@@ -9,12 +9,12 @@ from __future__ import annotations
 import numpy as np
 
 from ...derivations.coning.registry import get
-from ..coning.environment import load_environment
-from ..coning.rate_design import DEFAULT_RATES, FREQUENCY_MARGIN, rate_design
-from ..coning.tuning import drift_across_band, tune
-from ..coning.vibration_drift import environment_drift
 from ..core.units import DEG, RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import positive
+from ..vibration.drift import environment_drift
+from ..vibration.environment import load_environment
+from ..vibration.rate_design import DEFAULT_RATES, FREQUENCY_MARGIN, rate_design
+from ..vibration.tuning import drift_across_band, tune
 from . import Result
 from ._options import add_algorithm, algorithm_from, count, number
 

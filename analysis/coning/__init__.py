@@ -2,7 +2,9 @@
 
 The general tool.  The reproductions of the papers' tables and printed
 formulas that validate it live apart, in :mod:`strapdown.analysis.coning.papers`
-(they import this library; it never imports them).
+(they import this library; it never imports them).  The algorithms in a vibration
+environment (sensor filters, spectra, mean drift, tuning, sample rate) are the
+domain :mod:`strapdown.analysis.vibration`, built on this one.
 
 Modules
 -------
@@ -47,22 +49,6 @@ order_study
     Observed orders of the drift and of the local error.
 drift_crosscheck
     u*/u_a over a grid of steps.
-sensor_dynamics
-    Sensor filters: analog transfer functions, digital filters, decimation.
-environment
-    Vibration environments (lines, cross-spectra, sensors) and their TOML files;
-    ``environment_examples`` names the example files shipped with the package.
-vibration_drift
-    Mean coning drift and sculling rectification in an environment, closed form,
-    sensor part (pseudo-coning, pseudo-sculling) apart from the algorithm's.
-vibration_simulation
-    DOP853 reference of pseudo-coning (continuous filters, exact kinematics).
-vibration_monte_carlo
-    Monte Carlo of the mean drift with an exact truth (compiled kernel).
-tuning
-    Algorithms tuned to an environment (coning and sculling).
-rate_design
-    Lowest sample rate and load for a drift budget in an environment.
 papers
     The papers' tables and printed formulas reproduced (subpackage).
 """

@@ -1,13 +1,13 @@
 """Report section ``vibration.md``: coning and sculling in a vibration environment.
 
 Formatting only: the numbers come from
-:mod:`strapdown.analysis.coning.vibration_drift` (closed form),
-:mod:`~strapdown.analysis.coning.vibration_simulation` (DOP853),
-:mod:`~strapdown.analysis.coning.vibration_monte_carlo`,
-:mod:`~strapdown.analysis.coning.tuning` and
-:mod:`~strapdown.analysis.coning.rate_design`, on the example environment
+:mod:`strapdown.analysis.vibration.drift` (closed form),
+:mod:`~strapdown.analysis.vibration.simulation` (DOP853),
+:mod:`~strapdown.analysis.vibration.monte_carlo`,
+:mod:`~strapdown.analysis.vibration.tuning` and
+:mod:`~strapdown.analysis.vibration.rate_design`, on the example environment
 the package's example environment
-:data:`strapdown.analysis.coning.environment_examples.QUALIFICATION`.
+:data:`strapdown.analysis.vibration.examples.QUALIFICATION`.
 """
 
 from __future__ import annotations
@@ -18,14 +18,14 @@ import sympy as sp
 from ...derivations.coning.drift import X, optimal_coning_algorithm
 from ...derivations.coning.registry import get
 from ...derivations.coning.tuned import RHO, lowpass_null_coefficient, two_sample_null_coefficient
-from ..coning.environment import Environment, coning_line, load_environment
-from ..coning.environment_examples import QUALIFICATION
-from ..coning.rate_design import rate_design
-from ..coning.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
-from ..coning.tuning import drift_across_band, tune
-from ..coning.vibration_drift import environment_drift
-from ..coning.vibration_simulation import filtered_coning_check
 from ..core.units import DEG, RAD_PER_S_TO_DEG_PER_H
+from ..vibration.drift import environment_drift
+from ..vibration.environment import Environment, coning_line, load_environment
+from ..vibration.examples import QUALIFICATION
+from ..vibration.rate_design import rate_design
+from ..vibration.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
+from ..vibration.simulation import filtered_coning_check
+from ..vibration.tuning import drift_across_band, tune
 from . import Section
 from .rendering import fixed_layout
 
@@ -87,7 +87,7 @@ def _signed(v: float, scale: float, digits: int) -> str:
 
 def warm_up() -> None:
     """Compile the Monte Carlo kernels :func:`build` runs: one per classical algorithm, the first with its velocity part."""
-    from ..coning.vibration_monte_carlo import monte_carlo_drift
+    from ..vibration.monte_carlo import monte_carlo_drift
 
     env = load_environment(QUALIFICATION)
     for i, name in enumerate(CLASSICAL):
@@ -114,7 +114,7 @@ def build(ctx) -> None:
         "anti-aliasing and digital low-pass filters before the algorithm sees them. The package describes such an environment in a",
         "TOML file (`docs/environment-files.md`: coning and sculling lines, cross-spectral densities of the angular rate and the",
         "specific force, analog filters per axis, digital filters, decimation) and gives, to second order in the vibration",
-        "amplitude and exactly in ωh (`strapdown.analysis.coning.vibration_drift`), the mean drift as two parts:",
+        "amplitude and exactly in ωh (`strapdown.analysis.vibration.drift`), the mean drift as two parts:",
         "",
         "$$u = \\frac{q - \\tilde q}{2\\omega} + \\tilde q\\,\\frac{D(\\omega h)}{\\omega},\\qquad q = \\frac{1}{2}\\mathrm{Im}(A\\times\\bar A),\\quad "
         "\\tilde q = \\frac{1}{2}\\mathrm{Im}(\\tilde A\\times\\bar{\\tilde A}),$$",
@@ -191,7 +191,7 @@ def build(ctx) -> None:
     lines += [
         "## A qualification-PSD example",
         "",
-        f"`qualification.toml` (`strapdown/analysis/coning/environments/`): *{env.description}*. Gyro: {env.gyro.description}; accelerometers:",
+        f"`qualification.toml` (`strapdown/analysis/vibration/environments/`): *{env.description}*. Gyro: {env.gyro.description}; accelerometers:",
         f"{env.accelerometer.description}; decimation {env.decimation} (sensors at {env.decimation / H:g} Hz, algorithm at {1 / H:g} Hz).",
         f"Coning axis {np.round(ref.coning_axis, 4).tolist()}, sculling axis {np.round(ref.sculling_axis, 4).tolist()}.",
         "",
@@ -232,7 +232,7 @@ def build(ctx) -> None:
     lines += [
         "## Algorithms tuned to the environment",
         "",
-        "The mean drift is affine in the algorithm's lag sums, the sensors included (`strapdown.analysis.coning.tuning`):",
+        "The mean drift is affine in the algorithm's lag sums, the sensors included (`strapdown.analysis.vibration.tuning`):",
         "`strapdown design-coning` nulls it where the degrees of freedom allow and spends the rest on the classical low-frequency",
         "conditions (the second-order condition first). For N = 2 and one line the coefficient has a closed form",
         "(`strapdown.derivations.coning.tuned`), with ρ the fraction of the line's coning the sensors pass:",
@@ -281,7 +281,7 @@ def build(ctx) -> None:
     lines += [
         "## Sample rate and load for a drift budget",
         "",
-        "Budennyi et al.'s Tables 4–5 in this environment (`strapdown.analysis.coning.rate_design`, `strapdown environment-rates`): the",
+        "Budennyi et al.'s Tables 4–5 in this environment (`strapdown.analysis.vibration.rate_design`, `strapdown environment-rates`): the",
         f"lowest algorithm rate from which on the drift stays within {BUDGET_DEG_PER_H:g} deg/h, for the environment and for it with every",
         f"frequency scaled by 1 ± {design.margin:g} (so that a tuning that needs the frequencies exactly is not admitted); tuned",
         "algorithms are re-tuned at every rate. The sensor part depends on the rate through the digital filter, which runs at the",
@@ -315,7 +315,7 @@ def build(ctx) -> None:
         "**DOP853.** Classical coning (1°, 10 Hz) through first-order filters, the truth, the filters in continuous time and the",
         "sensed attitude integrated together by DOP853 (rtol 1e-11 here, 1e-13 in the test suite), the algorithm run on the filtered",
         "increments",
-        "(`strapdown.analysis.coning.vibration_simulation.filtered_coning_check`; the test suite runs three bandwidths, identical",
+        "(`strapdown.analysis.vibration.simulation.filtered_coning_check`; the test suite runs three bandwidths, identical",
         "and mismatched):",
         "",
         "| gyro filters | closed-form sensor part [deg/h] | DOP853 [deg/h] | relative difference | closed-form total, two-sample [deg/h] | DOP853 |",
@@ -332,14 +332,14 @@ def build(ctx) -> None:
         "",
         f"The closed form leaves out terms of relative order α² ≈ {ALPHA**2:.1g}; the differences are below that.",
         "",
-        f"**Monte Carlo** (`strapdown.analysis.coning.vibration_monte_carlo`): the qualification environment, {2 * pairs} realisations of",
+        f"**Monte Carlo** (`strapdown.analysis.vibration.monte_carlo`): the qualification environment, {2 * pairs} realisations of",
         f"{duration:g} s in antithetic pairs, the spectrum as 16 random sinusoids per realisation, exact truth (attitude exp θ(t),",
         "exact body rate and specific force), analog filters in continuous time, digital filters and decimation on the samples:",
         "",
         "| algorithm | closed form [deg/h] | Monte Carlo [deg/h] | standard error | 95 % interval | covers |",
         "|---|---|---|---|---|---|",
     ]
-    from ..coning.vibration_monte_carlo import monte_carlo_drift
+    from ..vibration.monte_carlo import monte_carlo_drift
 
     for i, name in enumerate(CLASSICAL):
         d = drifts[name]

@@ -1,6 +1,6 @@
 """The two-sample algorithm tuned to one coning line: its coefficient in closed form.
 
-In a vibration environment (``strapdown.analysis.coning.vibration_drift``) a
+In a vibration environment (``strapdown.analysis.vibration.drift``) a
 line of coning vector q reaches the algorithm as ``q̃ = ρ q``, where ρ is the
 fraction of its coning the sensors pass (``ρ = |H(iω)|²`` for identical
 filters).  The mean drift, to second order in the amplitude and exactly in

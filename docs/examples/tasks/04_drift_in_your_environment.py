@@ -27,12 +27,12 @@ from pathlib import Path
 
 import numpy as np
 
-from strapdown.analysis.coning.environment import load_environment
-from strapdown.analysis.coning.environment_examples import QUALIFICATION
-from strapdown.analysis.coning.tuning import tune
-from strapdown.analysis.coning.vibration_drift import environment_drift
-from strapdown.analysis.coning.vibration_simulation import filtered_coning_check
 from strapdown.analysis.core.units import deg_per_h
+from strapdown.analysis.vibration.drift import environment_drift
+from strapdown.analysis.vibration.environment import load_environment
+from strapdown.analysis.vibration.examples import QUALIFICATION
+from strapdown.analysis.vibration.simulation import filtered_coning_check
+from strapdown.analysis.vibration.tuning import tune
 from strapdown.derivations.coning.registry import get
 
 h = 1e-3  # algorithm sample interval [s]: a 1 kHz algorithm
@@ -70,7 +70,7 @@ for name in ("two-sample", "optimal-3"):
 # --------------------
 # DOP853 integrates the true attitude, the filter in continuous time and the
 # attitude the filtered gyros sense, together; the algorithm then runs on the
-# filtered increments (:func:`~strapdown.analysis.coning.vibration_simulation.filtered_coning_check`).
+# filtered increments (:func:`~strapdown.analysis.vibration.simulation.filtered_coning_check`).
 # No closed form enters it.
 check = filtered_coning_check(get("two-sample"), environment.gyro, h, freq_hz=10.0, half_angle=np.radians(1.0), periods=1, rtol=1e-11)
 d = environment_drift(get("two-sample"), environment, h)
@@ -93,7 +93,7 @@ print(f"drift: tuned {deg_per_h(tuned.drift @ d.coning_axis):+.2e} deg/h, classi
 # %%
 # A MEMS IMU in a rotorcraft bay
 # ------------------------------
-# The package ships a larger example (:data:`~strapdown.analysis.coning.environment_examples.QUALIFICATION`):
+# The package ships a larger example (:data:`~strapdown.analysis.vibration.examples.QUALIFICATION`):
 # rotor lines over a qualification random-vibration spectrum, second-order
 # anti-aliasing filters, digital low-pass filters at the sensor rate and
 # decimation by 4. The drift comes line by line and band by band; signed values

@@ -7,7 +7,7 @@ behind common filter settings, the algorithm at h = 1 ms. The sensor part of
 the mean drift (pseudo-coning: the filters make the sensed motion cone less
 than the true one) is the same for every algorithm and grows as (ω/ω_c)²;
 dashed and dotted, the algorithms' own residuals with ideal sensors
-(:func:`~strapdown.analysis.coning.tuning.drift_across_band`, closed form
+(:func:`~strapdown.analysis.vibration.tuning.drift_across_band`, closed form
 through the sensors' responses). Filters that differ between axes also turn
 in-phase vibration into coning (the last setting).
 
@@ -18,10 +18,10 @@ report).
 import matplotlib.pyplot as plt
 import numpy as np
 
-from strapdown.analysis.coning.environment import Environment
-from strapdown.analysis.coning.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
-from strapdown.analysis.coning.tuning import drift_across_band
 from strapdown.analysis.core.units import DEG, RAD_PER_S_TO_DEG_PER_H
+from strapdown.analysis.vibration.environment import Environment
+from strapdown.analysis.vibration.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
+from strapdown.analysis.vibration.tuning import drift_across_band
 from strapdown.derivations.coning.registry import get
 
 

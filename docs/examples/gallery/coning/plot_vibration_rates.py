@@ -3,7 +3,7 @@ Sample rate for a drift budget in an environment
 ================================================
 
 Budennyi et al.'s Tables 4–5 in a vibration environment
-(:func:`~strapdown.analysis.coning.rate_design.rate_design`; ``strapdown
+(:func:`~strapdown.analysis.vibration.rate_design.rate_design`; ``strapdown
 environment-rates``): for the package's qualification example, the worst
 drift of each algorithm against the algorithm's sample rate, over the
 environment with every frequency scaled by 1 ± a margin (so that a tuning
@@ -19,10 +19,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import NullFormatter
 
-from strapdown.analysis.coning.environment import load_environment
-from strapdown.analysis.coning.environment_examples import QUALIFICATION
-from strapdown.analysis.coning.rate_design import rate_design
 from strapdown.analysis.core.units import RAD_PER_S_TO_DEG_PER_H, rad_per_s
+from strapdown.analysis.vibration.environment import load_environment
+from strapdown.analysis.vibration.examples import QUALIFICATION
+from strapdown.analysis.vibration.rate_design import rate_design
 from strapdown.derivations.coning.registry import get
 
 budget_deg_per_h = 0.5

@@ -5,7 +5,7 @@ Algorithms tuned to an environment, across the band
 The package's qualification example (a MEMS IMU in a rotorcraft bay) and
 algorithms tuned to it: the mean drift is affine in an algorithm's lag sums,
 the sensors included, so N-sample algorithms can null it
-(:func:`~strapdown.analysis.coning.tuning.tune`; ``strapdown design-coning``).
+(:func:`~strapdown.analysis.vibration.tuning.tune`; ``strapdown design-coning``).
 Through the environment's sensors, a 1° coning line swept in frequency: the
 tuned algorithms (dashed) trade accuracy away from the environment's content
 for zero mean drift on it; the dotted line is the sensor part alone.
@@ -17,10 +17,10 @@ report).
 import matplotlib.pyplot as plt
 import numpy as np
 
-from strapdown.analysis.coning.environment import load_environment
-from strapdown.analysis.coning.environment_examples import QUALIFICATION
-from strapdown.analysis.coning.tuning import drift_across_band, tune
 from strapdown.analysis.core.units import DEG, RAD_PER_S_TO_DEG_PER_H
+from strapdown.analysis.vibration.environment import load_environment
+from strapdown.analysis.vibration.examples import QUALIFICATION
+from strapdown.analysis.vibration.tuning import drift_across_band, tune
 from strapdown.derivations.coning.drift import optimal_coning_algorithm
 from strapdown.derivations.coning.registry import get
 

@@ -11,7 +11,7 @@ their IMU and its sensors, in SI units:
 * **spectra** (:class:`Spectrum`): stationary random vibration, a table of
   frequency against the one-sided cross-spectral density matrix ``G(f)`` of
   the six channels;
-* the **gyro** and **accelerometer** triads (:class:`~strapdown.analysis.coning.sensor_dynamics.Sensor`):
+* the **gyro** and **accelerometer** triads (:class:`~strapdown.analysis.vibration.sensor_dynamics.Sensor`):
   analog filters, digital filters and decimation.
 
 Conventions
@@ -20,7 +20,7 @@ Amplitudes are those of the *first-order* (in the vibration amplitude) body
 rate and specific force.  Second-order constant parts (the axial rate of a
 cone, the rectified specific force) pass the sensors unchanged (unit gain at
 zero frequency) and do not enter the mean drift of an algorithm at second order
-(:mod:`strapdown.analysis.coning.vibration_drift`).
+(:mod:`strapdown.analysis.vibration.drift`).
 
 Cross-spectral densities are one-sided, after Bendat & Piersol:
 ``G_ab(f) = 2 S_ab(f)``, ``S_ab(f) = ∫ R_ab(τ) e^{−i2πfτ} dτ`` with

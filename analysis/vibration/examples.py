@@ -1,7 +1,7 @@
-"""Example environment files shipped with the package (``strapdown/analysis/coning/environments/``).
+"""Example environment files shipped with the package (``strapdown/analysis/vibration/environments/``).
 
 They are the examples of ``docs/environment-files.md`` and of the report section
-``vibration.md``, and read like any user file (:func:`strapdown.analysis.coning.environment.load_environment`).
+``vibration.md``, and read like any user file (:func:`strapdown.analysis.vibration.environment.load_environment`).
 
 Public API
 ----------

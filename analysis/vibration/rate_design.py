@@ -3,19 +3,19 @@
 The design of Budennyi, Kalinovsky, Panov et al. (Part 2), Tables 4–5 —
 each algorithm at the largest step that meets a drift budget under one
 coning motion, costed in operations per second — generalised to an
-environment (:mod:`strapdown.analysis.coning.environment`): lines, spectra
+environment (:mod:`strapdown.analysis.vibration.environment`): lines, spectra
 and the sensors' filters, decimation included.
 
 For each algorithm, on a grid of sample rates ``1/h`` (ascending), the drift
 magnitude ``|u(h)|`` is the closed form of
-:mod:`strapdown.analysis.coning.vibration_drift`.  The *lowest admissible
+:mod:`strapdown.analysis.vibration.drift`.  The *lowest admissible
 rate* is the lowest grid rate from which on every higher grid rate meets the
 budget, refined by bisection against the rate below it (to
 :data:`RATE_TOLERANCE`).  The sensor part of
 the drift does not depend on the algorithm: where it alone exceeds the
 budget, no rate is admissible.
 
-*Tuned algorithms* (:mod:`strapdown.analysis.coning.tuning`) are re-tuned at
+*Tuned algorithms* (:mod:`strapdown.analysis.vibration.tuning`) are re-tuned at
 every rate.  Their mean drift in the nominal environment is zero where the
 degrees of freedom allow, so they are judged, like every algorithm here, by
 the worst drift over the environment and the environment with every
@@ -48,12 +48,12 @@ from typing import NamedTuple
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm, Term
+from ..coning.computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
+from ..coning.drift_theory import coning_drift_function
 from ..core.validation import as_array, nonnegative, positive
-from .computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
-from .drift_theory import coning_drift_function
+from .drift import response_integrals
 from .environment import Environment, Spectrum, VibrationLine
 from .tuning import lag_functions, solve_lag_sums
-from .vibration_drift import response_integrals
 
 __all__ = ["RateRow", "RateDesign", "rate_design", "scaled_frequency", "DEFAULT_RATES", "FREQUENCY_MARGIN"]
 

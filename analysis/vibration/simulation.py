@@ -1,6 +1,6 @@
 """Independent checks of the vibration drift by simulation: a DOP853 reference and a Monte Carlo.
 
-Neither check uses the closed form of :mod:`strapdown.analysis.coning.vibration_drift`
+Neither check uses the closed form of :mod:`strapdown.analysis.vibration.drift`
 nor its frequency responses: the truth is built from the kinematics, the
 analog filters are integrated in continuous time from their state-space form,
 the digital filters run on the samples, and the algorithm runs on what comes
@@ -19,7 +19,7 @@ out.
     increments, after the digital filters and the decimation) the total.
 
 :func:`monte_carlo_drift` — lines and spectra, by realisations
-    See :mod:`strapdown.analysis.coning.vibration_monte_carlo`.
+    See :mod:`strapdown.analysis.vibration.monte_carlo`.
 
 Public API
 ----------
@@ -44,13 +44,13 @@ from scipy import signal
 from scipy.integrate import solve_ivp
 
 from ...derivations.coning.algorithms import Algorithm
+from ..coning.evaluation import increment
+from ..coning.simulator import step_windows
 from ..core import budget
 from ..core import quaternion as quat
 from ..core.validation import as_int, in_open_interval, positive
 from .environment import orthonormal_pair, unit_vector
-from .evaluation import increment
 from .sensor_dynamics import Sensor
-from .simulator import step_windows
 
 __all__ = ["FilteredConingCheck", "filtered_coning_check", "cone_rate"]
 

@@ -4,7 +4,7 @@ Derivation (second order in the vibration amplitude, exact in ωh)
 ------------------------------------------------------------------
 Let the body rate and specific force of one line be ``Re(Z e^{iωt})``,
 ``Z = (A, B)``, A the rate and B the specific-force amplitude, and let the
-sensor chain of :mod:`strapdown.analysis.coning.sensor_dynamics` have the
+sensor chain of :mod:`strapdown.analysis.vibration.sensor_dynamics` have the
 equivalent responses ``H_c(ω)`` per channel: the algorithm receives exactly
 the increments of ``Re(H A e^{iωt})`` (and of ``Re(H B e^{iωt})``).
 
@@ -98,9 +98,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
+from ..coning.drift_theory import coning_drift_function
 from ..core.quadrature import integrate
 from ..core.validation import positive
-from .drift_theory import coning_drift_function
 from .environment import Environment, Spectrum, VibrationLine
 
 __all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "coherent_groups", "line_response", "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals"]
@@ -164,7 +164,7 @@ class ResponseIntegrals:
     each as a pair of vectors (coning [rad/s], sculling [m/s²]), per part
     (line or spectrum).  With ``φ = D`` of an algorithm this is its drift; with
     the lag responses it is the linear model of the tuning
-    (:mod:`strapdown.analysis.coning.tuning`).
+    (:mod:`strapdown.analysis.vibration.tuning`).
 
     Attributes
     ----------
@@ -456,8 +456,8 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
     Examples
     --------
     >>> from strapdown.derivations.coning.registry import get
-    >>> from strapdown.analysis.coning.environment import coning_line
-    >>> from strapdown.analysis.coning.sensor_dynamics import Sensor, ChannelFilter, analog_filter
+    >>> from strapdown.analysis.vibration.environment import coning_line
+    >>> from strapdown.analysis.vibration.sensor_dynamics import Sensor, ChannelFilter, analog_filter
     >>> lp = ChannelFilter(analog_filter("lowpass1", cutoff_hz=100.0))
     >>> env = Environment((coning_line(10.0, math.radians(1.0)),), gyro=Sensor((lp, lp, lp)))
     >>> d = environment_drift(get("two-sample"), env, 1e-3)

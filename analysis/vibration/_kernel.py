@@ -1,6 +1,6 @@
 """Template of the vibration Monte Carlo kernel: plain Python that numba compiles.
 
-:mod:`strapdown.analysis.coning.vibration_monte_carlo` copies these
+:mod:`strapdown.analysis.vibration.monte_carlo` copies these
 functions below a generated ``increment`` of one algorithm
 (:func:`strapdown.analysis.coning.kernels.increment_source`) and the constants
 of one run kind, and compiles them with ``numba.njit(cache=True)``.  Read here
@@ -23,7 +23,7 @@ the one of their negatives.  Per pair, per sensor sample ``[t_j, t_j + h_s]``:
 2. every analog filter in continuous time: over a sample its state-space
    solution is linear in the state and the node inputs,
    ``[∫ y dt; x'] = G [x; u_1 … u_m]`` (the matrix from the matrix exponential,
-   :func:`strapdown.analysis.coning.vibration_monte_carlo.sensor_matrices`),
+   :func:`strapdown.analysis.vibration.monte_carlo.sensor_matrices`),
    evaluated for all :data:`LANES` (member, channel) lanes at once;
 3. the digital filter on the increments (direct form II transposed);
 4. decimation: M increments summed into one algorithm sample;

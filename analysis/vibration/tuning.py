@@ -2,7 +2,7 @@
 
 The mean drift of an N-sample algorithm (``history`` samples of earlier
 steps) in an environment is affine in its lag sums ``k_l``, l = 1 … L,
-``L = N + history − 1`` (:mod:`strapdown.analysis.coning.vibration_drift`):
+``L = N + history − 1`` (:mod:`strapdown.analysis.vibration.drift`):
 
     u(k) = u_sensor + ∫ q̃ [φ₀(ωh) − Σ_l k_l φ_l(ωh)] / ω  =  c − M k,
 
@@ -54,8 +54,8 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm, Term
 from ...derivations.coning.drift import optimal_coning_algorithm
 from ..core.validation import as_array, as_int, positive
+from .drift import environment_drift, response_integrals
 from .environment import Environment, coning_line
-from .vibration_drift import environment_drift, response_integrals
 
 __all__ = ["TunedAlgorithm", "tune", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
 
@@ -334,7 +334,7 @@ def tuned_drift(environment: Environment, samples: int, sample_interval: float, 
     """Drift (or rectification error) vector of the pairwise algorithm with ``lag_sums`` in ``environment``.
 
     The linear model of the module docstring, ``c − M k``: the same value as
-    :func:`strapdown.analysis.coning.vibration_drift.environment_drift` for
+    :func:`strapdown.analysis.vibration.drift.environment_drift` for
     that algorithm, without deriving its closed form symbolically (cheap for
     many coefficient sets).
 

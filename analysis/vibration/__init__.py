@@ -1,0 +1,25 @@
+"""The vibration environment: algorithms and sensors in the designer's vibration, as a domain of its own.
+
+Built on :mod:`strapdown.analysis.coning` (the algorithms, their drift
+functions and the simulator); the coning domain never imports this one.
+
+Modules
+-------
+sensor_dynamics
+    Sensor filters: analog transfer functions, digital filters, decimation.
+environment
+    Vibration environments (lines, cross-spectra, sensors) and their TOML files.
+examples
+    The example environment files shipped with the package.
+drift
+    Mean coning drift and sculling rectification in an environment, closed form,
+    sensor part (pseudo-coning, pseudo-sculling) apart from the algorithm's.
+simulation
+    DOP853 reference of pseudo-coning (continuous filters, exact kinematics).
+monte_carlo
+    Monte Carlo of the mean drift with an exact truth (compiled kernel).
+tuning
+    Algorithms tuned to an environment (coning and sculling).
+rate_design
+    Lowest sample rate and load for a drift budget in an environment.
+"""
