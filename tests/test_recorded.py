@@ -11,7 +11,10 @@ import pytest
 from strapdown.analysis import cli
 from strapdown.analysis.alignment.imu import Scenario, simulate_imu
 from strapdown.analysis.alignment.observability import observability
-from strapdown.analysis.alignment.recorded import ImuLog, align_log, example_log, read_log, recorded_problem, write_log
+from strapdown.analysis.logs.alignment import align_log, recorded_problem
+from strapdown.analysis.logs.examples import example_log
+from strapdown.analysis.logs.imu_log import ImuLog
+from strapdown.analysis.logs.native import read_log, write_log
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "docs" / "examples" / "rocking-imu-log.npz"

@@ -1,7 +1,7 @@
 """Write ``docs/examples/rocking-imu-log.npz``, the example log of ``docs/recorded-logs.md``.
 
-The log is :func:`strapdown.analysis.alignment.recorded.example_log` (seed
-:data:`~strapdown.analysis.alignment.recorded.EXAMPLE_SEED`, 20261203): four
+The log is :func:`strapdown.analysis.logs.examples.example_log` (seed
+:data:`~strapdown.analysis.logs.examples.EXAMPLE_SEED`, 20261203): four
 minutes of a simulated navigation-grade IMU on a rocking base, increments
 stored as float32 (about 0.3 MB).  Running this script again writes the same
 arrays (the zip members' timestamps differ).
@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from strapdown.analysis.alignment.recorded import example_log, write_log
+from strapdown.analysis.logs.examples import example_log
+from strapdown.analysis.logs.native import write_log
 
 DEFAULT = Path(__file__).resolve().parents[1] / "docs" / "examples" / "rocking-imu-log.npz"
 

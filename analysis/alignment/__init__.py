@@ -49,8 +49,6 @@ trajectory
     A manoeuvring vehicle over the rotating Earth: exact kinematics and ideal increments.
 aided
     GNSS-aided in-motion alignment: navigator, filter, aided floor, Monte Carlo.
-recorded
-    Recorded IMU logs (.npz, .csv): reading, aligning, the observability of their motion, the example log.
 design_studies
     The studies of the alignment-design report.
 """

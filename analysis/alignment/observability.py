@@ -563,7 +563,7 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
     problem : ObservabilityProblem
         From :func:`stationary_problem`, :func:`rocking_problem`,
         :func:`multi_position_problem` or a recorded log
-        (:func:`strapdown.analysis.alignment.recorded.recorded_problem`).
+        (:func:`strapdown.analysis.logs.alignment.recorded_problem`).
 
     Returns
     -------

@@ -1,6 +1,6 @@
 """``strapdown align --log``: one alignment of a recorded IMU log (the Monte Carlo options do not apply).
 
-The log's format is ``docs/recorded-logs.md`` (:mod:`strapdown.analysis.alignment.recorded`).
+The log's format is ``docs/recorded-logs.md`` (:mod:`strapdown.analysis.logs`).
 The sensor options describe what the filter assumes about the IMU (its noise and
 bias priors); the options that build a simulation are refused.
 """
@@ -39,9 +39,10 @@ def align_recorded(args, options) -> Result:
     UsageError
         If a simulation option was given.
     """
-    from ..alignment.recorded import align_log, read_log
     from ..core.units import deg, rad
     from ..core.validation import in_open_interval
+    from ..logs.alignment import align_log
+    from ..logs.native import read_log
 
     parser = args.parser_
     actions = {a.option_strings[0]: a for a in parser._actions if a.option_strings}

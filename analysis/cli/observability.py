@@ -89,7 +89,8 @@ def _problem(args):
     if args.log is not None:
         if args.model != "stationary":
             raise UsageError(f"--model {args.model} does not apply to a recorded log (--log): its positions come from its motion")
-        from ..alignment.recorded import read_log, recorded_problem
+        from ..logs.alignment import recorded_problem
+        from ..logs.native import read_log
 
         log = read_log(args.log)
         return recorded_problem(log, lat, tuning=tuning), log

@@ -434,8 +434,9 @@ def build(ctx) -> None:
     """
     from ..alignment import design_studies as ds
     from ..alignment.fine import FilterTuning
-    from ..alignment.recorded import align_log, example_log
     from ..alignment.sensor_models import GRADES
+    from ..logs.alignment import align_log
+    from ..logs.examples import example_log
 
     q = ctx.quick
     lines = [

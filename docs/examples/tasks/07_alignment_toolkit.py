@@ -20,10 +20,11 @@ import math
 from strapdown.analysis.alignment.design_studies import grade_study, methods_study
 from strapdown.analysis.alignment.fine import FilterTuning
 from strapdown.analysis.alignment.observability import BodyRotation, multi_position_problem, observability, stationary_problem
-from strapdown.analysis.alignment.recorded import align_log, example_log
 from strapdown.analysis.alignment.sensor_models import GRADES
 from strapdown.analysis.core.units import DEG_PER_RAD as D
 from strapdown.analysis.core.units import deg_per_h, rad
+from strapdown.analysis.logs.alignment import align_log
+from strapdown.analysis.logs.examples import example_log
 
 latitude = rad(45.0)
 
@@ -76,7 +77,7 @@ for c in grade_study(GRADES[:3], latitude=latitude, duration=4000.0):
 # --------------
 # The package ships four minutes of a simulated navigation-grade IMU on a
 # rocking base, its truth in the file's metadata
-# (:func:`~strapdown.analysis.alignment.recorded.example_log`). Each method
+# (:func:`~strapdown.analysis.logs.examples.example_log`). Each method
 # aligns it once; the analytic method assumes the gyros see the Earth rate
 # only, and the rocking they see spoils it.
 log = example_log()
