@@ -199,7 +199,10 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     g0 = float(normal_gravity(latitude if latitude is not None else math.radians(45.0)))
     win = _windows(segments)
     if win is None:
-        out.append(Check("time base", "fail", f"{sum(s.n_samples for s in segments)} samples", f"the log is shorter than one {_WINDOW:g} s window: nothing to check or analyse"))
+        longest = max((s.n_samples * s.dt for s in segments), default=0.0)
+        out.append(
+            Check("time base", "fail", f"{len(segments)} segment(s), the longest {longest:.3g} s", f"no gap-free stretch lasts one {_WINDOW:g} s window: nothing to check or analyse")
+        )
         return LogChecks(tuple(out))
     rate, force, spread, hw, seg_id = win
     fmag = np.linalg.norm(force, axis=1)

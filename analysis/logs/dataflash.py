@@ -32,6 +32,7 @@ Public API
 .. autosummary::
 
    read_dataflash
+   record_dtype
    ARDUPILOT_FILTERS
 """
 
@@ -45,7 +46,7 @@ from .framing import gather, walk_dataflash
 from .inventory import GnssTrack, SensorFilter, StreamInfo
 from .streams import LogContents, StreamSamples, choose_topic
 
-__all__ = ["read_dataflash", "ARDUPILOT_FILTERS"]
+__all__ = ["read_dataflash", "record_dtype", "ARDUPILOT_FILTERS"]
 
 _CHUNK = 1 << 26
 _STRUCT_TO_NUMPY = {"b": "i1", "B": "u1", "h": "<i2", "H": "<u2", "i": "<i4", "I": "<u4", "q": "<i8", "Q": "<u8", "f": "<f4", "d": "<f8", "e": "<f2"}
@@ -65,7 +66,28 @@ ARDUPILOT_FILTERS = {
 }
 
 
-def _numpy_dtype(fmt: str, labels):
+def record_dtype(fmt: str, labels):
+    """The numpy layout of a DataFlash message's fields (after its three header bytes).
+
+    Parameters
+    ----------
+    fmt : str
+        The format letters of its FMT record (``"QBffffff"``).
+    labels : sequence of str
+        The field names.
+
+    Returns
+    -------
+    dtype : numpy.dtype
+        Packed, little-endian; ``a`` fields are ``int16[32]``, strings are bytes.
+    scales : dict
+        Field → factor of the scaled letters (``c``, ``C``, ``e``, ``E``: 0.01; ``L``: 1e-7).
+
+    Raises
+    ------
+    KeyError
+        An unknown format letter.
+    """
     from pymavlink.DFReader import FORMAT_TO_STRUCT
 
     fields, scales = [], {}
@@ -97,7 +119,7 @@ class _Formats:
         if kind == 128:
             return
         try:
-            dt, sc = _numpy_dtype(fmt, labels)
+            dt, sc = record_dtype(fmt, labels)
         except KeyError:
             return
         if dt.itemsize + 3 != length:

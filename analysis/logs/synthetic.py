@@ -288,9 +288,9 @@ _DF_MSG = ("MSG", "QZ", "TimeUS,Message")
 
 
 def _df_dtype(fmt: str, labels: str):
-    from .dataflash import _numpy_dtype
+    from .dataflash import record_dtype
 
-    dt, _ = _numpy_dtype(fmt, labels.split(","))
+    dt, _ = record_dtype(fmt, labels.split(","))
     return np.dtype([("h1", "u1"), ("h2", "u1"), ("kind", "u1")] + [(n, dt.fields[n][0]) for n in dt.names])
 
 
