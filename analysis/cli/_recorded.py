@@ -13,7 +13,115 @@ from __future__ import annotations
 
 from . import Result, UsageError
 
-__all__ = ["align_recorded", "SIMULATION_OPTIONS"]
+__all__ = ["align_recorded", "history_data", "history_table", "nis_warning", "SIMULATION_OPTIONS", "HISTORY_POINTS"]
+
+#: Most instants of a filter's history in the JSON output (every k-th update beyond it).
+HISTORY_POINTS = 1000
+
+
+def _stride(n: int, points: int = HISTORY_POINTS) -> int:
+    return max(1, -(-n // points))
+
+
+def history_data(h) -> dict:
+    """The JSON of a :class:`~strapdown.analysis.logs.filter_history.FilterHistory` (degrees, deg/h; every k-th update).
+
+    Parameters
+    ----------
+    h : FilterHistory
+        The filter's histories.
+
+    Returns
+    -------
+    dict
+    """
+    from ..core.units import deg, deg_per_h
+
+    k = _stride(h.times.size)
+    sl = slice(k - 1, None, k)
+    unit = "m" if any(n.startswith("p_") for n in h.innovation_names) else "m_s"
+    return {
+        "stride": k,
+        "times": h.times[sl].tolist(),
+        "sigma_north_tilt_deg": deg(h.sigma[sl, 0]).tolist(),
+        "sigma_east_tilt_deg": deg(h.sigma[sl, 1]).tolist(),
+        "sigma_azimuth_deg": deg(h.sigma[sl, 2]).tolist(),
+        "bias_frame": h.bias_frame,
+        "gyro_bias_deg_per_h": deg_per_h(h.gyro_bias[sl]).tolist(),
+        "accel_bias_m_s2": h.accel_bias[sl].tolist(),
+        "innovation_names": list(h.innovation_names),
+        f"innovation_{unit}": h.innovation[sl].tolist(),
+        "nis": h.nis[sl].tolist(),
+        "nis_dof": h.dof,
+        "nis_mean": h.mean_nis,
+        "nis_block": h.block,
+        "nis_block_times": h.block_times.tolist(),
+        "nis_block_mean": h.block_nis.tolist(),
+        "nis_band": list(h.band),
+        "nis_consistent": h.nis_consistent,
+    }
+
+
+def history_table(h) -> str:
+    """A compact table of a filter's history at a few instants (1/32, 1/16, ..., 1 of the run).
+
+    Parameters
+    ----------
+    h : FilterHistory
+        The filter's histories.
+
+    Returns
+    -------
+    str
+    """
+    import numpy as np
+
+    from ..core.units import deg, deg_per_h
+
+    E = h.times.size
+    rows = sorted({max(0, int(round(E * f)) - 1) for f in (1 / 32, 1 / 16, 1 / 8, 1 / 4, 1 / 2, 1.0)})
+    frame = "N,E,D" if h.bias_frame == "NED" else "x,y,z"
+    head = f"{'t [s]':>9} {'σ tilt N':>9} {'σ tilt E':>9} {'σ azim':>9}  {'gyro bias ' + frame + ' [deg/h]':>30}  {'accel bias ' + frame + ' [m/s²]':>33}  {'NIS':>7}"
+    lines = [head]
+    for j in rows:
+        s = deg(h.sigma[j])
+        gb = deg_per_h(h.gyro_bias[j])
+        ab = h.accel_bias[j]
+        lo = max(0, j - h.block + 1)
+        lines.append(
+            f"{h.times[j]:9.4g} {s[0]:9.3g} {s[1]:9.3g} {s[2]:9.3g}  {gb[0]:+9.3g} {gb[1]:+9.3g} {gb[2]:+9.3g}  {ab[0]:+10.3g} {ab[1]:+10.3g} {ab[2]:+10.3g}  {float(np.mean(h.nis[lo : j + 1])):7.3g}"
+        )
+    lines.append(
+        f"(σ in deg; NIS: mean of the {h.block} updates to t, χ²({h.dof}) per update; block means against "
+        f"[{h.band[0]:.3g}, {h.band[1]:.3g}]: {'all inside' if h.nis_consistent else f'{h.outside.size} of {h.block_nis.size} outside'})"
+    )
+    return "\n".join(lines)
+
+
+def nis_warning(h) -> str | None:
+    """One line when the NIS leaves its band, None when it stays inside.
+
+    Parameters
+    ----------
+    h : FilterHistory
+        The filter's histories.
+
+    Returns
+    -------
+    str or None
+    """
+    if h.nis_consistent:
+        return None
+    i = int(h.outside[0])  # the first block outside
+    m = float(h.block_nis[i])
+    side = "above" if m > h.band[1] else "below"
+    why = "the filter assumes less noise than the log has (or a motion it does not model)" if side == "above" else "the filter assumes more noise than the log has"
+    t1 = float(h.block_times[i])
+    t0 = t1 - (h.block - 1) * (float(h.times[1] - h.times[0]) if h.times.size > 1 else 0.0)
+    return (
+        f"the filter's NIS leaves its χ² band in {h.outside.size} of {h.block_nis.size} blocks: mean {m:.3g} over {t0:.4g}..{t1:.4g} s, "
+        f"{side} [{h.band[0]:.3g}, {h.band[1]:.3g}] ({h.dof} degrees of freedom): {why}"
+    )
 
 #: Options of ``align`` that build the simulated trials, refused with ``--log``.
 SIMULATION_OPTIONS = (

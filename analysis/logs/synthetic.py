@@ -36,6 +36,7 @@ Public API
    SyntheticTruth
    still_truth
    rocking_truth
+   turntable_truth
    write_synthetic
    SYNTHETIC_FORMATS
 """
@@ -53,7 +54,7 @@ import numpy as np
 
 from ..core.validation import as_array, positive
 
-__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
+__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
 
 #: What :func:`write_synthetic` writes (its ``format`` argument).
 SYNTHETIC_FORMATS = ("ulog", "dataflash", "rosbag1", "rosbag2", "euroc", "npz", "csv")
@@ -179,6 +180,84 @@ def rocking_truth(
     rec = simulate_imu(sc, None, n_trials=1, rng=seed)
     n = min(t.size, rec.dtheta.shape[1])
     return SyntheticTruth(t[:n], rec.dtheta[0, :n], rec.dv[0, :n], latitude, f"sine rocking, amplitude {tuple(amplitude)} deg, period {period:g} s")
+
+
+def turntable_truth(
+    headings, dwell: float = 120.0, turn: float = 10.0, rate: float = 100.0, *, latitude: float = math.radians(45.0), beta: float = 0.0, gamma: float = 0.0
+) -> tuple:
+    """A block on a turntable with a vertical axis: at rest in each heading, turned between them.
+
+    The attitude is ``C_b^n(t) = R_z(ψ(t) − ψ_1) C_1``, ``C_1 = R_z(ψ_1) R_x(−β) R_y(γ)``, with ψ
+    constant for ``dwell`` seconds in each heading and a half-cosine turn of ``turn`` seconds to the
+    next, so that ``ω_ib^b = C_b^nᵀ (ω_ie^n + ψ' e_D)`` and ``f^b = −C_b^nᵀ g^n``.  The increments are
+    the four-point Gauss–Legendre quadrature of these rates over each interval (every join of the
+    profile falls on a sample boundary, so each interval is smooth: error at round-off).
+
+    Parameters
+    ----------
+    headings : sequence of float
+        ψ of each position [rad] (a turn takes the shorter or longer way as the numbers say).
+    dwell : float
+        Time at rest in each position [s].
+    turn : float
+        Duration of each turn [s].
+    rate : float
+        Sample rate [Hz].
+    latitude : float, keyword-only
+        Latitude φ [rad].
+    beta, gamma : float, keyword-only
+        Tilts of the block on the table [rad].
+
+    Returns
+    -------
+    truth : SyntheticTruth
+        The increments.
+    end_attitude : ndarray
+        ``(3, 3)`` ``C_b^n`` at the end.
+    """
+    from ..alignment.earth import earth_rate_ned, gravity_ned
+    from ..alignment.tilt_attitude import attitude_matrix
+
+    psi = np.asarray(headings, dtype=float).ravel()
+    h_us = round(1e6 / positive(rate, "rate"))
+    h = h_us * 1e-6
+    n_dwell, n_turn = int(round(positive(dwell, "dwell") / h)), int(round(positive(turn, "turn") / h))
+    n = psi.size * n_dwell + (psi.size - 1) * n_turn
+    t_end = np.arange(1, n + 1) * h
+    C1 = attitude_matrix([psi[0], beta, gamma])
+    W, gn = earth_rate_ned(latitude), gravity_ned(latitude)
+
+    def profile(t):
+        """ψ(t) − ψ_1 and ψ'(t)."""
+        period = (n_dwell + n_turn) * h
+        k = np.minimum((t // period).astype(int), psi.size - 1)
+        s = t - k * period - n_dwell * h  # time into the turn after position k
+        inside = (s > 0) & (k < psi.size - 1)
+        d = np.where(k < psi.size - 1, psi[np.minimum(k + 1, psi.size - 1)] - psi[k], 0.0)
+        x = np.clip(s / (n_turn * h), 0.0, 1.0)
+        ang = psi[k] - psi[0] + np.where(inside, 0.5 * d * (1.0 - np.cos(math.pi * x)), 0.0)
+        rate_ = np.where(inside, 0.5 * d * math.pi / (n_turn * h) * np.sin(math.pi * x), 0.0)
+        return ang, rate_
+
+    def body(t):
+        a, r = profile(t)
+        c, sn = np.cos(a), np.sin(a)
+        Rz = np.zeros((t.size, 3, 3))
+        Rz[:, 0, 0], Rz[:, 0, 1], Rz[:, 1, 0], Rz[:, 1, 1], Rz[:, 2, 2] = c, -sn, sn, c, 1.0
+        C = Rz @ C1
+        w = np.einsum("kji,kj->ki", C, W[None, :] + r[:, None] * np.array([0.0, 0.0, 1.0]))
+        f = np.einsum("kji,j->ki", C, -gn)
+        return w, f, C
+
+    nodes, weights = np.polynomial.legendre.leggauss(4)
+    dth, dv = np.zeros((n, 3)), np.zeros((n, 3))
+    for x, wgt in zip(nodes, weights):
+        w, f, _ = body(t_end - h + 0.5 * h * (x + 1.0))
+        dth += 0.5 * h * wgt * w
+        dv += 0.5 * h * wgt * f
+    C_end = body(t_end[-1:])[2][0]
+    truth = SyntheticTruth(t_end, dth, dv, latitude, f"turntable: headings {np.degrees(psi).round(3).tolist()} deg, {dwell:g} s each, {turn:g} s turns")
+    return truth, C_end
 
 
 # --------------------------------------------------------------------------- atomic writes
