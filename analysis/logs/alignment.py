@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..alignment.aided import AidedTuning
 from ..alignment.analytic import analytic_alignment
 from ..alignment.coarse_to_fine import coarse_model, coarse_to_fine, split_record
 from ..alignment.compass_loop import CompassLoopDesign, compass_loop_alignment
@@ -44,7 +45,7 @@ from .records import log_record
 __all__ = ["log_record", "LogAlignment", "align_log", "recorded_problem", "LOG_METHODS", "CALIBRATION_SEED"]
 
 #: Methods :func:`align_log` runs.
-LOG_METHODS = ("analytic", "inertial", "kalman", "compass", "multiposition")
+LOG_METHODS = ("analytic", "inertial", "kalman", "compass", "multiposition", "aided")
 
 #: Seed of the simulated trials that calibrate the coarse stage's covariance (``kalman``): a
 #: property of the filter's model, not of the data, fixed so that an alignment of a recorded
@@ -115,6 +116,9 @@ def align_log(
     compass: CompassLoopDesign | None = None,
     calibration_trials: int = 64,
     rng=None,
+    gnss=None,
+    aided: AidedTuning | None = None,
+    limits=None,
 ) -> LogAlignment:
     """Align a recorded log once with ``method``.
 
@@ -144,6 +148,12 @@ def align_log(
         Stream of that calibration (default :data:`CALIBRATION_SEED`).  Nothing random is
         added to the recorded data: the filter starts from zero velocity and its
         zero-velocity measurements are the log's, without synthetic noise.
+    gnss : GnssTrack, optional, keyword-only
+        ``aided``: the log's GNSS fixes (:attr:`Inventory.gnss <strapdown.analysis.logs.inventory.Inventory>`).
+    aided : AidedTuning, optional, keyword-only
+        ``aided``: the filter (default :class:`~strapdown.analysis.alignment.aided.AidedTuning`).
+    limits : Limits, optional, keyword-only
+        ``aided``: the largest work accepted.
 
     Returns
     -------
@@ -160,6 +170,16 @@ def align_log(
     if method not in LOG_METHODS:
         raise ValueError(f"Expected `method` in {LOG_METHODS}, got {method!r}")
     tuning = FilterTuning() if tuning is None else tuning
+    if method == "aided":
+        from .aided import aided_log_alignment
+
+        if gnss is None:
+            raise ValueError("Expected `gnss` fixes for the aided alignment, got a log without GNSS")
+        ar = aided_log_alignment(log, gnss, tuning=aided, limits=limits)
+        truth = log.angles("end")
+        err = float(wrap_angle(ar.heading - truth[0])) if truth is not None else None
+        return LogAlignment(method, ar.heading, ar.beta, ar.gamma, "end", ar.heading_sigma, err, log.n_samples * log.dt, ar.history,
+                            gyro_bias=ar.gyro_bias, accel_bias=ar.accel_bias, tilt_sigma=ar.tilt_sigma)  # fmt: skip
     if method == "multiposition":
         from .positions import multiposition_alignment
 

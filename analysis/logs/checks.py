@@ -20,7 +20,8 @@ each window), so their cost is one pass over the samples:
     Gravity reads about −g on z (FRD: z down); +g on z is a log with z up (FLU, ENU).
 ``gyro scale``
     Where the body turns, the accelerometers see gravity turn in the body axes:
-    ``Δf ≈ −Δθ × f``.  The least-squares factor k between the gyros' turn and the
+    ``Δf ≈ −Δθ × f`` (skipped in a drive, GNSS speed above 1 m/s, whose accelerations
+    change the specific force too).  The least-squares factor k between the gyros' turn and the
     accelerometers' is 1; k = π/180 means degrees logged as radians, k = interval means
     rates in the increment columns.
 ``Earth rate``
@@ -166,6 +167,17 @@ def _windows(segments):
     return np.concatenate(rates), np.concatenate(forces), np.concatenate(spread), np.concatenate(h_all), np.concatenate(ids)
 
 
+_MOVING = 1.0  # GNSS speed above which the log is a drive, not a block at rest or rocking [m/s]
+
+
+def _gnss_speed(gnss) -> float:
+    """Largest horizontal GNSS speed of the log [m/s] (0 without GNSS velocity)."""
+    if gnss is None or gnss.velocity is None or not np.size(gnss.velocity):
+        return 0.0
+    v = np.asarray(gnss.velocity, dtype=float)
+    return float(np.max(np.hypot(v[:, 0], v[:, 1])))
+
+
 def _near(x, target, tol=0.2) -> bool:
     return target > 0 and abs(x / target - 1.0) < tol
 
@@ -269,7 +281,10 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     df = np.diff(force, axis=0)[same]
     den = float(np.sum(pred * pred))
     moved = math.degrees(float(np.sqrt(np.mean(np.sum(dth * dth, axis=1))))) if dth.size else 0.0
-    if den > 0 and moved > 0.5 and dth.shape[0] >= 5:
+    speed = _gnss_speed(inventory.gnss)
+    if speed > _MOVING:
+        out.append(Check("gyro scale", "skip", f"GNSS speed up to {speed:.3g} m/s", "a drive: its accelerations change the specific force as much as its turns, the two cannot be compared"))
+    elif den > 0 and moved > 0.5 and dth.shape[0] >= 5:
         k = float(np.sum(df * pred) / den)
         if 0.7 < k < 1.4:
             out.append(Check("gyro scale", "pass", f"k = {k:.3g}", "the gyros' turns match gravity turning in the accelerometers"))

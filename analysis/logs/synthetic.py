@@ -37,6 +37,7 @@ Public API
    still_truth
    rocking_truth
    turntable_truth
+   vehicle_truth
    write_synthetic
    SYNTHETIC_FORMATS
 """
@@ -53,8 +54,9 @@ from pathlib import Path
 import numpy as np
 
 from ..core.validation import as_array, positive
+from .inventory import GnssTrack
 
-__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
+__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "vehicle_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
 
 #: What :func:`write_synthetic` writes (its ``format`` argument).
 SYNTHETIC_FORMATS = ("ulog", "dataflash", "rosbag1", "rosbag2", "euroc", "npz", "csv")
@@ -76,6 +78,8 @@ class SyntheticTruth:
         Where the log is (GNSS fixes and metadata) [rad].
     description : str
         What it is.
+    gnss : GnssTrack or None
+        The GNSS fixes to write with ``gnss=True`` (default: fixes at rest at ``latitude``, 5 Hz).
     """
 
     time: np.ndarray
@@ -83,6 +87,7 @@ class SyntheticTruth:
     dv: np.ndarray
     latitude: float = math.radians(45.0)
     description: str = "synthetic"
+    gnss: GnssTrack | None = None
 
     def __post_init__(self):
         t = as_array(self.time, "time").ravel()
@@ -260,6 +265,43 @@ def turntable_truth(
     return truth, C_end
 
 
+def vehicle_truth(manoeuvre, duration: float = 300.0, rate: float = 100.0, *, gnss_rate: float = 5.0, limits=None) -> tuple:
+    """A vehicle driving a manoeuvre (:mod:`~strapdown.analysis.alignment.trajectory`): its ideal increments and GNSS fixes.
+
+    Parameters
+    ----------
+    manoeuvre : Manoeuvre
+        The drive (start position, speed profile, heading weave).
+    duration : float
+        Length [s].
+    rate : float
+        IMU sample rate [Hz].
+    gnss_rate : float, keyword-only
+        Rate of the fixes [Hz] (from t = 0, on the IMU's microsecond grid).
+    limits : Limits, optional, keyword-only
+        Work limits of the trajectory (:func:`~strapdown.analysis.alignment.trajectory.trajectory_increments`).
+
+    Returns
+    -------
+    truth : SyntheticTruth
+        The increments, with ``gnss`` the exact fixes (position and NED velocity).
+    state : TrajectoryState
+        The true state at the end of the log (``attitude``, ``heading``).
+    """
+    from ..alignment.trajectory import trajectory_increments, trajectory_state
+
+    h, t = _grid(duration, rate)
+    dth, dv, sol = trajectory_increments(manoeuvre, 1.0 / h, t.size * h, limits=limits)
+    n = min(t.size, dth.shape[0])
+    step_us = round(1e6 / positive(gnss_rate, "gnss_rate"))
+    tg = np.arange(0, int(round(t[n - 1] * 1e6)) + 1, step_us) * 1e-6
+    st = trajectory_state(manoeuvre, tg, solution=sol)
+    gnss = GnssTrack("truth", tg, st.latitude, st.longitude, np.full(tg.size, st.height), st.velocity)
+    end = trajectory_state(manoeuvre, [t[n - 1]], solution=sol)
+    desc = f"vehicle: {manoeuvre.speed:g} m/s, weave {math.degrees(manoeuvre.weave_amplitude):g} deg over {manoeuvre.weave_period:g} s"
+    return SyntheticTruth(t[:n], dth[:n], dv[:n], float(manoeuvre.latitude), desc, gnss), end
+
+
 # --------------------------------------------------------------------------- atomic writes
 def _atomic(path: Path, write) -> Path:
     tmp = path.with_name(f".{path.name}.partial")
@@ -316,6 +358,17 @@ def _records(msg_id: int, fields, columns: dict, n: int) -> np.ndarray:
     return rec
 
 
+def _fixes(truth: SyntheticTruth, stamps, start_us: int):
+    """``(time [µs of the log's clock], lat [deg], lon [deg], alt [m], NED velocity (M, 3) [m/s])`` of the fixes to write."""
+    g = truth.gnss
+    if g is None:  # at rest at the truth's latitude, 5 Hz
+        tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
+        m = tg.size
+        return tg, np.full(m, math.degrees(truth.latitude)), np.full(m, 8.5), np.full(m, 450.0), np.zeros((m, 3))
+    vel = np.zeros((g.time.size, 3)) if g.velocity is None else np.asarray(g.velocity, dtype=float)
+    return start_us + np.round(g.time * 1e6).astype(np.int64), np.degrees(g.latitude), np.degrees(g.longitude), np.asarray(g.altitude, dtype=float), vel
+
+
 def _write_ulog(path: Path, truth: SyntheticTruth, layout: str, gnss: bool, start_us: int = 1_000_000):
     h = truth.interval
     h_us = int(round(h * 1e6))
@@ -346,13 +399,12 @@ def _write_ulog(path: Path, truth: SyntheticTruth, layout: str, gnss: bool, star
                 f.write(d)
             _records(0, sc_fields, cols, truth.time.size).tofile(f)
             if gnss:
-                tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
-                lat = math.degrees(truth.latitude)
-                g = {"timestamp": tg, "fix_type": 3}
+                tg, lat, lon, alt, vel = _fixes(truth, stamps, start_us)
+                g = {"timestamp": tg, "fix_type": 3, "vel_n_m_s": vel[:, 0], "vel_e_m_s": vel[:, 1], "vel_d_m_s": vel[:, 2]}
                 if layout == "new":
-                    g.update(latitude_deg=lat, longitude_deg=8.5, altitude_msl_m=450.0)
+                    g.update(latitude_deg=lat, longitude_deg=lon, altitude_msl_m=alt)
                 else:
-                    g.update(lat=int(round(lat * 1e7)), lon=85_000_000, alt=450_000)
+                    g.update(lat=np.round(lat * 1e7).astype(np.int64), lon=np.round(lon * 1e7).astype(np.int64), alt=np.round(alt * 1e3).astype(np.int64))
                 _records(1, gps_fields, g, tg.size).tofile(f)
 
     _atomic(path, write)
@@ -414,8 +466,9 @@ def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, s
                 cols.update({f"DelV{a}": truth.dv[:, i] for i, a in enumerate("XYZ")})
                 _df_records(131, _DF_IMT, truth.time.size, cols).tofile(f)
             if gnss:
-                tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
-                cols = {"TimeUS": tg, "Status": 3, "NSats": 12, "Lat": int(round(math.degrees(truth.latitude) * 1e7)), "Lng": 85_000_000, "Alt": 45000}
+                tg, lat, lon, alt, vel = _fixes(truth, stamps, start_us)
+                cols = {"TimeUS": tg, "Status": 3, "NSats": 12, "Lat": np.round(lat * 1e7).astype(np.int64), "Lng": np.round(lon * 1e7).astype(np.int64),
+                        "Alt": np.round(alt * 100).astype(np.int64), "Spd": np.hypot(vel[:, 0], vel[:, 1]), "GCrs": np.degrees(np.arctan2(vel[:, 1], vel[:, 0])) % 360.0, "VZ": vel[:, 2]}  # fmt: skip
                 _df_records(132, _DF_GPS, tg.size, cols).tofile(f)
 
     _atomic(path, write)
