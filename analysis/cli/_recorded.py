@@ -11,6 +11,8 @@ never a silent zero.  Nothing random is added to the recorded data, so
 
 from __future__ import annotations
 
+import sys
+
 from . import Result, UsageError
 
 __all__ = ["align_recorded", "history_data", "history_table", "nis_warning", "SIMULATION_OPTIONS", "HISTORY_POINTS"]
@@ -153,10 +155,11 @@ def align_recorded(args, options) -> Result:
     """
     from dataclasses import replace
 
-    from ..core.units import deg, rad
-    from ..core.validation import in_open_interval
+    from ..core.units import DEG_PER_RT_H_TO_RAD_PER_RT_S, M_S_PER_RT_H_TO_M_S_PER_RT_S, deg, deg_per_h, rad, rad_per_s
+    from ..core.validation import in_open_interval, positive
     from ..logs.alignment import align_log
     from ._logs import load_log
+    from ._options import limits_from
 
     parser = args.parser_
     actions = {a.option_strings[0]: a for a in parser._actions if a.option_strings}
@@ -167,28 +170,53 @@ def align_recorded(args, options) -> Result:
             raise UsageError(f"{flag} does not apply to a recorded log (--log): it builds the simulated trials")
     lat = rad(in_open_interval(args.lat_deg, "--lat-deg", -90.0, 90.0, text="(-90, 90) degrees"))
     tuning = options.tuning
-    if args.method == "kalman":
-        if args.imu is not None:
-            from ..logs.sensor_spec import read_sensor_spec
+    spec = None
+    if args.imu is not None:
+        from ..logs.sensor_spec import read_sensor_spec
 
-            spec = read_sensor_spec(args.imu)
-            tuning = replace(tuning, gyro_noise=spec.arw, accel_noise=spec.vrw)
-            if spec.gyro_bias_instability and args.gyro_bias_sigma_deg_per_h == 0:
-                tuning = replace(tuning, gyro_bias=spec.gyro_bias_instability)
-            if spec.accel_bias_instability and args.accel_bias_sigma_m_s2 == 0:
-                tuning = replace(tuning, accel_bias=spec.accel_bias_instability)
-        elif not (tuning.gyro_noise > 0 and tuning.accel_noise > 0):
-            raise UsageError(
-                "--method kalman on a recorded log needs the sensor's noise: --imu SPEC.toml (a data sheet, or the output of log allan) "
-                "or --arw-deg-per-rt-h and --vrw-m-s-per-rt-h > 0 (a filter told the noise is zero diverges on a long log)"
-            )
-    elif args.imu is not None:
-        raise UsageError(f"--imu does not apply to --method {args.method} (it sets the noise of the kalman filter)")
+        spec = read_sensor_spec(args.imu)
+        tuning = replace(tuning, gyro_noise=spec.arw, accel_noise=spec.vrw)
+    else:
+        tuning = replace(tuning, gyro_noise=args.arw_deg_per_rt_h * DEG_PER_RT_H_TO_RAD_PER_RT_S, accel_noise=args.vrw_m_s_per_rt_h * M_S_PER_RT_H_TO_M_S_PER_RT_S)
+    if args.method in ("kalman", "aided") and not (tuning.gyro_noise > 0 and tuning.accel_noise > 0):
+        raise UsageError(
+            f"--method {args.method} on a recorded log needs the sensor's noise: --imu SPEC.toml (a data sheet, or the output of log allan) "
+            "or --arw-deg-per-rt-h and --vrw-m-s-per-rt-h > 0 (a filter told the noise is zero diverges on a long log)"
+        )
+    gyro_bias = rad_per_s(args.gyro_bias_sigma_deg_per_h) if args.gyro_bias_sigma_deg_per_h > 0 else (spec.gyro_bias_instability if spec and spec.gyro_bias_instability else None)
+    accel_bias = args.accel_bias_sigma_m_s2 if args.accel_bias_sigma_m_s2 > 0 else (spec.accel_bias_instability if spec and spec.accel_bias_instability else None)
+    if args.method == "kalman":
+        tuning = replace(tuning, **({"gyro_bias": gyro_bias} if gyro_bias else {}), **({"accel_bias": accel_bias} if accel_bias else {}))
+    aided = None
+    if args.method == "aided":
+        from ..alignment.aided import AidedTuning
+
+        fields = {"gyro_noise": tuning.gyro_noise, "accel_noise": tuning.accel_noise}
+        fields.update({"gyro_bias": gyro_bias} if gyro_bias else {}, **({"accel_bias": accel_bias} if accel_bias else {}))
+        if args.prior_heading_deg is not None:
+            fields["prior_heading"] = rad(positive(args.prior_heading_deg, "--prior-heading-deg"))
+        if args.prior_tilt_deg is not None:
+            fields["prior_tilt"] = rad(positive(args.prior_tilt_deg, "--prior-tilt-deg"))
+        if args.epoch is not None:
+            fields["epoch"] = positive(args.epoch, "--epoch")
+        aided = AidedTuning(
+            velocity_noise=positive(args.gnss_velocity_noise_m_s, "--gnss-velocity-noise-m-s"), position_noise=positive(args.gnss_position_noise, "--gnss-position-noise"),
+            gnss_interval=positive(args.gnss_interval, "--gnss-interval"), **fields,
+        )  # fmt: skip
     recorded = load_log(args)
     log = recorded.longest
     if log.metadata.get("latitude") is None and recorded.inventory.metadata:
         log = replace(log, metadata=recorded.inventory.metadata)
-    r = align_log(log, lat, method=args.method, tuning=tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch)
+    gnss = recorded.inventory.gnss
+    if args.method == "aided" and gnss is None:
+        raise UsageError(f"--method aided needs GNSS fixes in the log, and {recorded.path.name} has none (log inspect lists its topics)")
+    try:
+        r = align_log(log, lat, method=args.method, tuning=tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch,
+                      gnss=gnss, aided=aided, limits=limits_from(args))  # fmt: skip
+    except ValueError as e:
+        if args.method in ("multiposition", "aided") and "Expected" in str(e) and "`" not in str(e):
+            raise UsageError(f"--method {args.method}: {e}") from None
+        raise
     data = {
         "log": str(args.log),
         "format": recorded.format,
@@ -200,20 +228,55 @@ def align_recorded(args, options) -> Result:
         "samples": log.n_samples,
         "sample_rate_hz": 1.0 / log.dt,
         "duration": r.duration,
-        "reference": "stable attitude" if r.reference == "stable" else "attitude at the end",
+        "reference": {"stable": "stable attitude", "end": "attitude at the end", "first position": "attitude of the first position"}[r.reference],
         "heading_deg": deg(r.heading),
         "beta_deg": deg(r.beta),
         "gamma_deg": deg(r.gamma),
         "heading_sigma_deg": None if r.heading_sigma is None else deg(r.heading_sigma),
+        "tilt_sigma_deg": None if r.tilt_sigma is None else [deg(x) for x in r.tilt_sigma],
         "heading_error_deg": None if r.heading_error is None else deg(r.heading_error),
     }
+    if r.gyro_bias is not None:
+        data["gyro_bias_deg_per_h"] = deg_per_h(r.gyro_bias).tolist()
+        data["accel_bias_m_s2"] = [float(x) for x in r.accel_bias]
+        data["bias_frame"] = "body"
+    if r.multiposition is not None:
+        mp = r.multiposition
+        from ..alignment.tilt_attitude import angles_from_matrix
+
+        end = angles_from_matrix(mp.end_attitude)
+        data["positions"] = [{"start": p.time_start, "end": p.time_end, "turn_deg": deg(p.angle)} for p in mp.positions]
+        data["end_heading_deg"], data["end_beta_deg"], data["end_gamma_deg"] = deg(float(end.heading)), deg(float(end.beta)), deg(float(end.gamma))
+        data["residual_rms"] = mp.residual_rms
+    if r.history is not None:
+        data["history"] = history_data(r.history)
     text = (
         f"{r.method} alignment of {args.log} ({recorded.format}, {recorded.topic}; {log.n_samples} samples, {r.duration:g} s"
         f"{', the longest of ' + str(len(recorded.segments)) + ' segments' if len(recorded.segments) > 1 else ''}): "
         f"heading {data['heading_deg']:.6g} deg, β {data['beta_deg']:.6g} deg, γ {data['gamma_deg']:.6g} deg ({data['reference']})"
     )
     if r.heading_sigma is not None:
-        text += f"\nthe filter's azimuth standard deviation: {data['heading_sigma_deg']:.4g} deg"
+        text += f"\nstandard deviations: azimuth {data['heading_sigma_deg']:.4g} deg" + (
+            f", tilts {data['tilt_sigma_deg'][0]:.3g} and {data['tilt_sigma_deg'][1]:.3g} deg" if r.tilt_sigma is not None else ""
+        )
     if r.heading_error is not None:
         text += f"\nazimuth error against the log's truth: {data['heading_error_deg']:.4g} deg"
+    if r.multiposition is not None:
+        text += "\npositions: " + "; ".join(f"{p['start']:.4g}..{p['end']:.4g} s turned {p['turn_deg']:.4g} deg" for p in data["positions"])
+        text += f"\nattitude at the end (the first position's, carried by the gyros): heading {data['end_heading_deg']:.6g} deg, β {data['end_beta_deg']:.6g} deg, γ {data['end_gamma_deg']:.6g} deg"
+    if r.gyro_bias is not None:
+        gb, ab = data["gyro_bias_deg_per_h"], data["accel_bias_m_s2"]
+        text += f"\nbias estimates (body x, y, z): gyro {gb[0]:+.4g}, {gb[1]:+.4g}, {gb[2]:+.4g} deg/h; accelerometer {ab[0]:+.4g}, {ab[1]:+.4g}, {ab[2]:+.4g} m/s²"
+    if r.history is not None:
+        text += "\n" + history_table(r.history)
+        warning = nis_warning(r.history)
+        if warning is not None:
+            sys.stderr.write(f"strapdown align: warning: {warning}\n")
+            sys.stderr.flush()
+    if args.figure is not None:
+        from ..report.log_figures import draw_alignment_history
+
+        draw_alignment_history(r.history, args.figure, title=f"{r.method} alignment of {recorded.path.name} ({recorded.topic})")
+        data["figure"] = str(args.figure)
+        text += f"\nfigure: {args.figure}"
     return Result(data, text)
