@@ -63,11 +63,11 @@ class AidedLogResult:
     Attributes
     ----------
     heading, beta, gamma : float
-        The attitude at the last update [rad].
+        The attitude at the end of the log's last whole epoch [rad] (navigated from the last update).
     time : float
-        Time of the last update, from the segment's start [s].
+        That instant, from the segment's start [s].
     heading_sigma : float
-        The filter's azimuth standard deviation there [rad].
+        The filter's azimuth standard deviation there [rad] (predicted from the last update).
     tilt_sigma : tuple of float
         Its standard deviations of the north and east tilts [rad].
     gyro_bias, accel_bias : ndarray
@@ -185,7 +185,7 @@ def aided_log_alignment(
         raise ValueError(f"Expected GNSS fixes over at least two updates of the log ({t0:.4g}..{tb[-1]:.4g} s), got fixes over {tg[0]:.4g}..{tg[-1]:.4g} s")
     what = f"`log` of {log.n_samples:.3g} samples ({E - j0:.3g} navigator epochs, {U} GNSS updates)"
     budget.check(budget.Estimate(budget.AIDED_EPOCH_SECONDS * (E - j0) + budget.AIDED_FIX.estimate(U, what=what).seconds, 200.0 * log.n_samples + 4e4 * U, what), limits)
-    ep = preintegrate(log.dtheta[None, j0 * M : (j0 + U * K) * M], log.dv[None, j0 * M : (j0 + U * K) * M], dt, M)
+    ep = preintegrate(log.dtheta[None, j0 * M : E * M], log.dv[None, j0 * M : E * M], dt, M)
     has_vel = gnss.velocity is not None
     vel = np.asarray(gnss.velocity, dtype=float) if has_vel else None
     rows = np.arange(6) if has_vel else np.arange(3, 6)
@@ -222,11 +222,11 @@ def aided_log_alignment(
     R = np.diag([tuning.velocity_noise**2] * 3 + [tuning.position_noise**2] * 3)[np.ix_(rows, rows)]
     times, sig, gbs, abs_, ys, nis = [], [], [], [], [], []
     f_sum = np.zeros(3)
-    with bar(desc="aided alignment", total=U * K, enabled=progress, unit="epoch") as pbar:
-        for j in range(U * K):  # one navigator step per epoch
+    with bar(desc="aided alignment", total=E - j0, enabled=progress, unit="epoch") as pbar:
+        for j in range(E - j0):  # one navigator step per epoch, to the log's last whole epoch
             f_sum += quat.rotate(q, ep.velocity[:, j])[0]
             q, v, lat, lon, h = navigator_step(q, v, lat, lon, h, bg, ba, ep.rotation[:, j], ep.velocity[:, j], ep.moment[:, j], D)
-            if (j + 1) % K:
+            if (j + 1) % K or j + 1 > U * K:
                 continue
             pbar.update(K)
             t_now = tb[j0 + j + 1]
@@ -263,10 +263,20 @@ def aided_log_alignment(
             gbs.append(bg[0].copy())
             abs_.append(ba[0].copy())
             ys.append(y)
+    rest = E - j0 - U * K  # epochs after the last fix: the covariance predicted to the end
+    if rest:
+        Cn = Rotation.from_quat(q[0], scalar_first=True).as_matrix()
+        model = navigation_error_model(
+            float(lat[0]), velocity=v[0], specific_force=f_sum / (rest * D), attitude=Cn, height=float(h[0]), biases="body", position=True, transport=True,
+            gyro_noise=tuning.gyro_noise, accel_noise=tuning.accel_noise, gyro_bias_walk=tuning.gyro_bias_walk, accel_bias_walk=tuning.accel_bias_walk,
+        )  # fmt: skip
+        F, Q = _discretise(model.A, model.Qc, rest * D)
+        P = F @ P @ F.T + Q
     names = tuple(GNSS_NAMES[i] for i in rows)
     hist = filter_history(np.array(times), np.array(sig), np.array(gbs), np.array(abs_), np.array(ys), np.array(nis), bias_frame="body", innovation_names=names)
     a = angles_from_matrix(Rotation.from_quat(q[0], scalar_first=True).as_matrix())
+    sd = np.sqrt(np.diag(P)[0:3])
     return AidedLogResult(
-        float(a.heading), float(a.beta), float(a.gamma), float(times[-1]), float(sig[-1][2]), (float(sig[-1][0]), float(sig[-1][1])), bg[0].copy(), ba[0].copy(), hist, psi0, ts - t0,
+        float(a.heading), float(a.beta), float(a.gamma), float(tb[E] - t0), float(sd[2]), (float(sd[0]), float(sd[1])), bg[0].copy(), ba[0].copy(), hist, psi0, ts - t0,
     )  # fmt: skip
 

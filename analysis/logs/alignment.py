@@ -21,7 +21,7 @@ Public API
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -75,7 +75,7 @@ class LogAlignment:
     duration : float
         Length of the log [s].
     history : FilterHistory or None
-        ``kalman`` and ``aided``: the filter's standard deviations, bias estimates, innovations
+        (Not compared by ``==``, as the arrays below.) ``kalman`` and ``aided``: the filter's standard deviations, bias estimates, innovations
         and NIS over time, with the test of its NIS (:mod:`~strapdown.analysis.logs.filter_history`).
     positions : tuple of LogPosition
         ``multiposition``: the still stretches aligned (empty for the other methods).
@@ -95,12 +95,12 @@ class LogAlignment:
     heading_sigma: float | None
     heading_error: float | None
     duration: float
-    history: FilterHistory | None = None
-    positions: tuple = ()
-    gyro_bias: np.ndarray | None = None
-    accel_bias: np.ndarray | None = None
+    history: FilterHistory | None = field(default=None, compare=False)
+    positions: tuple = field(default=(), compare=False)
+    gyro_bias: np.ndarray | None = field(default=None, compare=False)
+    accel_bias: np.ndarray | None = field(default=None, compare=False)
     tilt_sigma: tuple | None = None
-    multiposition: MultiPositionAlignment | None = None
+    multiposition: MultiPositionAlignment | None = field(default=None, compare=False)
 
 
 def align_log(

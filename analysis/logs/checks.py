@@ -280,7 +280,9 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     pred = -np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same])
     df = np.diff(force, axis=0)[same]
     den = float(np.sum(pred * pred))
-    moved = math.degrees(float(np.sqrt(np.mean(np.sum(dth * dth, axis=1))))) if dth.size else 0.0
+    g_mid = np.linalg.norm((0.5 * (force[1:] + force[:-1]))[same], axis=1)
+    tilted = np.sqrt(np.sum(pred * pred, axis=1)) / np.where(g_mid > 0, g_mid, np.inf)  # the turn about the horizontal axes: a turn about gravity leaves f unchanged
+    moved = math.degrees(float(np.sqrt(np.mean(tilted * tilted)))) if dth.size else 0.0
     speed = _gnss_speed(inventory.gnss)
     if speed > _MOVING:
         out.append(Check("gyro scale", "skip", f"GNSS speed up to {speed:.3g} m/s", "a drive: its accelerations change the specific force as much as its turns, the two cannot be compared"))
@@ -299,7 +301,12 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
         else:
             out.append(Check("gyro scale", "fail", f"k = {k:.3g}", "the gyros' turns and gravity's turn in the accelerometers disagree (units, sign or axes of the gyros)"))
     else:
-        out.append(Check("gyro scale", "skip", f"{moved:.2g}° rms turn between windows", "the body hardly turns: the gyros' units cannot be compared with the accelerometers"))
+        out.append(
+            Check(
+                "gyro scale", "skip", f"{moved:.2g}° rms turn about the horizontal between windows",
+                "the body hardly tilts (a turn about gravity leaves the accelerometers unchanged): the gyros' units cannot be compared with them",
+            )  # fmt: skip
+        )
 
     # Earth rate at rest
     rest = (np.abs(fmag / g0 - 1.0) < 0.02) & (np.linalg.norm(rate, axis=1) < math.radians(0.5)) & (spread < math.radians(5.0))

@@ -25,6 +25,11 @@ the epochs within ``threshold``/2 of the position's attitude, less ``margin``
 seconds at each end so that no part of a turn enters the averages (a turn of 1°
 left in a 5-minute average biases it by 12 °/h, almost the Earth's rate).
 
+The turns ``R_k`` come from the gyros, whose angle random walk between the two
+stretches' means leaves each an error of variance ``ARW² (gap + T_1/3 + T_k/3)``
+per axis; these errors are estimated with the rest, with that variance as
+their prior, so that the covariance of the attitude counts them.
+
 Public API
 ----------
 .. autosummary::
@@ -273,33 +278,47 @@ def multiposition_alignment(
         C = _analytic_matrix(replace(log, time=log.time[first.start : first.end], dtheta=log.dtheta[first.start : first.end], dv=log.dv[first.start : first.end]), latitude)
         sw = gyro_noise / np.sqrt(Ts) if gyro_noise > 0 else np.full(Ts.size, np.linalg.norm(W) * 1e-3)
         sf = accel_noise / np.sqrt(Ts) if accel_noise > 0 else np.full(Ts.size, np.linalg.norm(gam) * 1e-3)
-        x = np.zeros(6)
-        for _ in range(20):  # Gauss–Newton on (δ, ε, ∇), C ← exp([δ×]) C
+        K = len(positions)
+        # turn errors δ_k (C_k = C_1 R_k exp([δ_k×]), k ≥ 2) with the gyros' random walk between the two stretches' means as prior:
+        # var = ARW² (gap + T_1/3 + T_k/3) per axis
+        tau = np.array([positions[k].time_start - first.time_end + (Ts[0] + Ts[k]) / 3.0 for k in range(1, K)])
+        n_turn = 3 * (K - 1) if gyro_noise > 0 else 0
+        st = gyro_noise * np.sqrt(tau)
+        x = np.zeros(6 + n_turn)  # ε, ∇, then the turn errors
+        for _ in range(20):  # Gauss–Newton on (δ, ε, ∇[, δ_k]), C ← exp([δ×]) C
             J, r = [], []
-            for k in range(len(positions)):
-                B = Rk[k].T @ C.T
+            for k in range(K):
+                Tk = Rk[k] if k == 0 or not n_turn else Rk[k] @ Rotation.from_rotvec(x[6 + 3 * (k - 1) : 9 + 3 * (k - 1)]).as_matrix()
+                B = Tk.T @ C.T
                 for v, bias, s, meas, col in ((W, x[0:3], sw[k], wbar[k], 3), (gam, x[3:6], sf[k], fbar[k], 6)):
-                    Jk = np.zeros((3, 9))
+                    Jk = np.zeros((3, 9 + n_turn))
                     Jk[:, 0:3] = B @ _skew(v)
                     Jk[:, col : col + 3] = np.eye(3)
+                    if k > 0 and n_turn:
+                        Jk[:, 9 + 3 * (k - 1) : 12 + 3 * (k - 1)] = _skew(B @ v)
                     J.append(Jk / s)
                     r.append((meas - B @ v - bias) / s)
+            for k in range(1, K if n_turn else 1):  # the turn errors' prior
+                Jk = np.zeros((3, 9 + n_turn))
+                Jk[:, 9 + 3 * (k - 1) : 12 + 3 * (k - 1)] = np.eye(3) / st[k - 1]
+                J.append(Jk)
+                r.append(-x[6 + 3 * (k - 1) : 9 + 3 * (k - 1)] / st[k - 1])
             J, r = np.vstack(J), np.concatenate(r)
-            sv = np.linalg.svd(J, compute_uv=False)
-            if sv[-1] < 1e-9 * sv[0]:
+            sv = np.linalg.svd(J[:, :9] if not n_turn else J, compute_uv=False)
+            if sv[-1] < 1e-9 * sv[0] or (n_turn and np.linalg.svd(J[: 6 * K, :9], compute_uv=False)[-1] < 1e-9 * sv[0]):
                 raise ValueError(
                     f"Expected turns between the {len(positions)} positions that separate the biases from the attitude, got turns of "
                     f"{', '.join(f'{math.degrees(p.angle):.3g}°' for p in positions[1:])} that leave a combination unobservable"
                 )
             dx = np.linalg.lstsq(J, r, rcond=None)[0]
             C = Rotation.from_rotvec(dx[0:3]).as_matrix() @ C
-            x = x + dx[3:9]
+            x = x + dx[3:]
             if np.max(np.abs(dx[0:3])) < 1e-13:
                 break
         bg = x[0:3]
         R, mean_1 = _first_mean(log, latitude, C_start if C_start is not None else _start_attitude(log, latitude, window), bg, positions[0])
         C_start = C @ mean_1.inv().as_matrix()  # C_1 = C_start mean_1: the start attitude that the next pass takes the Earth's rate with
-    cov = np.linalg.inv(J.T @ J) if gyro_noise > 0 and accel_noise > 0 else None
+    cov = np.linalg.inv(J.T @ J)[:9, :9] if gyro_noise > 0 and accel_noise > 0 else None
     rms = float(np.sqrt(np.mean(r * r)))
     R, mean_1 = _first_mean(log, latitude, C_start, bg, positions[0])
     return MultiPositionAlignment(C, C @ (mean_1.inv() * R[-1]).as_matrix(), x[0:3], x[3:6], cov, positions, rms)
