@@ -158,8 +158,9 @@ def _windows(segments):
         s_th = dth.sum(axis=1)
         rates.append(s_th / (w * h))
         forces.append(dv.sum(axis=1) / (w * h))
-        dev = dth - s_th[:, None, :] / w
-        spread.append(np.sqrt(np.mean(np.sum(dev * dev, axis=2), axis=1)) / h)
+        # rms deviation of the increments from the window's mean, as mean square less squared mean (no temporary of the samples' size)
+        ms = np.einsum("mwi,mwi->m", dth, dth) / w - np.einsum("mi,mi->m", s_th, s_th) / (w * w)
+        spread.append(np.sqrt(np.maximum(ms, 0.0)) / h)
         h_all.append(np.full(m, h))
         ids.append(np.full(m, len(ids)))
     if not rates:

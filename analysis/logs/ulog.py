@@ -115,6 +115,23 @@ def _dtype(formats, name):
     return np.dtype([(n, _NUMPY[t]) for n, t in fields]), dict(fields)
 
 
+def _pick(dt: np.dtype, cols) -> np.dtype:
+    """A view of ``dt`` with only ``cols``: ``t``, ``g`` (3,), ``a`` (3,), ``dg``, ``da`` (the three components of a vector are consecutive fields of one type)."""
+    names, formats, offsets = [], [], []
+    for name, group in (("t", cols[0:1]), ("g", cols[1:4]), ("a", cols[4:7]), ("dg", cols[7:8]), ("da", cols[8:9])):
+        types = {dt.fields[c][0] for c in group}
+        offs = [dt.fields[c][1] for c in group]
+        (ftype,) = types
+        if len(group) == 3:
+            if offs != [offs[0] + i * ftype.itemsize for i in range(3)]:
+                raise ValueError(f"Expected the components {group} consecutive in the record, got offsets {offs}")
+            ftype = np.dtype((ftype, (3,)))
+        names.append(name)
+        formats.append(ftype)
+        offsets.append(offs[0])
+    return np.dtype({"names": names, "formats": formats, "offsets": offsets, "itemsize": dt.itemsize})
+
+
 def _data_ranges(path: Path, size: int):
     """Byte ranges of the data: one, or several where data was appended (flag-bits message)."""
     with open(path, "rb") as f:
@@ -315,8 +332,11 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
     missing = [c for c in cols if c not in dt.names]
     if missing:
         raise ValueError(f"Expected the fields {missing} in {name} of {p.name}, got a format without them")
-    out = np.empty((chosen.samples, len(cols)), dtype=np.float64)
-    stamps = np.empty(chosen.samples, dtype=np.uint64)
+    N = chosen.samples
+    pick = _pick(dt, cols)  # only the fields read, as (time, gyro (3,), accel (3,), gyro dt, accel dt)
+    stamps = np.empty(N, dtype=np.int64)
+    gyro, accel = np.empty((N, 3)), np.empty((N, 3))
+    dtg, dta = np.empty(N), np.empty(N)
     gnss_rows = {g[0]: [] for g in gnss_ids}
     filled = [0]
 
@@ -328,12 +348,14 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
         ids = buf[o + 3].astype(np.int64) | (buf[o + 4].astype(np.int64) << 8)
         sel = (ids == msg_id) & (s - 2 >= dt.itemsize)
         if np.any(sel):
-            rec = gather(buf, o[sel] + 5, dt.itemsize).view(dt).ravel()
+            rec = gather(buf, o[sel] + 5, dt.itemsize).view(pick).ravel()
             k = filled[0]
-            m = min(rec.size, chosen.samples - k)
-            stamps[k : k + m] = rec[cols[0]][:m]
-            for j, c in enumerate(cols[1:], start=1):
-                out[k : k + m, j] = rec[c][:m]
+            m = min(rec.size, N - k)
+            stamps[k : k + m] = rec["t"][:m]
+            gyro[k : k + m] = rec["g"][:m]
+            accel[k : k + m] = rec["a"][:m]
+            dtg[k : k + m] = rec["dg"][:m]
+            dta[k : k + m] = rec["da"][:m]
             filled[0] = k + m
         for gid, gname, _ in gnss_ids:
             gdt = layout(gname)[0]
@@ -343,24 +365,27 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
 
     notes += [n for n in _walk(p, ranges, take, progress, f"reading {chosen.topic}") if n not in notes]
     n = filled[0]
-    time = (stamps[:n].astype(np.int64) - start_us) * 1e-6
-    out = out[:n]
+    time = stamps[:n].astype(np.float64)  # whole microseconds: exact in float64
+    time -= start_us
+    time *= 1e-6
+    gyro, accel, dtg, dta = gyro[:n], accel[:n], dtg[:n], dta[:n]
     integration_unit = ""
     if name == "sensor_combined":
         kind = fields["gyro_integral_dt"]
         scale = 1e-6 if kind != "float" else 1.0
         integration_unit = "us" if scale == 1e-6 else "s"
-        dtg, dta = out[:, 7] * scale, out[:, 8] * scale
         step = float(np.median(np.diff(time))) if n > 1 else 0.0
-        med = float(np.median(dtg)) if n else 0.0
+        med = float(np.median(dtg)) * scale if n else 0.0
         if step > 0 and med > 0 and not 0.2 < med / step < 5.0:
             other = 1e6 if scale == 1.0 else 1e-6
             if 0.2 < med * other / step < 5.0:  # the field's type and its values disagree: the values decide
                 notes.append(f"gyro_integral_dt is a {kind} but its values are in {'microseconds' if scale == 1.0 else 'seconds'} (median {med * other:.6g} s against {step:.6g} s between timestamps)")
-                dtg, dta, scale = dtg * other, dta * other, scale * other
+                scale *= other
                 integration_unit = "us" if integration_unit == "s" else "s"
-        gyro = out[:, 1:4] * dtg[:, None]
-        accel = out[:, 4:7] * dta[:, None]
+        dtg *= scale
+        dta *= scale
+        gyro *= dtg[:, None]  # the increments PX4 integrated, in place
+        accel *= dta[:, None]
         conversion = (
             f"gyro_rad × gyro_integral_dt and accelerometer_m_s2 × accelerometer_integral_dt: the increments PX4 integrated, "
             f"which sensor_combined stores divided by their interval (integral_dt in {'microseconds, uint32' if integration_unit == 'us' else 'seconds, float'})"
@@ -368,8 +393,8 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
         units = f"rad/s and m/s² times the integration interval [{integration_unit}] → rad and m/s"
         integration = dtg
     else:
-        gyro, accel = out[:, 1:4], out[:, 4:7]
-        integration = out[:, 7] * 1e-6
+        dtg *= 1e-6
+        integration = dtg
         integration_unit = "us"
         conversion = "delta_angle and delta_velocity as PX4 integrated them (vehicle_imu), with delta_angle_dt [us]"
         units = "rad and m/s (SI in the log)"
