@@ -51,14 +51,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .framing import gather, walk_ulog
+from .framing import FIELD_TYPES, extract_ulog, gather, scan_ulog, walk_ulog
 from .inventory import GnssTrack, SensorFilter, StreamInfo
 from .streams import LogContents, StreamSamples, choose_topic
 
 __all__ = ["read_ulog", "PX4_FILTERS"]
 
 _HEADER = b"\x55\x4c\x6f\x67\x01\x12\x35"
-_CHUNK = 1 << 26  # 64 MiB of the file at a time
+_CHUNK = 1 << 25  # 32 MiB of the file at a time
 _NUMPY = {
     "int8_t": "i1", "uint8_t": "u1", "int16_t": "<i2", "uint16_t": "<u2", "int32_t": "<i4", "uint32_t": "<u4",
     "int64_t": "<i8", "uint64_t": "<u8", "float": "<f4", "double": "<f8", "bool": "i1", "char": "i1",
@@ -113,23 +113,6 @@ def _dtype(formats, name):
     while fields and fields[-1][0].startswith("_padding"):
         fields.pop()
     return np.dtype([(n, _NUMPY[t]) for n, t in fields]), dict(fields)
-
-
-def _pick(dt: np.dtype, cols) -> np.dtype:
-    """A view of ``dt`` with only ``cols``: ``t``, ``g`` (3,), ``a`` (3,), ``dg``, ``da`` (the three components of a vector are consecutive fields of one type)."""
-    names, formats, offsets = [], [], []
-    for name, group in (("t", cols[0:1]), ("g", cols[1:4]), ("a", cols[4:7]), ("dg", cols[7:8]), ("da", cols[8:9])):
-        types = {dt.fields[c][0] for c in group}
-        offs = [dt.fields[c][1] for c in group]
-        (ftype,) = types
-        if len(group) == 3:
-            if offs != [offs[0] + i * ftype.itemsize for i in range(3)]:
-                raise ValueError(f"Expected the components {group} consecutive in the record, got offsets {offs}")
-            ftype = np.dtype((ftype, (3,)))
-        names.append(name)
-        formats.append(ftype)
-        offsets.append(offs[0])
-    return np.dtype({"names": names, "formats": formats, "offsets": offsets, "itemsize": dt.itemsize})
 
 
 def _data_ranges(path: Path, size: int):
@@ -251,7 +234,10 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
     start_us = int(u.start_timestamp)
     ranges = _data_ranges(p, size)
 
-    subs, counts, first, last = {}, {}, {}, {}
+    subs = {}
+    t_offset = np.full(1 << 16, -2, dtype=np.int64)  # per message id: offset of its timestamp, -1 without one, -2 not yet subscribed
+    min_size = np.zeros(1 << 16, dtype=np.int64)
+    tallies = np.zeros((3, 1 << 16), dtype=np.int64)  # records, first and last timestamp per message id
     state = {"dropouts": 0, "bad_size": 0}
     layouts = {}
 
@@ -269,29 +255,16 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
         drops = off[kd == ord("O")]
         if drops.size:
             state["dropouts"] += int(np.sum(buf[drops + 3].astype(np.int64) | (buf[drops + 4].astype(np.int64) << 8)))
-        d = kd == ord("D")
-        if not np.any(d):
-            return
-        o, s = off[d], sz[d]
-        ids = buf[o + 3].astype(np.int64) | (buf[o + 4].astype(np.int64) << 8)
-        for msg_id in np.unique(ids):
-            sel = ids == msg_id
-            name = subs.get(int(msg_id), (None, 0))[0]
-            dt, fields = layout(name) if name else (None, {})
-            if dt is None or "timestamp" not in dt.names:
-                counts[int(msg_id)] = counts.get(int(msg_id), 0) + int(np.count_nonzero(sel))
-                continue
-            oo = o[sel][s[sel] - 2 >= dt.itemsize]
-            state["bad_size"] += int(np.count_nonzero(sel)) - oo.size
-            if not oo.size:
-                continue
-            t_off = dt.fields["timestamp"][1]
-            ts = gather(buf, oo[[0, -1]] + 5 + t_off, 8).view("<u8").ravel()
-            counts[int(msg_id)] = counts.get(int(msg_id), 0) + oo.size
-            first.setdefault(int(msg_id), int(ts[0]))
-            last[int(msg_id)] = int(ts[1])
+        for msg_id, (name, _) in subs.items():  # the layout of each subscription, before its records are counted
+            if t_offset[msg_id] == -2:
+                dt_m = layout(name)[0]
+                t_offset[msg_id], min_size[msg_id] = (dt_m.fields["timestamp"][1], dt_m.itemsize + 2) if dt_m is not None and "timestamp" in dt_m.names else (-1, 2)
+        state["bad_size"] += scan_ulog(buf, off, sz, kd, t_offset, min_size, tallies)
 
     notes = _walk(p, ranges, scan, progress, f"scanning {p.name}")
+    counts = {int(i): int(tallies[0, i]) for i in np.flatnonzero(tallies[0])}
+    first = {i: int(tallies[1, i]) for i in counts if t_offset[i] >= 0}
+    last = {i: int(tallies[2, i]) for i in counts if t_offset[i] >= 0}
     if state["bad_size"]:
         notes.append(f"{state['bad_size']} data records shorter than their format were skipped")
     t_end = max(last.values(), default=start_us)
@@ -333,30 +306,19 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
     if missing:
         raise ValueError(f"Expected the fields {missing} in {name} of {p.name}, got a format without them")
     N = chosen.samples
-    pick = _pick(dt, cols)  # only the fields read, as (time, gyro (3,), accel (3,), gyro dt, accel dt)
-    stamps = np.empty(N, dtype=np.int64)
-    gyro, accel = np.empty((N, 3)), np.empty((N, 3))
-    dtg, dta = np.empty(N), np.empty(N)
+    field_offsets = [dt.fields[c][1] for c in cols]
+    field_codes = [FIELD_TYPES.index(dt.fields[c][0].str) for c in cols]
+    table = np.empty((N, len(cols)))  # time, gyro (3), accel (3), gyro dt, accel dt: read into their rows by the compiled walk
     gnss_rows = {g[0]: [] for g in gnss_ids}
     filled = [0]
 
     def take(buf, off, sz, kd):
-        d = kd == ord("D")
-        if not np.any(d):
+        filled[0] = extract_ulog(buf, off, sz, kd, msg_id, dt.itemsize + 2, field_offsets, field_codes, table, filled[0])
+        if not gnss_ids:
             return
+        d = kd == ord("D")
         o, s = off[d], sz[d]
         ids = buf[o + 3].astype(np.int64) | (buf[o + 4].astype(np.int64) << 8)
-        sel = (ids == msg_id) & (s - 2 >= dt.itemsize)
-        if np.any(sel):
-            rec = gather(buf, o[sel] + 5, dt.itemsize).view(pick).ravel()
-            k = filled[0]
-            m = min(rec.size, N - k)
-            stamps[k : k + m] = rec["t"][:m]
-            gyro[k : k + m] = rec["g"][:m]
-            accel[k : k + m] = rec["a"][:m]
-            dtg[k : k + m] = rec["dg"][:m]
-            dta[k : k + m] = rec["da"][:m]
-            filled[0] = k + m
         for gid, gname, _ in gnss_ids:
             gdt = layout(gname)[0]
             gsel = (ids == gid) & (s - 2 >= gdt.itemsize)
@@ -365,10 +327,12 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
 
     notes += [n for n in _walk(p, ranges, take, progress, f"reading {chosen.topic}") if n not in notes]
     n = filled[0]
-    time = stamps[:n].astype(np.float64)  # whole microseconds: exact in float64
-    time -= start_us
+    table = table[:n]
+    time = table[:, 0]
+    time -= start_us  # whole microseconds: exact in float64
     time *= 1e-6
-    gyro, accel, dtg, dta = gyro[:n], accel[:n], dtg[:n], dta[:n]
+    gyro, accel = table[:, 1:4], table[:, 4:7]
+    dtg, dta = table[:, 7], table[:, 8]
     integration_unit = ""
     if name == "sensor_combined":
         kind = fields["gyro_integral_dt"]
