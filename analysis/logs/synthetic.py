@@ -40,6 +40,7 @@ Public API
    vehicle_truth
    write_synthetic
    SYNTHETIC_FORMATS
+   BATCH_MULTIPLIERS
 """
 
 from __future__ import annotations
@@ -56,7 +57,7 @@ import numpy as np
 from ..core.validation import as_array, positive
 from .inventory import GnssTrack
 
-__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "vehicle_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
+__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "vehicle_truth", "write_synthetic", "SYNTHETIC_FORMATS", "BATCH_MULTIPLIERS"]
 
 #: What :func:`write_synthetic` writes (its ``format`` argument).
 SYNTHETIC_FORMATS = ("ulog", "dataflash", "rosbag1", "rosbag2", "euroc", "npz", "csv")
@@ -415,6 +416,13 @@ _DF_IMU = ("IMU", "QBffffffIIfBBHH", "TimeUS,I,GyrX,GyrY,GyrZ,AccX,AccY,AccZ,EG,
 _DF_IMT = ("IMT", "QBfffffffff", "TimeUS,I,DelT,DelvT,DelaT,DelAX,DelAY,DelAZ,DelVX,DelVY,DelVZ")
 _DF_GPS = ("GPS", "QBBIHBcLLeffffB", "TimeUS,I,Status,GMS,GWk,NSats,HDop,Lat,Lng,Alt,Spd,GCrs,VZ,Yaw,U")
 _DF_PARM = ("PARM", "QNff", "TimeUS,Name,Value,Default")
+_DF_ISBH = ("ISBH", "QHBBHHQf", "TimeUS,N,type,instance,mul,smp_cnt,SampleUS,smp_rate")
+_DF_ISBD = ("ISBD", "QHHaaa", "TimeUS,N,seqno,x,y,z")
+_DF_GYR = ("GYR", "QBQfff", "TimeUS,I,SampleUS,GyrX,GyrY,GyrZ")
+_DF_ACC = ("ACC", "QBQfff", "TimeUS,I,SampleUS,AccX,AccY,AccZ")
+#: ArduPilot's batch-sampler multipliers (``AP_InertialSensor::BatchSampler``): INT16_MAX/radians(2000) and INT16_MAX/(26 g).
+BATCH_MULTIPLIERS = {"gyro": 938, "accel": 128}
+_BATCH_COUNT = 64  # samples per burst of the synthetic batch sampler
 _DF_MSG = ("MSG", "QZ", "TimeUS,Message")
 
 
@@ -440,13 +448,42 @@ def _df_fmt(kind: int, spec) -> bytes:
     return bytes([0xA3, 0x95, 128, kind, length]) + name.encode().ljust(4, b"\0") + fmt.encode().ljust(16, b"\0") + labels.encode().ljust(64, b"\0")
 
 
-def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, start_us: int = 5_000_000):
+def _batch_records(truth: SyntheticTruth, stamps, mode: str):
+    """ISBH and ISBD records of the batch sampler: bursts of 64 samples, gyro and accelerometer over the same samples (``"paired"``) or in turn (``"alternating"``)."""
+    n_blocks = truth.time.size // _BATCH_COUNT
+    heads, data = [], []
+    seq = 0
+    for b in range(n_blocks):
+        for sensor, kind, offset in (("gyro", 1, 0), ("accel", 0, 0 if mode == "paired" else 2)):
+            if (b - offset) % 4:
+                continue
+            lo = b * _BATCH_COUNT
+            values = (truth.gyro if sensor == "gyro" else truth.accel)[lo : lo + _BATCH_COUNT]
+            q = np.clip(np.round(values * BATCH_MULTIPLIERS[sensor]), -32768, 32767).astype(np.int16)
+            t_end = int(stamps[lo + _BATCH_COUNT - 1])
+            heads.append({"TimeUS": t_end, "N": seq, "type": kind, "instance": 0, "mul": BATCH_MULTIPLIERS[sensor], "smp_cnt": _BATCH_COUNT,
+                          "SampleUS": int(stamps[lo]), "smp_rate": 1.0 / truth.interval})  # fmt: skip
+            for k in range(_BATCH_COUNT // 32):
+                part = q[32 * k : 32 * (k + 1)]
+                data.append({"TimeUS": t_end, "N": seq, "seqno": k, "x": part[:, 0], "y": part[:, 1], "z": part[:, 2]})
+            seq += 1
+    cols = lambda rows, key: [r[key] for r in rows]  # noqa: E731
+    H = _df_records(133, _DF_ISBH, len(heads), {k: cols(heads, k) for k in heads[0]}) if heads else None
+    D = _df_records(134, _DF_ISBD, len(data), {k: np.array(cols(data, k)) for k in data[0]}) if data else None
+    return H, D
+
+
+def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, start_us: int = 5_000_000, batch: str | None = None, raw: bool = False):
     h = truth.interval
     stamps = start_us + np.round(truth.time * 1e6).astype(np.int64)
     fmt_fmt = bytes([0xA3, 0x95, 128, 128, 89]) + b"FMT\0" + b"BBnNZ".ljust(16, b"\0") + b"Type,Length,Name,Format,Columns".ljust(64, b"\0")
     specs = {129: _DF_PARM, 130: _DF_MSG, 131: _DF_IMU if held == "rates" else _DF_IMT}
     if gnss:
         specs[132] = _DF_GPS
+    if batch is not None:
+        specs[133], specs[134] = _DF_ISBH, _DF_ISBD
+    if raw:
+        specs[135], specs[136] = _DF_GYR, _DF_ACC
 
     def write(tmp):
         with open(tmp, "wb") as f:
@@ -465,6 +502,15 @@ def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, s
                 cols.update({f"DelA{a}": truth.dtheta[:, i] for i, a in enumerate("XYZ")})
                 cols.update({f"DelV{a}": truth.dv[:, i] for i, a in enumerate("XYZ")})
                 _df_records(131, _DF_IMT, truth.time.size, cols).tofile(f)
+            if batch is not None:
+                for rec in _batch_records(truth, stamps, batch):
+                    if rec is not None:
+                        rec.tofile(f)
+            if raw:
+                for kind, spec, values, names in ((135, _DF_GYR, truth.gyro, "GyrX GyrY GyrZ"), (136, _DF_ACC, truth.accel, "AccX AccY AccZ")):
+                    cols = {"TimeUS": stamps, "I": 0, "SampleUS": stamps}
+                    cols.update({c: values[:, i] for i, c in enumerate(names.split())})
+                    _df_records(kind, spec, truth.time.size, cols).tofile(f)
             if gnss:
                 tg, lat, lon, alt, vel = _fixes(truth, stamps, start_us)
                 cols = {"TimeUS": tg, "Status": 3, "NSats": 12, "Lat": np.round(lat * 1e7).astype(np.int64), "Lng": np.round(lon * 1e7).astype(np.int64),
@@ -553,7 +599,10 @@ def _write_native(path: Path, truth: SyntheticTruth, held: str):
     return _atomic(path, write)
 
 
-def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, held: str = "increments", layout: str = "new", gnss: bool = False, topic: str = "/imu") -> Path:
+def write_synthetic(
+    path, truth: SyntheticTruth, *, format: str | None = None, held: str = "increments", layout: str = "new", gnss: bool = False, topic: str = "/imu",
+    batch: str | None = None, raw: bool = False,
+) -> Path:  # fmt: skip
     """Write ``truth`` as a log of ``format``.
 
     Parameters
@@ -574,6 +623,13 @@ def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, h
         ULog and DataFlash: add GNSS fixes at ``truth.latitude`` (5 Hz).
     topic : str, keyword-only
         ROS: the IMU topic.
+    batch : str, optional, keyword-only
+        DataFlash: add ArduPilot batch-sampler messages (``ISBH``/``ISBD``, bursts of 64 raw
+        samples of IMU 0 every 256 samples, int16 × :data:`BATCH_MULTIPLIERS`), the gyro's and
+        the accelerometer's over the same samples (``"paired"``) or in turn as ArduPilot takes
+        them (``"alternating"``).
+    raw : bool, keyword-only
+        DataFlash: add ``GYR`` and ``ACC`` raw samples (float32, at the IMU's sample times).
 
     Returns
     -------
@@ -596,10 +652,12 @@ def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, h
             format = "euroc" if p.name == "data.csv" else "csv"
     if format not in SYNTHETIC_FORMATS:
         raise ValueError(f"Expected `format` in {SYNTHETIC_FORMATS} (or a path whose suffix names one), got {format!r} for {p.name}")
+    if batch not in (None, "paired", "alternating"):
+        raise ValueError(f"Expected `batch` None, 'paired' or 'alternating', got {batch!r}")
     if format == "ulog":
         _write_ulog(p, truth, layout, gnss)
     elif format == "dataflash":
-        _write_dataflash(p, truth, held, gnss)
+        _write_dataflash(p, truth, held, gnss, batch=batch, raw=raw)
     elif format in ("rosbag1", "rosbag2"):
         _write_rosbag(p, truth, 1 if format == "rosbag1" else 2, topic)
     elif format == "euroc":
