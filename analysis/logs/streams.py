@@ -224,8 +224,12 @@ def split_segments(time, gyro, accel, *, held: str, window=None, metadata=None, 
     if t.size < 2:
         raise ValueError(f"Expected at least two samples in `segment` {window}, got {t.size}")
     d = np.diff(t)
-    positive = d[d > 0]
-    h = float(np.median(positive)) if positive.size else float("nan")
+    if d.min() > 0:  # the usual case: no copy of the positive intervals
+        h = float(np.median(d))
+    else:
+        positive = d[d > 0]
+        h = float(np.median(positive)) if positive.size else float("nan")
+        del positive
     gap = d > GAP_FACTOR * h
     glitch = ~(d >= 0.5 * h)
     cut = np.flatnonzero(gap | glitch)

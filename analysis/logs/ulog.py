@@ -58,7 +58,7 @@ from .streams import LogContents, StreamSamples, choose_topic
 __all__ = ["read_ulog", "PX4_FILTERS"]
 
 _HEADER = b"\x55\x4c\x6f\x67\x01\x12\x35"
-_CHUNK = 1 << 25  # 32 MiB of the file at a time
+_CHUNK = 1 << 24  # 16 MiB of the file at a time
 _NUMPY = {
     "int8_t": "i1", "uint8_t": "u1", "int16_t": "<i2", "uint16_t": "<u2", "int32_t": "<i4", "uint32_t": "<u4",
     "int64_t": "<i8", "uint64_t": "<u8", "float": "<f4", "double": "<f8", "bool": "i1", "char": "i1",
@@ -137,7 +137,7 @@ def _walk(path: Path, ranges, on_chunk, progress, desc):
 
     notes = []
     total = sum(b - a for a, b in ranges)
-    capacity = 1 << 20
+    capacity = 1 << 18  # records per call of the walk (their offsets, sizes and kinds: 4.5 MB)
     with open(path, "rb") as f, bar(desc=desc, total=total, enabled=progress, unit="B") as pbar:
         for lo, hi in ranges:
             pos = lo
