@@ -55,8 +55,6 @@ Public API
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -64,6 +62,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import budget
+from ..core.atomic import replaced_atomically
 from ..core.units import DEG_PER_RAD
 from ..core.validation import as_int, in_open_interval, positive
 from ..vibration.environment import CHANNELS, ENVIRONMENT_LIMITS, Environment, Spectrum, VibrationLine, load_environment
@@ -451,20 +450,11 @@ def write_environment(path, estimate: EnvironmentEstimate) -> Path:
         A directory that cannot be written.
     """
     p = Path(path)
-    if p.is_dir():
-        raise IsADirectoryError(21, "Is a directory", str(p))
     text = environment_file_text(estimate)
     size = len(text.encode("utf-8"))
     if size > ENVIRONMENT_LIMITS.file_bytes:
         raise ValueError(f"Expected an environment file within {ENVIRONMENT_LIMITS.file_bytes} bytes, got {size} bytes: lower `max_rows` ({estimate.frequency.size} rows)")
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".toml", dir=p.parent if str(p.parent) else ".")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write(text)
+    with replaced_atomically(p) as tmp:
+        tmp.write_text(text, encoding="utf-8", newline="\n")
         load_environment(tmp)
-        os.replace(tmp, p)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
     return p
