@@ -9,16 +9,25 @@ Run on the recorded increments, the corrections summed over every step of the
 log, divided by the time those steps cover, are the algorithm's *mean
 correction rate* on this record [rad/s], a 3-vector in body axes.
 
-Two algorithms fed the same increments differ only in their corrections: the
-attitude one computes leads the other's by the sum of the differences of their
-corrections (to first order in the corrections, which are of order ``p²``).
-The difference of two correction rates is therefore, with the opposite sign,
-the difference of the two algorithms' drifts on this record (drift: exact
-minus algorithm, the package's sign), with no model of the motion: it is
-what the two algorithms really do on the flight.  Each step's correction is
-resolved in the body axes of that step; the sum is the drift difference in the
-reference frame when the body's attitude changes little over the record (a
-vibrating, hovering or level-flying vehicle), and its body-axes mean otherwise.
+The attitude an algorithm computes is the composition of its steps,
+``Λ = exp(Δφ_1) ∘ exp(Δφ_2) ∘ …``; the drift (exact minus algorithm) of two
+algorithms on the same increments therefore differs by exactly the rotation
+between the two attitudes they compute, which the log alone gives:
+``(u_a − u_b) T = rotvec(Λ_b ∘ Λ̄_a)`` (to first order in the difference of
+the two errors, over a span T that both cover with whole steps), with no
+model of the motion — what the two algorithms really do on this flight
+(:meth:`Replay.drift_difference`).
+
+When the two share their step (the same N), their compositions differ only
+through their corrections, and the difference of drifts is also the
+difference of the mean correction rates with the opposite sign,
+``u_a − u_b = −(c_a − c_b)``, wherever the attitude changes little over the
+log (each step's correction is resolved in the body axes of that step).
+Between algorithms of different steps it is not: the composition of longer
+steps misses more of the motion's non-commutativity between the samples, which
+the corrections of a longer step make up for, so their corrections differ by
+much more than their drifts (a reading of the claim that the difference of
+correction rates is the difference of drifts: it holds for one step length).
 
 Steps restart after a gap: each gap-free segment of the log is cut into whole
 steps from its start; an algorithm that reads ``k`` samples of earlier steps
@@ -40,6 +49,7 @@ Public API
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -48,6 +58,7 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm
 from ..coning.evaluation import increment
 from ..core import budget
+from ..core import quaternion as quat
 from ..core.progress import bar
 from ..core.validation import as_int
 from .imu_log import ImuLog
@@ -76,12 +87,17 @@ class AlgorithmReplay:
         Steps run, over all segments [count].
     integrated_time : float
         Time covered by those steps, ``steps · N · h`` [s].
+    attitudes : tuple of ndarray
+        Per segment, the attitude the algorithm computes over the span common
+        to every algorithm replayed, ``exp(Δφ_1) ∘ … ∘ exp(Δφ_K)`` from the
+        identity (body axes at the span's start), shape (4,).
     """
 
     algorithm: Algorithm
     correction: np.ndarray
     steps: int
     integrated_time: float
+    attitudes: tuple = ()
 
     @property
     def rate(self) -> np.ndarray:
@@ -103,19 +119,27 @@ class Replay:
         Samples of the log, all segments [count].
     sample_interval : float
         h [s].
+    common_time : float
+        Time of the span common to every algorithm, all segments [s] (the
+        attitudes compared by :meth:`drift_difference`).
     """
 
     algorithms: tuple
     segments: int
     samples: int
     sample_interval: float
+    common_time: float = 0.0
 
     def drift_difference(self, a: int, b: int) -> np.ndarray:
-        """Drift of algorithm ``a`` minus that of algorithm ``b`` on this log, body axes [rad/s].
+        """Drift of algorithm ``a`` minus that of algorithm ``b`` on this log [rad/s] (exact minus algorithm, both).
 
-        Drift is exact minus algorithm (package docstring), so an algorithm that
-        adds more correction drifts less: ``u_a − u_b = −(c_a − c_b)`` with ``c``
-        the mean correction rates (module docstring).
+        From the attitudes the two compute over the common span of each
+        segment: ``(u_a − u_b) T = Σ_s rotvec(Λ_b ∘ Λ̄_a)`` (to first order in
+        the difference of the errors), resolved in the body axes at the start
+        of each segment's span.  For two algorithms of one step (the same N)
+        it is the difference of their corrections, ``−(c_a − c_b)`` with ``c``
+        the mean correction rates (module docstring), wherever the attitude
+        changes little over the log.
 
         Parameters
         ----------
@@ -125,12 +149,22 @@ class Replay:
         Returns
         -------
         ndarray, shape (3,)
+
+        Raises
+        ------
+        ValueError
+            Positions out of range, or no span common to every algorithm.
         """
         n = len(self.algorithms)
         i, j = as_int(a, "a", minimum=0), as_int(b, "b", minimum=0)
         if i >= n or j >= n:
             raise ValueError(f"Expected `a` and `b` in 0..{n - 1}, got {a} and {b}")
-        return -(self.algorithms[i].rate - self.algorithms[j].rate)
+        if self.common_time <= 0:
+            raise ValueError("Expected a span of the log common to every algorithm replayed (a whole number of every step), got none: the segments are too short")
+        total = np.zeros(3)
+        for qa, qb in zip(self.algorithms[i].attitudes, self.algorithms[j].attitudes):
+            total += quat.quat_to_rotvec(quat.multiply(qb, quat.conjugate(qa)), validate=False)
+        return total / self.common_time
 
 
 def _segments(segments) -> tuple:
@@ -199,6 +233,33 @@ def _other_sum(others: Algorithm, rows: np.ndarray, history: int) -> np.ndarray:
     for j in range(others.history + 1, others.window):  # P in the order increment() adds it
         plain += windows[:, j, :]
     return (increment(others, windows) - plain).sum(axis=0)
+
+
+def _product(q: np.ndarray) -> np.ndarray:
+    """``q_0 ∘ q_1 ∘ … ∘ q_{k−1}`` of ``(k, 4)`` quaternions, by pairs (depth log₂ k, no loop over k)."""
+    parts = tuple(q[:, i] for i in range(4))
+    while parts[0].size > 1:
+        if parts[0].size % 2:
+            parts = tuple(np.append(c, 1.0 if i == 0 else 0.0) for i, c in enumerate(parts))
+        parts = quat.multiply_parts(tuple(c[0::2] for c in parts), tuple(c[1::2] for c in parts))
+    return np.array([c[0] for c in parts])
+
+
+def _attitude(algorithm: Algorithm, dtheta: np.ndarray, steps: int, chunk: int) -> np.ndarray:
+    """``exp(Δφ_1) ∘ … ∘ exp(Δφ_K)`` of ``steps`` steps cut from ``dtheta`` from its first row (history first)."""
+    q = quat.identity()
+    for s0 in range(0, steps, chunk):
+        rows = _step_rows(dtheta, algorithm.history, algorithm.samples, s0, min(steps, s0 + chunk))
+        phi = increment(algorithm, rows.transpose(2, 0, 1))
+        q = quat.multiply(q, _product(quat.rotvec_to_quat(phi, validate=False)))
+    return quat.normalize(q)
+
+
+def _common_span(n: int, algorithms) -> tuple:
+    """``(start, length)`` of a segment of n samples that every algorithm covers with whole steps (after the longest history)."""
+    start = max(a.history for a in algorithms)
+    period = math.lcm(*(a.samples for a in algorithms))
+    return start, max(0, (n - start) // period * period)
 
 
 def _correction_sum(algorithm: Algorithm, dtheta: np.ndarray, steps: int, chunk: int) -> np.ndarray:
@@ -272,8 +333,9 @@ def replay(segments, algorithms, *, chunk_steps: int = CHUNK_STEPS, limits: budg
     terms = sum(1 + len(a.terms) + a.samples for a in algs)
     what = f"`segments` = {samples:.3g} samples × {len(algs)} algorithm(s)"
     budget.check(REPLAY_SAMPLE.estimate(float(samples) * terms, what=what, extra_bytes=48.0 * chunk * max(a.window for a in algs)), limits)
+    spans = [_common_span(s.n_samples, algs) for s in segs]
     results = []
-    with bar(desc="replaying the algorithms", total=samples * len(algs), enabled=progress, unit="sample") as pb:
+    with bar(desc="replaying the algorithms", total=2 * samples * len(algs), enabled=progress, unit="sample") as pb:
         for alg in algs:
             steps = [_steps(s.n_samples, alg) for s in segs]
             if sum(steps) == 0:
@@ -286,5 +348,10 @@ def replay(segments, algorithms, *, chunk_steps: int = CHUNK_STEPS, limits: budg
                 if k:
                     total += _correction_sum(alg, s.dtheta, k, chunk)
                 pb.update(s.n_samples)
-            results.append(AlgorithmReplay(alg, total, int(sum(steps)), float(sum(steps)) * alg.samples * h))
-    return Replay(tuple(results), len(segs), int(samples), h)
+            attitudes = []
+            for s, (start, length) in zip(segs, spans):
+                k = length // alg.samples
+                attitudes.append(_attitude(alg, s.dtheta[start - alg.history :], k, chunk) if k else quat.identity())
+                pb.update(s.n_samples)
+            results.append(AlgorithmReplay(alg, total, int(sum(steps)), float(sum(steps)) * alg.samples * h, tuple(attitudes)))
+    return Replay(tuple(results), len(segs), int(samples), h, float(sum(length for _, length in spans)) * h)
