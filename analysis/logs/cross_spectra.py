@@ -137,11 +137,11 @@ def equivalent_dof(window: np.ndarray, step: int, segments: int) -> float:
 
     Examples
     --------
-    Hann segments overlapping by half: about 1.89 K.
+    Hann segments overlapping by half: about 1.9 K.
 
     >>> from scipy.signal import get_window
     >>> round(equivalent_dof(get_window("hann", 1024), 512, 100) / 100, 3)
-    1.894
+    1.896
     """
     w = as_array(window, "window").ravel()
     d = as_int(step, "step", minimum=1)
@@ -157,17 +157,16 @@ def equivalent_dof(window: np.ndarray, step: int, segments: int) -> float:
     return 2.0 * k / (1.0 + 2.0 * total)
 
 
-def _stretches(stretches, name: str) -> tuple:
+def _shapes(stretches, name: str) -> tuple:
+    """The stretches as a tuple and their shapes (no pass over the samples), checked to be (N, C) with one C."""
     if isinstance(stretches, np.ndarray):
         stretches = (stretches,)
-    if not isinstance(stretches, Sequence) or not stretches:
+    if not isinstance(stretches, Sequence) or isinstance(stretches, (str, bytes)) or not stretches:
         raise ValueError(f"Expected `{name}` as one or more (N, C) arrays, got {type(stretches).__name__}")
-    out = tuple(as_array(s, name) for s in stretches)
-    c = out[0].shape[-1] if out[0].ndim == 2 else None
-    for s in out:
-        if s.ndim != 2 or s.shape[1] != c:
-            raise ValueError(f"Expected `{name}` as (N, C) arrays with one C, got shapes {[x.shape for x in out]}")
-    return out
+    shapes = [np.shape(s) for s in stretches]
+    if any(len(sh) != 2 or sh[1] != shapes[0][1] or sh[1] < 1 for sh in shapes):
+        raise ValueError(f"Expected `{name}` as (N, C) arrays with one C, got shapes {shapes[:4]}")
+    return tuple(stretches), shapes
 
 
 def welch_cross_spectra(stretches, sample_interval: float, segment_length: int, *, overlap: float = 0.5, window: str = "hann", block: int = 64,
@@ -228,22 +227,23 @@ def welch_cross_spectra(stretches, sample_interval: float, segment_length: int, 
     from scipy.fft import rfft
     from scipy.signal import get_window
 
-    parts = _stretches(stretches, "stretches")
+    parts, shapes = _shapes(stretches, "stretches")
     h = positive(sample_interval, "sample_interval")
     n = as_int(segment_length, "segment_length", minimum=8)
     ov = float(overlap)
     if not 0.0 <= ov < 1.0:
         raise ValueError(f"Expected `overlap` in [0, 1), got {overlap!r}")
     b = as_int(block, "block", minimum=1)
-    c = parts[0].shape[1]
+    c = shapes[0][1]
     step = max(1, int(round(n * (1.0 - ov))))
-    counts = [0 if s.shape[0] < n else 1 + (s.shape[0] - n) // step for s in parts]
+    counts = [0 if sh[0] < n else 1 + (sh[0] - n) // step for sh in shapes]
     if sum(counts) == 0:
-        raise ValueError(f"Expected at least one stretch of `stretches` as long as `segment_length` = {n} samples, got at most {max(s.shape[0] for s in parts)}")
+        raise ValueError(f"Expected at least one stretch of `stretches` as long as `segment_length` = {n} samples, got at most {max(sh[0] for sh in shapes)}")
     bins = n // 2 + 1
-    samples = float(sum(s.shape[0] for s in parts))
+    samples = float(sum(sh[0] for sh in shapes))
     what = f"`stretches` = {samples:.3g} samples of {c} channels in segments of `segment_length` = {n}"
     budget.check(WELCH_SAMPLE.estimate(samples * (n / step) * c * c, what=what, extra_bytes=float(b) * bins * _BLOCK_BYTES_PER_BIN * c / 6 + 8.0 * n * c * b), limits)
+    parts = tuple(as_array(x, "stretches") for x in parts)
     w = get_window(window, n)
     scale = 1.0 / (float(w @ w) / h)
     total = np.zeros((bins, c, c), dtype=complex)

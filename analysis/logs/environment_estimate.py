@@ -55,7 +55,6 @@ Public API
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -67,8 +66,8 @@ from ..core.units import DEG_PER_RAD
 from ..core.validation import as_int, in_open_interval, positive
 from ..vibration.environment import CHANNELS, ENVIRONMENT_LIMITS, Environment, Spectrum, VibrationLine, load_environment
 from .cross_spectra import CrossSpectra, welch_cross_spectra
-from .imu_log import ImuLog
 from .lines import LineSearch, find_lines, line_signal
+from .segments import as_segments, sample_interval
 
 __all__ = ["EstimatedLine", "EnvironmentEstimate", "estimate_environment", "environment_file_text", "write_environment", "DEFAULT_RESOLUTION", "MAX_ROWS"]
 
@@ -203,17 +202,6 @@ class EnvironmentEstimate:
         return np.sqrt(np.maximum(np.trapezoid(auto, self.frequency, axis=0), 0.0))
 
 
-def _segments(segments) -> tuple:
-    if isinstance(segments, ImuLog):
-        return (segments,)
-    if not isinstance(segments, Sequence) or isinstance(segments, (str, bytes)) or not segments:
-        raise TypeError(f"Expected `segments` to be an ImuLog or a non-empty sequence of ImuLog, got {type(segments).__name__}")
-    for k, s in enumerate(segments):
-        if not isinstance(s, ImuLog):
-            raise TypeError(f"Expected `segments` to hold ImuLog, got {type(s).__name__} at position {k}")
-    return tuple(segments)
-
-
 def _increment_response(freq: np.ndarray, h: float) -> np.ndarray:
     """``(1 − e^{−iωh})/(iω)``: the increments over h of ``e^{iωt}``, per unit, at the end of the interval."""
     w = 2.0 * math.pi * np.asarray(freq, dtype=float)
@@ -276,11 +264,10 @@ def estimate_environment(segments, *, resolution: float | None = None, min_frequ
     ----------
     Welch (1967); Thomson (1982), sec. XIII; Bendat & Piersol (2010), ch. 9 and 11.
     """
-    segs = _segments(segments)
-    h = segs[0].dt
-    for k, s in enumerate(segs[1:], start=1):
-        if abs(s.dt - h) > 1e-6 * h:
-            raise ValueError(f"Expected every segment of `segments` at one sample interval, got {h:.9g} s and {s.dt:.9g} s (segment {k})")
+    segs = as_segments(segments)
+    samples = float(sum(s.n_samples for s in segs))
+    budget.check(budget.arrays(samples * 6.0, what=f"`segments` = {samples:.3g} samples", copies=3.0), limits)
+    h = sample_interval(segs)
     longest = max(s.n_samples for s in segs)
     if resolution is None:
         length = min(int(round(1.0 / (DEFAULT_RESOLUTION * h))), max(8, longest // 16))
@@ -298,8 +285,6 @@ def estimate_environment(segments, *, resolution: float | None = None, min_frequ
         raise ValueError(f"Expected `min_frequency` below the Nyquist frequency {nyquist:g} Hz less one bin, got {f_lo:g} Hz")
     x = [np.concatenate([s.dtheta, s.dv], axis=1) for s in segs]
     t = [s.time for s in segs]
-    samples = float(sum(s.n_samples for s in segs))
-    budget.check(budget.arrays(samples * 6.0, what=f"`segments` = {samples:.3g} samples", copies=3.0), limits)
     spectra = welch_cross_spectra(x, h, length, limits=limits, progress=progress)
     search = find_lines(x, t, spectra, false_alarm=false_alarm, min_frequency=f_lo, max_frequency=nyquist - res)
     found = search.lines

@@ -61,7 +61,7 @@ from ..core import budget
 from ..core import quaternion as quat
 from ..core.progress import bar
 from ..core.validation import as_int
-from .imu_log import ImuLog
+from .segments import as_segments, sample_interval
 
 __all__ = ["AlgorithmReplay", "Replay", "replay", "REPLAY_SAMPLE", "CHUNK_STEPS"]
 
@@ -165,25 +165,6 @@ class Replay:
         for qa, qb in zip(self.algorithms[i].attitudes, self.algorithms[j].attitudes):
             total += quat.quat_to_rotvec(quat.multiply(qb, quat.conjugate(qa)), validate=False)
         return total / self.common_time
-
-
-def _segments(segments) -> tuple:
-    if isinstance(segments, ImuLog):
-        return (segments,)
-    if not isinstance(segments, Sequence) or isinstance(segments, (str, bytes)):
-        raise TypeError(f"Expected `segments` to be an ImuLog or a sequence of ImuLog, got {type(segments).__name__}")
-    out = tuple(segments)
-    if not out:
-        raise ValueError("Expected `segments` to hold at least one ImuLog, got none")
-    for k, s in enumerate(out):
-        if not isinstance(s, ImuLog):
-            raise TypeError(f"Expected `segments` to hold ImuLog, got {type(s).__name__} at position {k}")
-    if len(out) > 1:
-        h = out[0].dt
-        for k, s in enumerate(out[1:], start=1):
-            if abs(s.dt - h) > 1e-6 * h:
-                raise ValueError(f"Expected every segment of `segments` at one sample interval, got {h:.9g} s and {s.dt:.9g} s (segment {k})")
-    return out
 
 
 def _steps(n: int, algorithm: Algorithm) -> int:
@@ -314,14 +295,14 @@ def replay(segments, algorithms, *, chunk_steps: int = CHUNK_STEPS, limits: budg
     Examples
     --------
     >>> from strapdown.derivations.coning.registry import get
+    >>> from strapdown.analysis.logs.imu_log import ImuLog
     >>> t = 0.01 * np.arange(1, 5)
     >>> log = ImuLog(t, [[1e-3, 0, 0], [0, 1e-3, 0], [1e-3, 0, 0], [0, 1e-3, 0]], np.zeros((4, 3)))
     >>> r = replay(log, [get("two-sample")])
     >>> r.algorithms[0].correction   # two steps of (2/3) p1 × p2
     array([0.00000000e+00, 0.00000000e+00, 1.33333333e-06])
     """
-    segs = _segments(segments)
-    h = segs[0].dt
+    segs = as_segments(segments)
     algs = (algorithms,) if isinstance(algorithms, Algorithm) else tuple(algorithms) if isinstance(algorithms, Sequence) else None
     if algs is None or not algs:
         raise ValueError(f"Expected `algorithms` to hold at least one Algorithm, got {algorithms!r:.60}")
@@ -333,6 +314,7 @@ def replay(segments, algorithms, *, chunk_steps: int = CHUNK_STEPS, limits: budg
     terms = sum(1 + len(a.terms) + a.samples for a in algs)
     what = f"`segments` = {samples:.3g} samples × {len(algs)} algorithm(s)"
     budget.check(REPLAY_SAMPLE.estimate(float(samples) * terms, what=what, extra_bytes=48.0 * chunk * max(a.window for a in algs)), limits)
+    h = sample_interval(segs)
     spans = [_common_span(s.n_samples, algs) for s in segs]
     results = []
     with bar(desc="replaying the algorithms", total=2 * samples * len(algs), enabled=progress, unit="sample") as pb:
