@@ -133,11 +133,12 @@ def _running_level(g: np.ndarray, dof: float) -> np.ndarray:
 
 
 def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float) -> list:
-    """Bins in [lo, hi) standing out of their neighbourhood (stage 1), tallest first, with their refined frequencies."""
+    """Bins in [lo, hi) standing out of their neighbourhood (stage 1), tallest first: refined frequency, 1/level of each channel."""
     from scipy.stats import chi2
 
     g = np.real(np.diagonal(spectra.density, axis1=1, axis2=2))  # (F, C)
-    ratio = g / np.maximum(_running_level(g, spectra.dof), np.finfo(float).tiny)
+    band = np.maximum(_running_level(g, spectra.dof), np.finfo(float).tiny)
+    ratio = g / band
     bins = hi - lo
     cut = chi2.ppf(1.0 - level / (bins * g.shape[1]), spectra.dof) / spectra.dof
     score = ratio.max(axis=1)
@@ -148,9 +149,9 @@ def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float) -> list:
             a, b, d = (math.log(max(g[k + j, c], np.finfo(float).tiny)) for j in (-1, 0, 1))
             den = a - 2.0 * b + d
             shift = 0.5 * (a - d) / den if den < 0 else 0.0
-            found.append((float(score[k]), (k + max(-0.5, min(0.5, shift))) * spectra.resolution))
-    found.sort(reverse=True)
-    return [f for _, f in found[:MAX_CANDIDATES]]
+            found.append((float(score[k]), (k + max(-0.5, min(0.5, shift))) * spectra.resolution, 1.0 / band[k]))
+    found.sort(key=lambda item: -item[0])
+    return [(f, w) for _, f, w in found[:MAX_CANDIDATES]]
 
 
 class _Blocks:
@@ -196,21 +197,27 @@ class _Blocks:
         return self.gain * z * np.exp(-1j * w * self.start)[:, None]
 
 
-def _refine(blocks: _Blocks, freq: float) -> float:
-    """The candidate's frequency refined from the phase advance of its block amplitudes (two passes)."""
+def _refine(blocks: _Blocks, freq: float, weights: np.ndarray) -> float:
+    """The candidate's frequency refined from the phase advance of its block amplitudes (two passes), within half a bin.
+
+    The channels are weighted by the inverse of their band level at the
+    candidate, so that a line in a quiet channel is not drowned by the band of
+    a loud one; a refinement that leaves the candidate's bin is not taken.
+    """
+    start, half = freq, 0.5 / (blocks.length * blocks.h)
     z = blocks.amplitudes(freq)
-    r = np.sum(np.conj(z[:-1][blocks.pair[:-1]]) * z[1:][blocks.pair[:-1]])
+    r = np.sum(np.conj(z[:-1][blocks.pair[:-1]]) * z[1:][blocks.pair[:-1]] * weights)
     if r != 0:
         freq += np.angle(r) / (2.0 * math.pi * blocks.length * blocks.h)
     z = blocks.amplitudes(freq)
-    u = z @ np.conj(z.mean(axis=0))  # one phasor per block, every channel by its weight
+    u = z @ (np.conj(z.mean(axis=0)) * weights)  # one phasor per block, every channel by its weight
     weight = np.abs(u)
     if weight.sum() > 0:
         phase = np.unwrap(np.angle(u))
         t = blocks.start - np.average(blocks.start, weights=weight)
         slope = float(np.sum(weight * t * (phase - np.average(phase, weights=weight))) / max(np.sum(weight * t * t), np.finfo(float).tiny))
         freq += slope / (2.0 * math.pi)
-    return freq
+    return freq if abs(freq - start) <= half else start
 
 
 def find_lines(stretches, times, spectra: CrossSpectra, *, false_alarm: float = 1e-3, min_frequency: float | None = None, max_frequency: float | None = None) -> LineSearch:
@@ -269,8 +276,8 @@ def find_lines(stretches, times, spectra: CrossSpectra, *, false_alarm: float = 
     threshold = float(f_dist.isf(p / tests, 2, 2 * m - 2))
     lines = []
     candidates = _candidates(spectra, lo, hi, CANDIDATE_LEVEL)
-    for f0 in candidates:
-        f1 = _refine(blocks, f0)
+    for f0, weights in candidates:
+        f1 = _refine(blocks, f0, weights)
         if not band[0] - res <= f1 <= band[1] + res:
             continue
         z = blocks.amplitudes(f1)
