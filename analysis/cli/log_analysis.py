@@ -61,6 +61,8 @@ def _increments_note(path) -> str:
 
 def _read(args):
     """The log's gap-free segments and how its increments were obtained (the package's ``.npz``/``.csv`` formats)."""
+    import zipfile
+
     import numpy as np
 
     from ..logs.imu_log import ImuLog
@@ -68,7 +70,10 @@ def _read(args):
 
     if getattr(args, "topic", None) is not None:
         raise UsageError("--topic does not apply to a log in the package's .npz/.csv format (it holds one stream)")
-    log = read_log(args.file)
+    try:
+        log = read_log(args.file)
+    except (zipfile.BadZipFile, EOFError) as exc:
+        raise ValueError(f"Expected a readable log, got {str(args.file)!r}: the file is truncated or corrupt ({exc})") from None
     note = _increments_note(args.file)
     window = _segment(getattr(args, "segment", None))
     if window is not None:
@@ -196,11 +201,18 @@ def environment_command(args) -> Result:
 
     if not str(args.out).strip():
         raise UsageError("Expected --out to name the environment file to write, got an empty name")
+    from contextlib import ExitStack
+
+    from ..core.atomic import replaced_atomically
+
     segments, _ = _read(args)
     e = _environment_estimate(args, segments)
-    write_environment(args.out, e)
-    if args.figure:
-        _figure(e, args.figure)
+    with ExitStack() as stack:  # both files or neither
+        env_path = stack.enter_context(replaced_atomically(args.out))
+        figure_path = stack.enter_context(replaced_atomically(args.figure)) if args.figure else None
+        write_environment(env_path, e)
+        if figure_path is not None:
+            _figure(e, figure_path)
     lo, hi = e.auto_factors(0.95)
     rms = e.band_rms()
     s = e.search

@@ -223,14 +223,22 @@ def allan_read_off(curve: AllanDeviation, fit: AllanFit) -> tuple:
     return tuple(out)
 
 
+def _fit(curve: AllanDeviation) -> AllanFit:
+    """The model fitted to the points of ``curve`` that show any noise (none: a constant channel, all zero)."""
+    ok = curve.adev > 0
+    if not np.any(ok):
+        return AllanFit(0.0, 0.0, 0.0)
+    return fit_allan(curve.taus[ok], curve.adev[ok], weights=curve.edf[ok])
+
+
 def _triad(increments: np.ndarray, h: float, level: float) -> TriadNoise:
     rates = increments / h
     first = _pool([allan_deviation(rates[:, c], h, level=level) for c in range(3)], level)
-    fit = fit_allan(first.taus, first.adev, weights=first.edf)
+    fit = _fit(first)
     spec = SensorSpec(fit.random_walk, fit.bias_instability, fit.rate_random_walk)
     axes = tuple(allan_deviation(rates[:, c], h, spec=spec, level=level) for c in range(3))  # degrees of freedom by noise type
     pooled = _pool(axes, level)
-    fit = fit_allan(pooled.taus, pooled.adev, weights=pooled.edf)
+    fit = _fit(pooled)
     n, b, k = allan_read_off(pooled, fit)
     return TriadNoise(axes, pooled, fit, n, b, k)
 
