@@ -257,9 +257,10 @@ def welch_cross_spectra(stretches, sample_interval: float, segment_length: int, 
                     data = data - subtract(index, first, last - first)
                 frames = np.lib.stride_tricks.sliding_window_view(data, n, axis=0)[::step]  # (s1 − s0, C, n)
                 frames = frames - frames.mean(axis=-1, keepdims=True)
-                spec = rfft(frames * w, axis=-1)  # (k, C, F)
-                total += np.einsum("kaf,kbf->fab", np.conj(spec), spec)
+                spec = np.ascontiguousarray(rfft(frames * w, axis=-1).transpose(2, 1, 0))  # (F, C, k)
+                total += np.matmul(spec.conj(), spec.transpose(0, 2, 1))  # Σ_k conj(X_a) X_b, one product per bin
                 pb.update(s1 - s0)
+    total = 0.5 * (total + np.conj(total.transpose(0, 2, 1)))  # exactly Hermitian
     total *= scale / sum(counts)
     total[1 : bins - (1 if n % 2 == 0 else 0)] *= 2.0  # one-sided: DC and (even n) the Nyquist bin once
     dof = sum(equivalent_dof(w, step, k) for k in counts if k)

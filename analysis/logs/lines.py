@@ -155,7 +155,11 @@ def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float) -> list:
 
 
 class _Blocks:
-    """The record cut into tapered blocks of L samples (never across a gap), for demodulation at any frequency."""
+    """The record cut into tapered blocks of L samples (never across a gap), for demodulation at any frequency.
+
+    Held as one ``(M, C, L)`` array (block, channel, sample), each block's mean
+    removed; demodulation is then two real matrix-vector products per block.
+    """
 
     def __init__(self, stretches, times, length: int):
         from scipy.signal import get_window
@@ -163,20 +167,19 @@ class _Blocks:
         self.length = length
         self.taper = get_window("hann", length)
         self.gain = 2.0 / float(self.taper.sum())
-        data, starts, runs = [], [], []
-        for x, t in zip(stretches, times):
-            m = x.shape[0] // length
-            if m == 0:
-                continue
-            d = x[: m * length].reshape(m, length, x.shape[1])
-            data.append(d - d.mean(axis=1, keepdims=True))
-            starts.append(t[: m * length : length])
-            runs.append(m)
-        self.data = np.concatenate(data) if data else np.zeros((0, length, stretches[0].shape[1]))
+        channels = stretches[0].shape[1]
+        counts = [x.shape[0] // length for x in stretches]
+        self.data = np.empty((sum(counts), channels, length))
+        starts, row = [], 0
+        for x, t, m in zip(stretches, times, counts):
+            if m:
+                self.data[row : row + m] = x[: m * length].reshape(m, length, channels).transpose(0, 2, 1)
+                starts.append(t[: m * length : length])
+                row += m
+        self.data -= self.data.mean(axis=2, keepdims=True)
         self.start = np.concatenate(starts) if starts else np.zeros(0)
         # consecutive blocks of one stretch: the pairs of the block-to-block phase advance
-        pair = np.concatenate([np.r_[np.ones(m - 1, bool), False] for m in runs]) if runs else np.zeros(0, bool)
-        self.pair = pair
+        self.pair = np.concatenate([np.r_[np.ones(m - 1, bool), False] for m in counts if m]) if any(counts) else np.zeros(0, bool)
         self.h = float(np.median(np.diff(times[0]))) if times[0].size > 1 else 1.0
 
     @property
@@ -185,15 +188,18 @@ class _Blocks:
 
     def subtract(self, line: Line) -> None:
         """Remove ``line`` from the blocks (then their means again), so that its leakage does not reach weaker candidates."""
-        t = self.start[:, None] + self.h * np.arange(self.length)[None, :]
-        self.data -= np.real(np.exp(2j * math.pi * line.frequency * t)[:, :, None] * line.amplitude)
-        self.data -= self.data.mean(axis=1, keepdims=True)
+        w = 2.0 * math.pi * line.frequency
+        phase = np.exp(1j * w * self.start)[:, None] * np.exp(1j * w * self.h * np.arange(self.length))[None, :]  # (M, L)
+        re, im = phase.real, phase.imag
+        for c, a in enumerate(line.amplitude):
+            self.data[:, c, :] -= re * a.real - im * a.imag
+        self.data -= self.data.mean(axis=2, keepdims=True)
 
     def amplitudes(self, freq: float) -> np.ndarray:
         """``Z_{m,c}`` at ``freq`` [Hz], shape (M, C): the tapered block's demodulated mean, scaled to the amplitude."""
         w = 2.0 * math.pi * freq
         inside = self.taper * np.exp(-1j * w * self.h * np.arange(self.length))
-        z = np.einsum("mlc,l->mc", self.data, inside)
+        z = np.matmul(self.data, inside.real) + 1j * np.matmul(self.data, inside.imag)
         return self.gain * z * np.exp(-1j * w * self.start)[:, None]
 
 
