@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The environment file of the environment commands' baselines.
-ENVIRONMENT = str(ROOT / "analysis" / "coning" / "environments" / "coning-10hz.toml")
+ENVIRONMENT = str(ROOT / "analysis" / "vibration" / "environments" / "coning-10hz.toml")
 
 #: The example log of the docs, and a directory for the files the log commands write.
 EXAMPLE_LOG = str(ROOT / "docs" / "examples" / "rocking-imu-log.npz")

@@ -235,7 +235,7 @@ class Commands:
             helps = {
                 "algorithms": "the registry of algorithms: list it, show one",
                 "derive": "regenerate a symbolic derivation",
-                "log": "recorded IMU logs: their vibration environment, algorithms replayed on them, the noise of a static stretch",
+                "log": "recorded IMU logs: inspect one, its vibration environment, algorithms replayed on it, the noise of a static stretch",
                 "reproduce": "reproduce published tables",
             }
             parser = self.root.add_parser(group, description=helps.get(group, group))
@@ -264,6 +264,7 @@ COMMANDS = {
     "log allan": ("log_analysis", "Allan deviation of a static log: ARW, bias instability and RRW with intervals, written as a sensor file"),
     "log coning": ("log_analysis", "replay coning algorithms on a log: mean correction rate of each, their exact drift differences, the closed form beside"),
     "log environment": ("log_analysis", "vibration environment of a log: lines and cross-spectra with intervals, written as an environment file"),
+    "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),

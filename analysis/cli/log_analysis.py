@@ -17,83 +17,27 @@ Degrees, deg/h and µg at this edge; SI inside.  Library imports are lazy.
 from __future__ import annotations
 
 from . import Result, UsageError
+from ._logs import add_log_options, load_log
 from ._options import add_limits, count, limits_from, number
 
 __all__ = ["register"]
 
 
 # --------------------------------------------------------------------------- reading
-def _segment(text):
-    """``START:END`` [s] of the log's time axis (either may be empty)."""
-    if text is None:
-        return None
-    start, sep, end = str(text).partition(":")
-    if not sep:
-        raise UsageError(f"Expected --segment as START:END in seconds of the log's time (either may be empty), got {str(text)[:40]!r}")
-    try:
-        lo = float(start) if start.strip() else float("-inf")
-        hi = float(end) if end.strip() else float("inf")
-    except ValueError:
-        raise UsageError(f"Expected --segment as START:END in seconds of the log's time (either may be empty), got {str(text)[:40]!r}") from None
-    if lo != lo or hi != hi or not lo < hi:
-        raise UsageError(f"Expected --segment START:END with START < END [s], got {str(text)[:40]!r}")
-    return lo, hi
-
-
-def _increments_note(path) -> str:
-    """How the native log at ``path`` holds its gyro data: increments, or rates turned into increments."""
-    from pathlib import Path
-
-    import numpy as np
-
-    p = Path(path)
-    if p.suffix.lower() == ".npz":
-        with np.load(p, allow_pickle=False) as z:
-            rates = "dtheta" not in z.files
-    else:
-        with open(p, encoding="utf-8") as f:
-            header = next((line for line in f if line.strip() and not line.lstrip().startswith("#")), "")
-        rates = "dtheta_x" not in header
-    if rates:
-        return "the log holds rates: increments formed as rate × interval (the rate held over each interval), so the corrections see the sampled rates"
-    return "increments as logged"
-
-
 def _read(args):
-    """The log's gap-free segments and how its increments were obtained (the package's ``.npz``/``.csv`` formats)."""
-    import zipfile
-
-    import numpy as np
-
-    from ..logs.imu_log import ImuLog
-    from ..logs.native import read_log
-
-    if getattr(args, "topic", None) is not None:
-        raise UsageError("--topic does not apply to a log in the package's .npz/.csv format (it holds one stream)")
-    try:
-        log = read_log(args.file)
-    except (zipfile.BadZipFile, EOFError) as exc:
-        raise ValueError(f"Expected a readable log, got {str(args.file)!r}: the file is truncated or corrupt ({exc})") from None
-    note = _increments_note(args.file)
-    window = _segment(getattr(args, "segment", None))
-    if window is not None:
-        h = log.dt
-        keep = (log.time - h >= window[0] - 1e-9 * h) & (log.time <= window[1] + 1e-9 * h)
-        if np.count_nonzero(keep) < 2:
-            raise UsageError(f"Expected --segment to hold at least two samples of the log ({log.time[0] - h:g} … {log.time[-1]:g} s), got {args.segment}")
-        log = ImuLog(log.time[keep], log.dtheta[keep], log.dv[keep], log.metadata)
-    return (log,), note
+    """The log's gap-free segments, read and checked (:func:`strapdown.analysis.cli._logs.load_log`), and how its increments were formed."""
+    log = load_log(args)
+    note = "increments as logged" if log.held == "increments" else f"the log holds rates: {log.conversion}, so the corrections see the sampled rates"
+    return log.segments, note
 
 
 def _vec(v) -> list:
     return [float(x) for x in v]
 
 
-def _common(p, *, segment: bool = True) -> None:
-    p.add_argument("file", metavar="FILE", help="recorded IMU log [path] (docs/recorded-logs.md)")
-    p.add_argument("--topic", default=None, metavar="T", help="stream of the log to use [name] (default: the stream of the highest rate)")
-    if segment:
-        p.add_argument("--segment", default=None, metavar="START:END", help="the stretch of the log to use, START:END in the log's time [s], either may be empty (default: all)")
+def _common(p) -> None:
+    p.add_argument("file", metavar="FILE", help="recorded IMU log: ULog, DataFlash, ROS bag, EuRoC CSV or the package's .npz/.csv [path] (docs/recorded-logs.md)")
+    add_log_options(p)
     add_limits(p)
 
 
