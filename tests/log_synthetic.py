@@ -26,8 +26,10 @@ def cone(freq_hz=10.0, half_angle_deg=1.0) -> RegularPrecession:
 
 
 def cone_log(n: int, h: float, **kw) -> ImuLog:
-    """``n`` samples at interval ``h`` of :func:`cone` (exact increments), no specific force."""
-    return ImuLog(h * np.arange(1, n + 1), cone(**kw).grid_increments(h, 0, n), np.zeros((n, 3)))
+    """``n`` samples at interval ``h`` of :func:`cone` (exact increments); the specific force is gravity's, on −z."""
+    dv = np.zeros((n, 3))
+    dv[:, 2] = -9.80665 * h
+    return ImuLog(h * np.arange(1, n + 1), cone(**kw).grid_increments(h, 0, n), dv)
 
 
 def coning_band(n: int, h: float, f1: float, f2: float, density: float, rng) -> tuple:

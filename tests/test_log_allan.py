@@ -23,8 +23,8 @@ from strapdown.analysis.logs.native import write_log
 from strapdown.analysis.logs.sensor_file import read_sensor_file, write_sensor_file
 from strapdown.analysis.logs.static_noise import static_noise
 
-H = 1.0
-N = 40_000  # 11 h at 1 Hz: the white, flicker and rate-random-walk regions all on the curve
+H = 0.5
+N = 80_000  # 11 h at 2 Hz: the white, flicker and rate-random-walk regions all on the curve
 GYRO = SensorSpec(0.05 * DEG / 60.0, 0.5 * DEG_PER_H_TO_RAD_PER_S, 0.77 * DEG_PER_H_TO_RAD_PER_S / 60.0, turn_on_bias=10 * DEG_PER_H_TO_RAD_PER_S, flicker_band=(0.05, 2e4))
 ACCEL = SensorSpec(0.05 / 60.0, 10 * MICRO_G, 0.0, turn_on_bias=1e-3, flicker_band=(0.05, 2e4))
 TRUTH = {("gyro", "random_walk"): GYRO.random_walk, ("gyro", "bias_instability"): GYRO.bias_instability, ("gyro", "rate_random_walk"): GYRO.rate_random_walk,

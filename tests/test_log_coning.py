@@ -191,7 +191,7 @@ def test_a_px4_ulog_of_a_cone(tmp_path, capsys):
     dt_us = int(round(H * 1e6))
     path = tmp_path / "cone.ulg"
     gyro = (log.dtheta / H).astype(np.float32)
-    write_px4_ulog(path, np.arange(1, N + 1, dtype=np.uint64) * dt_us, gyro, np.full(N, dt_us), np.zeros((N, 3), np.float32))
+    write_px4_ulog(path, np.arange(1, N + 1, dtype=np.uint64) * dt_us, gyro, np.full(N, dt_us), (log.dv / H).astype(np.float32))
     data = pyulog.ULog(str(path)).get_dataset("sensor_combined").data
     t = data["timestamp"] * 1e-6
     dtheta = np.stack([data[f"gyro_rad[{i}]"] for i in range(3)], axis=1).astype(float) * (data["gyro_integral_dt"] * 1e-6)[:, None]
@@ -200,7 +200,7 @@ def test_a_px4_ulog_of_a_cone(tmp_path, capsys):
     argv[2] = str(path)
     if cli.main(argv) != 0:  # the package's own formats only: read the ULog's samples as the reader of ULogs would
         capsys.readouterr()
-        write_log(tmp_path / "from-ulog.npz", ImuLog(t, dtheta, np.zeros_like(dtheta)))
+        write_log(tmp_path / "from-ulog.npz", ImuLog(t, dtheta, log.dv))
         argv[2] = str(tmp_path / "from-ulog.npz")
         assert cli.main(argv) == 0
     rows = json.loads(capsys.readouterr().out)["algorithms"]

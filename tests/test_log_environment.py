@@ -136,7 +136,7 @@ def test_a_line_above_the_nyquist_frequency_is_seen_at_its_alias():
     p = np.zeros((n, 3))
     p[:, 0] = 0.1 * (np.sin(w * t) - np.sin(w * (t - H))) / w
     p += 1e-5 * np.random.default_rng(0).standard_normal((n, 3))
-    e = estimate_environment(ImuLog(t, p, np.zeros((n, 3))))
+    e = estimate_environment(ImuLog(t, p, np.tile([0.0, 0.0, -9.80665 * H], (n, 1))))
     assert [round(ln.frequency, 3) for ln in e.lines] == [300.0]
     assert e.nyquist == pytest.approx(500.0)
 

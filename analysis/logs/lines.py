@@ -132,13 +132,13 @@ def _running_level(g: np.ndarray, dof: float) -> np.ndarray:
     return level / (chi2.ppf(0.5, dof) / dof)
 
 
-def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float) -> list:
+def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float, silent: np.ndarray) -> list:
     """Bins in [lo, hi) standing out of their neighbourhood (stage 1), tallest first: refined frequency, 1/level of each channel."""
     from scipy.stats import chi2
 
     g = np.real(np.diagonal(spectra.density, axis1=1, axis2=2))  # (F, C)
     band = np.maximum(_running_level(g, spectra.dof), np.finfo(float).tiny)
-    ratio = g / band
+    ratio = np.where(silent, 0.0, g / band)  # a channel holding only round-off (a constant) is left out
     bins = hi - lo
     cut = chi2.ppf(1.0 - level / (bins * g.shape[1]), spectra.dof) / spectra.dof
     score = ratio.max(axis=1)
@@ -149,7 +149,7 @@ def _candidates(spectra: CrossSpectra, lo: int, hi: int, level: float) -> list:
             a, b, d = (math.log(max(g[k + j, c], np.finfo(float).tiny)) for j in (-1, 0, 1))
             den = a - 2.0 * b + d
             shift = 0.5 * (a - d) / den if den < 0 else 0.0
-            found.append((float(score[k]), (k + max(-0.5, min(0.5, shift))) * spectra.resolution, 1.0 / band[k]))
+            found.append((float(score[k]), (k + max(-0.5, min(0.5, shift))) * spectra.resolution, np.where(silent, 0.0, 1.0 / band[k])))
     found.sort(key=lambda item: -item[0])
     return [(f, w) for _, f, w in found[:MAX_CANDIDATES]]
 
@@ -176,7 +176,11 @@ class _Blocks:
                 self.data[row : row + m] = x[: m * length].reshape(m, length, channels).transpose(0, 2, 1)
                 starts.append(t[: m * length : length])
                 row += m
+        scale = np.abs(self.data).max(axis=(0, 2)) if self.data.size else np.zeros(channels)
+        self.scale = scale
         self.data -= self.data.mean(axis=2, keepdims=True)
+        # the round-off of a constant channel (gravity on z at rest): block scatter below it is no noise at all
+        self.floor = (1e-12 * scale) ** 2 * max(1, self.data.shape[0])
         self.start = np.concatenate(starts) if starts else np.zeros(0)
         # consecutive blocks of one stretch: the pairs of the block-to-block phase advance
         self.pair = np.concatenate([np.r_[np.ones(m - 1, bool), False] for m in counts if m]) if any(counts) else np.zeros(0, bool)
@@ -281,7 +285,9 @@ def find_lines(stretches, times, spectra: CrossSpectra, *, false_alarm: float = 
     tests = (hi - lo) * channels * (m + 1)
     threshold = float(f_dist.isf(p / tests, 2, 2 * m - 2))
     lines = []
-    candidates = _candidates(spectra, lo, hi, CANDIDATE_LEVEL)
+    g = np.real(np.diagonal(spectra.density, axis1=1, axis2=2))
+    silent = np.median(g[lo:hi], axis=0) <= 2.0 * spectra.sample_interval * (1e-10 * blocks.scale) ** 2  # round-off of a constant channel
+    candidates = _candidates(spectra, lo, hi, CANDIDATE_LEVEL, silent)
     for f0, weights in candidates:
         f1 = _refine(blocks, f0, weights)
         if not band[0] - res <= f1 <= band[1] + res:
@@ -289,7 +295,9 @@ def find_lines(stretches, times, spectra: CrossSpectra, *, false_alarm: float = 
         z = blocks.amplitudes(f1)
         mean = z.mean(axis=0)
         scatter = np.sum(np.abs(z - mean) ** 2, axis=0)
-        stat = m * (m - 1) * np.abs(mean) ** 2 / np.maximum(scatter, np.finfo(float).tiny)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # a mean at the round-off of a constant channel (gravity at rest) is no evidence; a line without noise is (capped)
+            stat = np.where(np.abs(mean) ** 2 > blocks.floor, np.minimum(m * (m - 1) * np.abs(mean) ** 2 / np.maximum(scatter, blocks.floor), 1e300), 0.0)
         if np.any(stat > threshold) and not any(abs(f1 - ln.frequency) < res for ln in lines):
             line = Line(float(f1), mean, np.sqrt(scatter / (m * (m - 1))), stat, stat > threshold)
             lines.append(line)
