@@ -44,6 +44,7 @@ BASELINES = {
     "environment-drift": ["--algorithm", "two-sample", "--environment", ENVIRONMENT, "--sample-interval", "1e-3"],
     "environment-rates": ["--environment", ENVIRONMENT, "--budget-deg-per-h", "25", "--rates", "5", "--tuned-up-to", "2"],
     "log allan": [EXAMPLE_LOG],
+    "log inspect": [EXAMPLE_LOG],
     "log coning": [EXAMPLE_LOG, "--algorithm", "two-sample", "--prediction", "none"],
     "log environment": [EXAMPLE_LOG, "--out", os.path.join(LOG_OUT, "environment.toml")],
     "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
