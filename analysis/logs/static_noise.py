@@ -55,8 +55,9 @@ from .imu_log import ImuLog
 
 __all__ = ["Coefficient", "TriadNoise", "StaticNoise", "static_noise", "allan_read_off", "SHARE"]
 
-#: Allan deviation of a log, per sample and axis (allantools' octave τ, three passes with the degrees of freedom).
-_ALLAN_SAMPLE = budget.CostModel(seconds_per_unit=2e-7, bytes_per_unit=64.0, fixed_seconds=0.2)
+#: Allan deviation of a log, per sample (six channels, twice each: allantools' octave τ and the degrees of freedom);
+#: memory: a few float64 arrays of the record alive at once (rounded up from benchmarks/bench_log_analysis.py).
+_ALLAN_SAMPLE = budget.CostModel(seconds_per_unit=3e-6, bytes_per_unit=100.0, fixed_seconds=0.2)
 
 
 @dataclass(frozen=True)
@@ -284,6 +285,6 @@ def static_noise(segments, *, level: float = 0.95, limits: budget.Limits | None 
     p = in_open_interval(level, "level", 0.0, 1.0)
     if log.n_samples < 64:
         raise ValueError(f"Expected `segments` of at least 64 samples for an Allan deviation, got {log.n_samples}")
-    budget.check(_ALLAN_SAMPLE.estimate(6.0 * log.n_samples * 3, what=f"`segments` = {log.n_samples:.3g} samples"), limits)
+    budget.check(_ALLAN_SAMPLE.estimate(float(log.n_samples), what=f"`segments` = {log.n_samples:.3g} samples"), limits)
     h = log.dt
     return StaticNoise(_triad(log.dtheta, h, p), _triad(log.dv, h, p), log.n_samples * h, h, p)
