@@ -198,8 +198,10 @@ class EnvironmentEstimate:
 
     def band_rms(self) -> np.ndarray:
         """Root mean square of each channel over the table (lines removed), shape (6,) [rad/s, m/s²]."""
+        from scipy.integrate import trapezoid
+
         auto = np.real(np.diagonal(self.density, axis1=1, axis2=2))
-        return np.sqrt(np.maximum(np.trapezoid(auto, self.frequency, axis=0), 0.0))
+        return np.sqrt(np.maximum(trapezoid(auto, self.frequency, axis=0), 0.0))
 
 
 def _increment_response(freq: np.ndarray, h: float) -> np.ndarray:
