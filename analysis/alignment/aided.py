@@ -51,8 +51,8 @@ from scipy.spatial.transform import Rotation
 from ..core import budget, kalman, montecarlo
 from ..core import quaternion as quat
 from ..core.validation import as_int, nonnegative, positive
-from ..gyrocompass.rocking import as_generator
 from ..core.verdicts import Verdict
+from ..gyrocompass.rocking import as_generator
 from .comparison import TrialSummary, floor_reached, summarise
 from .earth import EARTH_RATE, normal_gravity
 from .error_model import navigation_error_model

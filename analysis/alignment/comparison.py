@@ -44,7 +44,7 @@ import numpy as np
 
 from ..core import budget, kalman, montecarlo
 from ..core.validation import as_array, as_int, positive
-from ..core.verdicts import Verdict, mean_within
+from ..core.verdicts import Verdict, equivalence, mean_within, rms_equivalence
 from .analytic import analytic_alignment
 from .coarse_to_fine import CoarseModel, coarse_model, coarse_to_fine, split_record
 from .compass_loop import CompassLoopDesign, compass_loop_alignment
@@ -81,6 +81,9 @@ class TrialSummary:
         ``√`` of the 95 % interval of the mean square.
     std : float
         Sample standard deviation.
+    ms_std_error : float
+        Standard error of the mean square (from the per-trial squares), for
+        verdicts on the rms (:func:`strapdown.analysis.core.verdicts.mean_square_within`).
     """
 
     n: int
@@ -89,6 +92,49 @@ class TrialSummary:
     rms: float
     rms_ci: tuple
     std: float
+    ms_std_error: float = math.nan
+
+    def rms_agrees(self, reference: float, relative_margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the rms within ``relative_margin`` of ``reference``? (TOST on the mean square, :func:`~strapdown.analysis.core.verdicts.rms_equivalence`.)
+
+        Parameters
+        ----------
+        reference : float
+            The rms it should equal [its units].
+        relative_margin : float
+            The margin as a fraction of ``reference``, in (0, 1).
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        text = f"rms within ±{relative_margin:.0%} of {what} (TOST, {level:.0%})"
+        return rms_equivalence(self.rms**2, self.ms_std_error, self.n, reference=reference, relative_margin=relative_margin, criterion=text, level=level)
+
+    def mean_agrees(self, reference: float, margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the mean within ``±margin`` of ``reference``? (TOST, :func:`~strapdown.analysis.core.verdicts.equivalence`.)
+
+        Parameters
+        ----------
+        reference : float
+            The value it should equal [its units].
+        margin : float
+            The equivalence margin, > 0 [its units].
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        text = f"mean within ±{margin:.3g} of {what} (TOST, {level:.0%})"
+        return equivalence(self.mean, self.std / math.sqrt(self.n), self.n, reference=reference, margin=margin, criterion=text, level=level)
 
 
 def summarise(values) -> TrialSummary:
@@ -116,7 +162,7 @@ def summarise(values) -> TrialSummary:
     mse, se_mse = float(sq.mean()), float(sq.std(ddof=1)) / math.sqrt(n)
     z = montecarlo.Z95
     lo, hi = max(mse - z * se_mse, 0.0), mse + z * se_mse
-    return TrialSummary(n, m, (m - z * s / math.sqrt(n), m + z * s / math.sqrt(n)), math.sqrt(mse), (math.sqrt(lo), math.sqrt(hi)), s)
+    return TrialSummary(n, m, (m - z * s / math.sqrt(n), m + z * s / math.sqrt(n)), math.sqrt(mse), (math.sqrt(lo), math.sqrt(hi)), s, se_mse)
 
 
 def trial_floors(scenario: Scenario, gyro_bias, accel_bias) -> np.ndarray:

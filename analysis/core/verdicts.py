@@ -58,6 +58,8 @@ Public API
    equivalence
    mean_within
    rms_within
+   mean_square_within
+   rms_equivalence
    in_band
    all_of
    trials_needed
@@ -89,7 +91,7 @@ import numpy as np
 
 from .validation import as_array, as_float, as_int
 
-__all__ = ["OUTCOMES", "Verdict", "within", "equivalence", "mean_within", "rms_within", "in_band", "all_of", "trials_needed"]
+__all__ = ["OUTCOMES", "Verdict", "within", "equivalence", "mean_within", "rms_within", "mean_square_within", "rms_equivalence", "in_band", "all_of", "trials_needed"]
 
 #: The three outcomes of a verdict.
 OUTCOMES = ("yes", "no", "not resolved")
@@ -435,13 +437,97 @@ def rms_within(values, *, low: float = 0.0, high: float = math.inf, criterion: s
     'yes'
     """
     x = as_array(values, "values").ravel()
+    m, se, n = _mean_and_se(x * x, "values")
+    return mean_square_within(m, se, n, low=low, high=high, criterion=criterion, margin=margin, level=level)
+
+
+def mean_square_within(mean_square, standard_error, n, *, low: float = 0.0, high: float = math.inf, criterion: str, margin: float = math.nan, level: float = 0.95) -> Verdict:
+    """Does the rms lie in ``[low, high]``, from a mean square and its standard error (a Monte Carlo summary)?
+
+    Parameters
+    ----------
+    mean_square : float
+        Mean of independent per-trial squares [units²].
+    standard_error : float
+        Its standard error [units²].
+    n : int
+        Trials [count].
+    low, high : float, keyword-only
+        Acceptance region of the rms, ``0 ≤ low < high`` [units].
+    criterion : str, keyword-only
+        The question in words.
+    margin : float, keyword-only
+        The named margin, for the record [units].
+    level : float, keyword-only
+        Confidence of the two-sided interval.
+
+    Returns
+    -------
+    Verdict
+        In rms units: the estimate ``√ms``, the interval the square roots of
+        that of ``ms`` (a negative end is 0).
+
+    Raises
+    ------
+    ValueError
+        For a negative ``low`` or mean square, or as :func:`within`.
+
+    >>> mean_square_within(1.0, 0.01, 200, low=0.9, high=1.1, criterion="rms 1 ± 10 %").outcome
+    'yes'
+    """
     lo_r, hi_r = float(low), float(high)
     if lo_r < 0.0:
         raise ValueError(f"Expected `low` >= 0 (an rms), got {lo_r:g}")
-    m, se, n = _mean_and_se(x * x, "values")
-    v = within(m, se, n, low=lo_r * lo_r, high=hi_r * hi_r, criterion=criterion, margin=margin, level=level)
+    m = as_float(mean_square, "mean_square")
+    if m < 0.0:
+        raise ValueError(f"Expected `mean_square` >= 0, got {m:g}")
+    v = within(m, standard_error, n, low=lo_r * lo_r, high=hi_r * hi_r, criterion=criterion, margin=margin, level=level)
     root = lambda t: math.sqrt(max(t, 0.0))  # noqa: E731
-    return Verdict(v.outcome, v.criterion, root(m), (root(v.interval[0]), root(v.interval[1])), (lo_r, hi_r), float(margin), v.level, n, v.more_trials)
+    return Verdict(v.outcome, v.criterion, root(m), (root(v.interval[0]), root(v.interval[1])), (lo_r, hi_r), float(margin), v.level, v.n, v.more_trials)
+
+
+def rms_equivalence(mean_square, standard_error, n, *, reference: float, relative_margin: float, criterion: str | None = None, level: float = 0.95) -> Verdict:
+    """Is the rms within a relative margin of a reference rms (a theory, a filter's σ)? TOST on the mean square.
+
+    Parameters
+    ----------
+    mean_square : float
+        Mean of independent per-trial squares [units²].
+    standard_error : float
+        Its standard error [units²].
+    n : int
+        Trials [count].
+    reference : float, keyword-only
+        The rms it should equal, > 0 [units].
+    relative_margin : float, keyword-only
+        The margin as a fraction of ``reference``, in (0, 1): the region is
+        ``reference·(1 ± relative_margin)``.
+    criterion : str, keyword-only, optional
+        The question in words (default names the reference and the margin).
+    level : float, keyword-only
+        Confidence of the two-sided interval.
+
+    Returns
+    -------
+    Verdict
+        In rms units; ``margin`` is ``relative_margin · reference``.
+
+    Raises
+    ------
+    ValueError
+        For a reference that is not positive or a relative margin outside (0, 1).
+
+    >>> str(rms_equivalence(1.0, 0.2, 10, reference=1.0, relative_margin=0.1))
+    'not resolved: 1528 more trials needed'
+    """
+    ref = as_float(reference, "reference")
+    if ref <= 0.0:
+        raise ValueError(f"Expected `reference` > 0 (an rms), got {ref:g}")
+    r = as_float(relative_margin, "relative_margin")
+    if not 0.0 < r < 1.0:
+        raise ValueError(f"Expected `relative_margin` in (0, 1), got {r:g}")
+    text = criterion if criterion is not None else f"rms within ±{r:.0%} of {ref:.4g} (TOST, {level:.0%})"
+    return mean_square_within(mean_square, standard_error, n, low=ref * (1.0 - r), high=ref * (1.0 + r), criterion=text, margin=r * ref, level=level)
 
 
 def in_band(statistic, band, *, n: int, criterion: str, level: float = 0.95) -> Verdict:
