@@ -132,6 +132,8 @@ class Verdict:
         Not resolved: further trials that would resolve it at the observed
         spread [count]; 0 when resolved; None when no number of trials can (the
         estimate sits on an end of the region, or it has no spread).
+    trial : str
+        What one independent trial is, in the plural (``"trials"``, ``"pairs"``), for the words.
 
     Notes
     -----
@@ -149,6 +151,7 @@ class Verdict:
     level: float
     n: int
     more_trials: int | None
+    trial: str = "trials"
 
     def __post_init__(self):
         if self.outcome not in OUTCOMES:
@@ -177,7 +180,7 @@ class Verdict:
             return self.outcome
         if self.more_trials is None:
             return "not resolved: the estimate sits on the margin"
-        return f"not resolved: {self.more_trials} more trials needed"
+        return f"not resolved: {self.more_trials} more {self.trial} needed"
 
     def label(self) -> str:
         """The outcome for a Markdown table: ``yes``, ``**no**`` or ``not resolved: N more trials needed``.

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..core.units import DEG_PER_RAD as D
 from ..core.units import deg_per_h, rad
+from ..core.verdicts import all_of
 from . import Erratum, Section
 from .rendering import at_round_off, fixed_layout
 
@@ -46,10 +47,6 @@ def _ci(r, digits=4, scale=D) -> str:
 
 def _rms(r, digits=4, scale=D) -> str:
     return f"{r.rms * scale:.{digits}g} ({r.rms_ci[0] * scale:.{digits}g} … {r.rms_ci[1] * scale:.{digits}g})"
-
-
-def _yes(inside: bool) -> str:
-    return "yes" if inside else "**no**"
 
 
 # ---------------------------------------------------------------- 1. model
@@ -87,6 +84,8 @@ def _model_lines() -> list:
 
 # ---------------------------------------------------------------- 2. theory checks
 def _floor_lines(rows) -> list:
+    from ..alignment.studies import THEORY_MARGIN
+
     lines = [
         "## 2. Theory checked by Monte Carlo",
         "",
@@ -96,41 +95,46 @@ def _floor_lines(rows) -> list:
         "which after 60 s still leans on its 1° prior at high latitude, against its own linear prediction (the noise-free error",
         "propagated through its closed loop), which tends to the floor as it converges. 'bias only': the analytic method with no other",
         "error, where every trial is the same (difference relative to the floor; the neglected term is $(b/\\Omega\\cos\\varphi)^2$); then",
-        "with 0.0005 deg/√h of angle random walk, the Monte Carlo mean with its 95 % interval.",
+        "with 0.0005 deg/√h of angle random walk, the Monte Carlo mean with its 95 % interval. A theory agrees when the true mean is",
+        f"within ±{THEORY_MARGIN:.0%} of it (TOST at 95 %, `strapdown.analysis.core.verdicts`); where the trials cannot tell, the cell says how many more it needs.",
         "",
-        "| φ [°] | floor [°] | bias only: analytic [°] (rel. diff.) | analytic [°] | inertial [°] | Kalman [°] | Kalman linear theory [°] | theories inside the intervals |",
+        "| φ [°] | floor [°] | bias only: analytic [°] (rel. diff.) | analytic [°] | inertial [°] | Kalman [°] | Kalman linear theory [°] | every theory agrees |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         res = r.results
         targets = {m: (res[m].kalman_theory.gyro_bias if m == "kalman" else r.floor) for m in res}
-        inside = all(res[m].result.mean_ci[0] <= targets[m] <= res[m].result.mean_ci[1] for m in res)
+        inside = all_of([res[m].result.mean_agrees(targets[m], THEORY_MARGIN * abs(targets[m]), what="its theory") for m in res], criterion="every method's mean agrees with its theory")
         kal = res.get("kalman")
         lin = f"{kal.kalman_theory.gyro_bias * D:.5g}" if kal else "—"
         lines.append(
             f"| {r.latitude * D:.3g} | {r.floor * D:.5g} | {r.deterministic * D:.6g} ({(r.deterministic - r.floor) / r.floor:.1e}) "
-            f"| {_ci(res['analytic'].result)} | {_ci(res['inertial'].result)} | {_ci(kal.result) if kal else '—'} | {lin} | {_yes(inside)} |"
+            f"| {_ci(res['analytic'].result)} | {_ci(res['inertial'].result)} | {_ci(kal.result) if kal else '—'} | {lin} | {inside.label()} |"
         )
     return lines + [""]
 
 
 def _accel_lines(rows, latitude) -> list:
+    from ..alignment.studies import THEORY_MARGIN
+
     lines = [
         f"### Accelerometer biases, φ = {latitude * D:.3g}°, 30 s",
         "",
-        "| bias | azimuth theory tan φ·a_E/g [°] | azimuth MC mean [°] (95 % CI) | inside | tilt theory a/g [°] | tilt MC rms (β̂, γ̂) [°] |",
+        f"| bias | azimuth theory tan φ·a_E/g [°] | azimuth MC mean [°] (95 % CI) | agrees (±{THEORY_MARGIN:.0%}) | tilt theory a/g [°] | tilt MC rms (β̂, γ̂) [°] |",
         "|---|---|---|---|---|---|",
     ]
     for r in rows:
         res = r.mc.result
         lines.append(
-            f"| {r.axis} {r.bias:g} m/s² | {r.azimuth_theory * D:.5g} | {_ci(res)} | {_yes(res.mean_ci[0] <= r.azimuth_theory <= res.mean_ci[1])} "
+            f"| {r.axis} {r.bias:g} m/s² | {r.azimuth_theory * D:.5g} | {_ci(res)} | {res.mean_agrees(r.azimuth_theory, THEORY_MARGIN * abs(r.azimuth_theory), what='the theory').label()} "
             f"| {r.tilt_theory * D:.5g} | {r.mc.tilt_rms[0] * D:.4g}, {r.mc.tilt_rms[1] * D:.4g} |"
         )
     return lines + [""]
 
 
 def _noise_lines(rows) -> list:
+    from ..alignment.studies import THEORY_MARGIN
+
     methods = list(rows[0].results)
     kal = "kalman" in methods
     lines = [
@@ -151,13 +155,13 @@ def _noise_lines(rows) -> list:
         "",
         "| T [s] | analytic theory rms [°] | "
         + " | ".join(f"{METHOD_NAMES[m]} MC rms [°] (95 % CI)" for m in methods)
-        + " | theory inside (analytic) |"
+        + f" | theory agrees (analytic, ±{THEORY_MARGIN:.0%}) |"
         + (" Kalman filter's own σ [°] |" if kal else ""),
         "|---|---|" + "---|" * len(methods) + "---|" + ("---|" if kal else ""),
     ]
     for r in rows:
         a = r.results["analytic"].result
-        row = f"| {r.duration:g} | {r.theory * D:.4g} | " + " | ".join(_rms(r.results[m].result) for m in methods) + f" | {_yes(a.rms_ci[0] <= r.theory <= a.rms_ci[1])} |"
+        row = f"| {r.duration:g} | {r.theory * D:.4g} | " + " | ".join(_rms(r.results[m].result) for m in methods) + f" | {a.rms_agrees(r.theory, THEORY_MARGIN, what='the theory').label()} |"
         if kal:
             row += f" {r.results['kalman'].kalman.heading_sigma * D:.4g} |"
         lines.append(row)
@@ -183,6 +187,8 @@ def _noise_figure(ctx, rows) -> None:
 
 
 def _rocking_lines(rows) -> list:
+    from ..alignment.studies import THEORY_MARGIN
+
     lines = [
         "### Rocking: the paper's tilt channel as the special case, and the rocking in the gyros",
         "",
@@ -199,7 +205,7 @@ def _rocking_lines(rows) -> list:
         "The size of a narrow-band rocking is its standard deviation σ per rocked axis (its amplitude in the library's convention",
         "is σ√2), of a sine its amplitude.",
         "",
-        "| rocking | gyros see it | size per axis [°] | MC rms [°] (95 % CI) | first-order theory [°] | second-order tilt-channel theory [°] | theory inside "
+        f"| rocking | gyros see it | size per axis [°] | MC rms [°] (95 % CI) | first-order theory [°] | second-order tilt-channel theory [°] | theory agrees (±{THEORY_MARGIN:.0%}) "
         "| first-order rms per degree of rocking [°/°] |",
         "|---|---|---|---|---|---|---|---|",
     ]
@@ -210,7 +216,7 @@ def _rocking_lines(rows) -> list:
         size = ("σ = " if r.mc.scenario.motion.name != "sine" else "amplitude ") + f"{r.amplitude * D:g}"
         lines.append(
             f"| {r.label} | {'yes' if r.rocking_in_gyros else 'no'} | {size} | {_rms(res)} | {r.first_order * D:.4g} | {sec} "
-            f"| {_yes(res.rms_ci[0] <= th <= res.rms_ci[1])} | {r.per_unit:.4g} |"
+            f"| {res.rms_agrees(th, THEORY_MARGIN, what='the theory').label()} | {r.per_unit:.4g} |"
         )
     return lines + [""]
 
@@ -288,6 +294,8 @@ def _kalman_figure(ctx, cases) -> None:
 
 # ---------------------------------------------------------------- 4. design
 def _design_lines(designs, checks, scenario, budget, errors, rtol) -> list:
+    from ..alignment.studies import THEORY_MARGIN
+
     lines = [
         "## 4. The designer's answer: admissible rocking against frequency",
         "",
@@ -318,7 +326,7 @@ def _design_lines(designs, checks, scenario, budget, errors, rtol) -> list:
         "amplitude maps, and the check's, which its interval shows. Where the error grows slowly with the amplitude (the Kalman filter at",
         "low frequency) the amplitude is loosely determined — its interval from the root search is wide.",
         "",
-        "| check: method, rocking | f [Hz] | amplitude [°] (95 % interval of the search) | MC rms [°] (95 % CI) | budget inside |",
+        f"| check: method, rocking | f [Hz] | amplitude [°] (95 % interval of the search) | MC rms [°] (95 % CI) | rms meets the budget (±{THEORY_MARGIN:.0%}) |",
         "|---|---|---|---|---|",
     ]
     for d, pts in checks:
@@ -327,7 +335,7 @@ def _design_lines(designs, checks, scenario, budget, errors, rtol) -> list:
             lo, hi = d.amplitude_ci[i] * D
             lines.append(
                 f"| {METHOD_NAMES[d.method]}, {d.rocking} | {p.frequency:.3g} | {p.amplitude * D:.4g} ({lo:.3g} … {hi:.3g}) | {_rms(p.result)} "
-                f"| {_yes(p.result.rms_ci[0] <= budget <= p.result.rms_ci[1])} |"
+                f"| {p.result.rms_agrees(budget, THEORY_MARGIN, what='the budget').label()} |"
             )
     return lines + [""]
 
