@@ -591,7 +591,8 @@ class AidedMonteCarlo:
     nees, nis : ndarray
         Mean NEES and NIS at the checks.
     nees_band, nis_band : tuple
-        95 % bands.
+        Their bands, each at ``1 − 0.05/(2K)`` for K checks, so that a
+        consistent filter has all 2K means inside at 95 % together (Bonferroni).
     """
 
     manoeuvre: Manoeuvre
@@ -659,7 +660,7 @@ def aided_monte_carlo(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, 
     e, f = rows[:, 0], rows[:, 1]
     return AidedMonteCarlo(
         inputs.manoeuvre, n, summarise(e), summarise(f), summarise(e - f), floor_reached(e, f, what="the aided floor"), float(seq.heading_sigma[-1]), seq.update_times[list(checks)],
-        rows[:, 2 : 2 + k].mean(axis=0), rows[:, 2 + k : 2 + 2 * k].mean(axis=0), kalman.chi2_band(15, n), kalman.chi2_band(6, n),
+        rows[:, 2 : 2 + k].mean(axis=0), rows[:, 2 + k : 2 + 2 * k].mean(axis=0), kalman.chi2_band(15, n, 1.0 - 0.05 / (2 * k)), kalman.chi2_band(6, n, 1.0 - 0.05 / (2 * k)),
     )  # fmt: skip
 
 

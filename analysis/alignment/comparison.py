@@ -334,7 +334,8 @@ class MethodRow:
     nees, nis : ndarray or None
         Filters: mean NEES and NIS over trials at the check times.
     nees_band, nis_band : tuple or None
-        Their 95 % bands.
+        Their bands, each at ``1 − 0.05/(2K)`` for K check epochs, so that a
+        consistent filter has all 2K means inside at 95 % together (Bonferroni).
     dim : int or None
         Filters: state dimension.
     """
@@ -351,7 +352,7 @@ class MethodRow:
 
     @property
     def consistent(self) -> bool | None:
-        """Filters: every mean NEES and NIS inside its band (None for the other methods)."""
+        """Filters: every mean NEES and NIS inside its band, a test at 95 % for the whole family of checks (None for the other methods)."""
         if self.nees is None:
             return None
         inside = lambda x, b: bool(np.all((x >= b[0]) & (x <= b[1])))  # noqa: E731
@@ -493,12 +494,14 @@ def compare_methods(
     floor = rows[:, 0]
     out = []
     k = len(checks)
+    band_level = 1.0 - 0.05 / (2 * k)  # Bonferroni: all 2k checks of a consistent filter inside at 95 % together
     j = 1 + len(methods)
     for i, m in enumerate(methods):
         e = rows[:, 1 + i]
         extra = {}
         if m in _FILTERS:
-            extra = dict(nees=rows[:, j : j + k].mean(axis=0), nis=rows[:, j + k : j + 2 * k].mean(axis=0), nees_band=kalman.chi2_band(model.dim, n), nis_band=kalman.chi2_band(3, n), dim=model.dim)
+            extra = dict(nees=rows[:, j : j + k].mean(axis=0), nis=rows[:, j + k : j + 2 * k].mean(axis=0), dim=model.dim)
+            extra.update(nees_band=kalman.chi2_band(model.dim, n, band_level), nis_band=kalman.chi2_band(3, n, band_level))
             j += 2 * k
         out.append(MethodRow(m, summarise(e), summarise(e - floor), floor_reached(e, floor), **extra))
     return MethodComparison(scenario, errors, n, summarise(floor), tuple(out), model.epoch * (np.asarray(checks) + 1), coarse)
