@@ -235,9 +235,13 @@ def _nis_reading(cases) -> str:
     for label, mc in cases[1:]:
         k = mc.kalman
         lo, hi = k.nis_band
-        where = "inside" if np.all((k.nis >= lo) & (k.nis <= hi)) else ("below" if np.all(k.nis <= hi) else "outside")
+        inside, below = int(np.sum((k.nis >= lo) & (k.nis <= hi))), int(np.sum(k.nis < lo))
+        mean = "inside" if lo <= k.nis_all <= hi else ("below" if k.nis_all < lo else "above")
         kind = label.split(", ")[-1]
-        out.append(f"with {kind} the NIS lies {where} its band at the eight epochs ({k.nis.min():.3g} … {k.nis.max():.3g} against {lo:.3g} … {hi:.3g})")
+        out.append(
+            f"with {kind} the NIS lies inside its 95 % band at {inside} of {k.nis.size} epochs ({below} below it), and its mean over the run, "
+            f"{k.nis_all:.3g}, {mean} the band {lo:.3g} … {hi:.3g}"
+        )
     return "On the rocking base, " + "; ".join(out) + ". A filter assuming twice the true period, or no rocking at all, is inconsistent (the next table)."
 
 
