@@ -521,7 +521,7 @@ def rms_equivalence(mean_square, standard_error, n, *, reference: float, relativ
         For a reference that is not positive or a relative margin outside (0, 1).
 
     >>> str(rms_equivalence(1.0, 0.2, 10, reference=1.0, relative_margin=0.1))
-    'not resolved: 1528 more trials needed'
+    'not resolved: 33 more trials needed'
     """
     ref = as_float(reference, "reference")
     if ref <= 0.0:
