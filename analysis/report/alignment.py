@@ -120,13 +120,17 @@ def _accel_lines(rows, latitude) -> list:
     lines = [
         f"### Accelerometer biases, φ = {latitude * D:.3g}°, 30 s",
         "",
+        f"A theory agrees when the true mean is within ±{THEORY_MARGIN:.0%} of it (a theory of zero: within ±{THEORY_MARGIN:.0%} of the largest theory of the table).",
+        "",
         f"| bias | azimuth theory tan φ·a_E/g [°] | azimuth MC mean [°] (95 % CI) | agrees (±{THEORY_MARGIN:.0%}) | tilt theory a/g [°] | tilt MC rms (β̂, γ̂) [°] |",
         "|---|---|---|---|---|---|",
     ]
+    largest = max(abs(r.azimuth_theory) for r in rows)
     for r in rows:
         res = r.mc.result
+        margin = THEORY_MARGIN * (abs(r.azimuth_theory) or largest)
         lines.append(
-            f"| {r.axis} {r.bias:g} m/s² | {r.azimuth_theory * D:.5g} | {_ci(res)} | {res.mean_agrees(r.azimuth_theory, THEORY_MARGIN * abs(r.azimuth_theory), what='the theory').label()} "
+            f"| {r.axis} {r.bias:g} m/s² | {r.azimuth_theory * D:.5g} | {_ci(res)} | {res.mean_agrees(r.azimuth_theory, margin, what='the theory').label()} "
             f"| {r.tilt_theory * D:.5g} | {r.mc.tilt_rms[0] * D:.4g}, {r.mc.tilt_rms[1] * D:.4g} |"
         )
     return lines + [""]
