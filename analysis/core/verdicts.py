@@ -180,7 +180,8 @@ class Verdict:
             return self.outcome
         if self.more_trials is None:
             return "not resolved: the estimate sits on the margin"
-        return f"not resolved: {self.more_trials} more {self.trial} needed"
+        word = self.trial[:-1] if self.more_trials == 1 and self.trial.endswith("s") else self.trial
+        return f"not resolved: {self.more_trials} more {word} needed"
 
     def label(self) -> str:
         """The outcome for a Markdown table: ``yes``, ``**no**`` or ``not resolved: N more trials needed``.

@@ -298,7 +298,7 @@ def _kalman_lines(cases, mismatch) -> list:
 def _kalman_figure(ctx, cases) -> None:
     import matplotlib.pyplot as plt
 
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.4))
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
     for (label, mc), c in zip(cases, ("C0", "C1", "C2")):
         k = mc.kalman
         a1.semilogx(k.times, k.nees / k.dim, "-o", color=c, ms=3, label=label)
@@ -309,8 +309,9 @@ def _kalman_figure(ctx, cases) -> None:
     a2.set_ylabel("mean NIS / dof")
     for a in (a1, a2):
         a.set_xlabel("time [s]")
-        a.legend(fontsize=7)
-    fixed_layout(fig, left=0.75, right=0.15, bottom=0.5, top=0.15, wgap=0.75)
+    handles, labels = a1.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=7, frameon=False)
+    fixed_layout(fig, left=0.75, right=0.15, bottom=0.85, top=0.15, wgap=0.75)
     ctx.savefig(fig, "figures/azimuth-alignment-kalman.png")
 
 
