@@ -797,10 +797,10 @@ def assess(
     k0 = int(max_previous)
     longest = max(int(max_previous_limit), k0)
     streams = _seeds(rng, 5)
-    invariance = TimeInvarianceRun(integrator, n, reach=longest, amplitude=CHECK_AMPLITUDE, rng=streams[0])
+    invariance = TimeInvarianceRun(integrator, n, reach=2 * longest, amplitude=CHECK_AMPLITUDE, rng=streams[0])
     invariance.first()  # the run's first call
-    prec = precision(integrator, n, reach=k0, amplitude=CHECK_AMPLITUDE, guard=longest, rng=streams[1])
-    lin = linearity_range(integrator, n, reach=k0, noise=prec.noise, amplitude=amplitude, default=PROBE_AMPLITUDE, guard=longest, rng=streams[2])
+    prec = precision(integrator, n, reach=k0, amplitude=CHECK_AMPLITUDE, guard=2 * longest, rng=streams[1])
+    lin = linearity_range(integrator, n, reach=k0, noise=prec.noise, amplitude=amplitude, default=PROBE_AMPLITUDE, guard=2 * longest, rng=streams[2])
     eps0 = lin.probe_amplitude
     memory = memory_length(integrator, n, start=k0, longest=longest, amplitude=min(eps0, lin.range) / 2, noise=prec.noise, rng=streams[3])
     k = k0

@@ -24,13 +24,14 @@ reported beside the coefficients (:func:`~.assessment.assess`):
     every amplitude; probes above it give wrong coefficients.
 :func:`memory_length`
     random samples added one at a time before the probed window, from K + 1
-    samples back to the longest probed: the sample at ``1 − m`` changes the
-    output only if the integrator reads m samples back.  The memory needed is
-    the farthest m that changes it; an integrator that still depends on the
-    farthest sample has a memory longer than any finite K (a filter, an
-    accumulator that is never reset).
+    samples back to the longest probed, then all samples up to twice as far:
+    the sample at ``1 − m`` changes the output only if the integrator reads m
+    samples back.  The memory needed is the farthest m that changes it; an
+    integrator that still depends on the farthest sample, or on those beyond,
+    has a memory longer than the longest probed (a filter, an accumulator that
+    is never reset, or just a longer memory: raise the limit).
 :class:`TimeInvarianceRun`
-    the same blocks (each after enough zeros to clear the longest memory
+    the same blocks (each after enough zeros to clear twice the longest memory
     probed) in one record, again in reversed order with one, two or three extra
     zero steps between them (another position, another step parity), and the
     first record of the run again as its last call (after every other call,
@@ -451,17 +452,17 @@ def memory_length(integrator: Integrator, samples_per_step, *, start: int, longe
     rng = np.random.default_rng(rng)
     if longest == k:
         return Memory(k, longest, (), k, k)
-    prober = Prober(integrator, n, longest)
-    count = longest - k + 1  # the near window alone, then one more earlier sample each
+    far = 2 * longest  # the blocks keep this many samples clear; the last one fills them all
+    prober = Prober(integrator, n, far)
+    count = longest - k + 2  # the near window alone, one more earlier sample each up to `longest`, then all up to `far`
     gyro = prober.zeros(_PATTERNS * count)
     accel = np.zeros_like(gyro) if integrator.velocity else None
     for target in (gyro, accel) if integrator.velocity else (gyro,):
-        base = amplitude * _random_window(rng, _PATTERNS, longest + n)  # columns: indices 1 − longest … N
+        base = amplitude * _random_window(rng, _PATTERNS, far + n)  # columns: indices 1 − far … N
         for b in range(_PATTERNS):
             for c in range(count):
-                m = k + c  # samples 1 − m … N present
-                cols = slice(longest - m, longest + n)
-                target[b * count + c, prober.row(1 - m) : prober.row(n) + 1] = base[b, cols]
+                m = k + c if c < count - 1 else far  # samples 1 − m … N present
+                target[b * count + c, prober.row(1 - m) : prober.row(n) + 1] = base[b, far - m : far + n]
     rot, vel = prober.last_steps(gyro, accel)
     effects = np.zeros(count - 1)
     for out in (rot, vel) if vel is not None else (rot,):
@@ -470,11 +471,11 @@ def memory_length(integrator: Integrator, samples_per_step, *, start: int, longe
         change = np.linalg.norm(o[:, 1:] - o[:, :-1], axis=-1) / (fl[:, 1:] + fl[:, :-1])
         effects = np.maximum(effects, change.max(axis=0))
     reads = np.flatnonzero(effects > _RESOLVED)
-    if len(reads) and reads[-1] == count - 2:
+    if len(reads) and reads[-1] >= count - 3:  # the farthest single sample, or anything beyond `longest`
         needed = None
     else:
         needed = k + 1 + int(reads[-1]) if len(reads) else k
-    return Memory(k, longest, tuple(float(e) for e in effects), needed, k)
+    return Memory(k, longest, tuple(float(e) for e in effects[:-1]), needed, k)
 
 
 # --------------------------------------------------------------------------- time invariance
@@ -522,7 +523,10 @@ class TimeInvariance:
             where.append("shifted by one to three steps or reordered in a record (a step counter, a coefficient that alternates?)")
         if self.repeated > _RESOLVED:
             where.append("repeated within a record")
-        return f"NO: outputs differ by up to {self.largest:.3g} between " + "; ".join(where) + ": the coefficients describe no single integrator"
+        return (
+            f"NO: outputs differ by up to {self.largest:.3g} between " + "; ".join(where) + ": the coefficients describe no single integrator "
+            "(or its memory is longer than twice the longest probed)"
+        )
 
     def as_dict(self) -> dict:
         """JSON-able verdict.

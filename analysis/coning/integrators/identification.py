@@ -308,6 +308,34 @@ class Coefficient:
     approximant: Fraction
     spread: float
 
+    @classmethod
+    def measured(cls, value: float, uncertainty: float, tolerance: float = TOLERANCE, spread: float = 0.0) -> Coefficient:
+        """A coefficient from its measured value and uncertainty: reconstructed as the module docstring says.
+
+        Parameters
+        ----------
+        value : float
+            Measured value [dimensionless].
+        uncertainty : float
+            Its uncertainty [dimensionless], ≥ 0.
+        tolerance : float
+            Largest reconstruction tolerance [dimensionless].
+        spread : float
+            Departure from isotropy [dimensionless].
+
+        Returns
+        -------
+        Coefficient
+
+        Examples
+        --------
+        >>> Coefficient.measured(0.5833333333341, 1e-13).exact
+        Fraction(7, 12)
+        >>> Coefficient.measured(2 / 3 + 1e-7, 1e-12).fraction == Fraction(2, 3)
+        False
+        """
+        return _coefficient(as_float(value, "value"), as_float(uncertainty, "uncertainty"), spread, as_float(tolerance, "tolerance"))
+
     @property
     def fraction(self) -> Fraction:
         """The fraction the analyses use (:attr:`exact` when reconstructed)."""
@@ -380,6 +408,7 @@ class Remainder:
         return f"|R| = {self.sizes[0]:.3g} at |p| = {self.scales[0]:g} (constant part {self.constant:.3g})"
 
 
+@dataclass(frozen=True)
 class ScullingIdentification:
     """The identified sculling part of an integrator.
 
