@@ -329,7 +329,7 @@ class Coefficient:
 
         Examples
         --------
-        >>> Coefficient.measured(0.5833333333341, 1e-13).exact
+        >>> Coefficient.measured(0.5833333333341, 1e-12).exact
         Fraction(7, 12)
         >>> Coefficient.measured(2 / 3 + 1e-7, 1e-12).fraction == Fraction(2, 3)
         False

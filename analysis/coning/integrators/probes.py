@@ -102,15 +102,48 @@ class Prober:
         self.calls = 0
 
     def row(self, index: int) -> int:
-        """Row of window index ``index`` (``1 − reach … N``) in a block."""
+        """Row of window index ``index`` (``1 − reach … N``) in a block.
+
+        Parameters
+        ----------
+        index : int
+            Sample index, ``1 − reach … N`` (≤ 0: before the last step).
+
+        Returns
+        -------
+        int
+        """
         return (self.blocks - 1) * self.n + index - 1
 
     def zeros(self, count: int) -> np.ndarray:
-        """``count`` empty blocks, shape (count, length, 3)."""
+        """``count`` empty blocks, shape (count, length, 3).
+
+        Parameters
+        ----------
+        count : int
+            Blocks.
+
+        Returns
+        -------
+        ndarray
+        """
         return np.zeros((count, self.length, 3))
 
     def record(self, gyro, accel=None):
-        """One call on a whole record: every step's rotation (steps, 3) and velocity (or None)."""
+        """One call on a whole record: every step's rotation (steps, 3) and velocity (or None).
+
+        Parameters
+        ----------
+        gyro : ndarray, shape (n_samples, 3)
+            Gyro increments [rad].
+        accel : ndarray, shape (n_samples, 3), optional
+            Accelerometer increments [m/s].
+
+        Returns
+        -------
+        rotation : ndarray, shape (steps, 3)
+        velocity : ndarray, shape (steps, 3) or None
+        """
         out = step_increments(self.integrator, gyro, self.n, accel)
         self.fed += gyro.shape[0]
         self.calls += 1
