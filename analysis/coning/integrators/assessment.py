@@ -44,7 +44,7 @@
 Public API
 ----------
 :class:`Consistency`, :class:`DriftOrder`, :class:`Assumptions`, :class:`ScullingAssessment`, :class:`Assessment`,
-:func:`linear_error_weight`, :func:`verification_samples`, :func:`verification_cone_angles`, :func:`work`, :func:`assess`.
+:func:`linear_error_weight`, :func:`verification_samples`, :func:`verification_cone_angles`, :func:`assumption_samples`, :func:`work`, :func:`assess`.
 """
 
 from __future__ import annotations
@@ -92,6 +92,7 @@ __all__ = [
     "linear_error_weight",
     "verification_samples",
     "verification_cone_angles",
+    "assumption_samples",
     "work",
     "assess",
 ]
@@ -632,8 +633,36 @@ def verification_cone_angles(linear_range: float, largest_coefficient: float, om
 
 #: Time of the symbolic work of an assessment (series, closed-form drift) on the reference machine [s], rounded up.
 SYMBOLIC_SECONDS = 3.0
-#: Samples the assumption tests feed an integrator, per sample of the longest memory probed (rounded up).
-ASSUMPTION_SAMPLES_PER_REACH = 60
+def assumption_samples(samples: int, max_previous: int, max_previous_limit: int = LONGEST_MEMORY) -> int:
+    """Samples the assumption tests of :func:`assess` feed an integrator (for work estimates).
+
+    Every block keeps twice the longest memory probed clear: 16 blocks (and
+    gaps) of the time-invariance records, 36 of the precision rays, 73 of the
+    linearity sweep, and two per sample of the memory scan.
+
+    Parameters
+    ----------
+    samples : int
+        N.
+    max_previous : int
+        K asked for.
+    max_previous_limit : int
+        The longest memory probed.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> assumption_samples(4, 4)
+    32932
+    """
+    n, k, limit = int(samples), int(max_previous), max(int(max_previous_limit), int(max_previous))
+    length = (-(-2 * limit // n) + 1) * n
+    return (16 + 36 + 73 + 2 * (limit - k + 2)) * length + 16 * n
+
+
 
 
 def work(integrator: Integrator, samples_per_step, *, max_previous=DEFAULT_MAX_PREVIOUS, verify: bool = True, omega_h=OMEGA_H, max_previous_limit: int = LONGEST_MEMORY) -> budget.Estimate:
@@ -669,7 +698,7 @@ def work(integrator: Integrator, samples_per_step, *, max_previous=DEFAULT_MAX_P
         If the timing call fails (the integrator raised or returned a wrong shape).
     """
     n = int(samples_per_step)
-    fed = probe_samples(n, max_previous, velocity=integrator.velocity) + ASSUMPTION_SAMPLES_PER_REACH * (max_previous_limit + 2 * n) * (3 if integrator.velocity else 1)
+    fed = probe_samples(n, max_previous, velocity=integrator.velocity) + assumption_samples(n, max_previous, max_previous_limit)
     if verify:
         fed += verification_samples(n, max_previous, omega_h=omega_h, velocity=integrator.velocity)
     probe = max(n, min(4096, fed) // n * n)
