@@ -67,6 +67,7 @@ from .assumptions import LONGEST_MEMORY, Linearity, Memory, Precision, TimeInvar
 from .identification import DEFAULT_MAX_PREVIOUS, DEFAULT_SEED, PROBE_AMPLITUDE, TOLERANCE, Identification, Remainder, identify, probe_samples
 from .identification import work as identification_work
 from .interface import Integrator, step_increments
+from .probes import NoiseFloor
 from .sculling_terms import ScullingTerms, departure_weight
 from .verification import (
     ANGLE_AMPLITUDES,
@@ -636,9 +637,11 @@ SYMBOLIC_SECONDS = 3.0
 def assumption_samples(samples: int, max_previous: int, max_previous_limit: int = LONGEST_MEMORY) -> int:
     """Samples the assumption tests of :func:`assess` feed an integrator (for work estimates).
 
-    Every block keeps twice the longest memory probed clear: 16 blocks (and
-    gaps) of the time-invariance records, 36 of the precision rays, 73 of the
-    linearity sweep, and two per sample of the memory scan.
+    The time-invariance blocks (16, and their gaps) keep twice the longest
+    memory probed clear; the memory scan feeds two windows per sample probed,
+    each a record of its own; the precision rays (36 blocks) and the
+    linearity sweep (73) keep clear the memory found, bounded here by the
+    longest probed.
 
     Parameters
     ----------
@@ -656,11 +659,15 @@ def assumption_samples(samples: int, max_previous: int, max_previous_limit: int 
     Examples
     --------
     >>> assumption_samples(4, 4)
-    32932
+    14668
     """
     n, k, limit = int(samples), int(max_previous), max(int(max_previous_limit), int(max_previous))
-    length = (-(-2 * limit // n) + 1) * n
-    return (16 + 36 + 73 + 2 * (limit - k + 2)) * length + 16 * n
+
+    def length(reach):
+        return (-(-reach // n) + 1) * n
+
+    scan = 2 * sum(length(m) for m in list(range(k, limit + 1)) + [2 * limit])
+    return 16 * length(2 * limit) + 16 * n + scan + (36 + 73) * length(limit)
 
 
 
@@ -828,10 +835,12 @@ def assess(
     streams = _seeds(rng, 5)
     invariance = TimeInvarianceRun(integrator, n, reach=2 * longest, amplitude=CHECK_AMPLITUDE, rng=streams[0])
     invariance.first()  # the run's first call
-    prec = precision(integrator, n, reach=k0, amplitude=CHECK_AMPLITUDE, guard=2 * longest, rng=streams[1])
-    lin = linearity_range(integrator, n, reach=k0, noise=prec.noise, amplitude=amplitude, default=PROBE_AMPLITUDE, guard=2 * longest, rng=streams[2])
+    # an unread sample leaves the output bit for bit unchanged: the memory scan needs no measured noise floor
+    memory = memory_length(integrator, n, start=k0, longest=longest, amplitude=CHECK_AMPLITUDE, noise=NoiseFloor(attitude=integrator.output != "rotation_vector"), rng=streams[3])
+    guard = 2 * longest if memory.needed is None else memory.needed  # the blocks below keep the memory found clear
+    prec = precision(integrator, n, reach=k0, amplitude=CHECK_AMPLITUDE, guard=guard, rng=streams[1])
+    lin = linearity_range(integrator, n, reach=k0, noise=prec.noise, amplitude=amplitude, default=PROBE_AMPLITUDE, guard=guard, rng=streams[2])
     eps0 = lin.probe_amplitude
-    memory = memory_length(integrator, n, start=k0, longest=longest, amplitude=min(eps0, lin.range) / 2, noise=prec.noise, rng=streams[3])
     k = k0
     if memory.needed is not None and memory.needed > k0:
         try:

@@ -24,9 +24,11 @@ reported beside the coefficients (:func:`~.assessment.assess`):
     every amplitude; probes above it give wrong coefficients.
 :func:`memory_length`
     random samples added one at a time before the probed window, from K + 1
-    samples back to the longest probed, then all samples up to twice as far:
-    the sample at ``1 − m`` changes the output only if the integrator reads m
-    samples back.  The memory needed is the farthest m that changes it; an
+    samples back to the longest probed, then all samples up to twice as far,
+    each window a record of its own (a record starts from rest, so nothing can
+    leak in from before it): the sample at ``1 − m`` changes the output only if
+    the integrator reads m samples back; a sample it does not read leaves the
+    output bit for bit as it was, whatever the code's precision.  The memory needed is the farthest m that changes it; an
     integrator that still depends on the farthest sample, or on those beyond,
     has a memory longer than the longest probed (a filter, an accumulator that
     is never reset, or just a longer memory: raise the limit).
@@ -452,18 +454,24 @@ def memory_length(integrator: Integrator, samples_per_step, *, start: int, longe
     rng = np.random.default_rng(rng)
     if longest == k:
         return Memory(k, longest, (), k, k)
-    far = 2 * longest  # the blocks keep this many samples clear; the last one fills them all
-    prober = Prober(integrator, n, far)
+    far = 2 * longest  # the last window fills every sample up to twice the longest
     count = longest - k + 2  # the near window alone, one more earlier sample each up to `longest`, then all up to `far`
-    gyro = prober.zeros(_PATTERNS * count)
-    accel = np.zeros_like(gyro) if integrator.velocity else None
-    for target in (gyro, accel) if integrator.velocity else (gyro,):
-        base = amplitude * _random_window(rng, _PATTERNS, far + n)  # columns: indices 1 − far … N
-        for b in range(_PATTERNS):
-            for c in range(count):
-                m = k + c if c < count - 1 else far  # samples 1 − m … N present
-                target[b * count + c, prober.row(1 - m) : prober.row(n) + 1] = base[b, far - m : far + n]
-    rot, vel = prober.last_steps(gyro, accel)
+    bases = [amplitude * _random_window(rng, _PATTERNS, far + n) for _ in range(2 if integrator.velocity else 1)]  # columns: 1 − far … N
+    rots, vels = [], []
+    prober = Prober(integrator, n, 0)
+    for b in range(_PATTERNS):
+        for c in range(count):
+            m = k + c if c < count - 1 else far  # samples 1 − m … N present
+            # each window is a record of its own, which starts from rest: nothing before it can leak in
+            length = (-(-m // n) + 1) * n
+            records = [np.zeros((length, 3)) for _ in bases]
+            for rec, base in zip(records, bases):
+                rec[length - m - n :] = base[b, far - m : far + n]
+            rot, vel = prober.record(records[0], records[1] if integrator.velocity else None)
+            rots.append(rot[-1])
+            if vel is not None:
+                vels.append(vel[-1])
+    rot, vel = np.array(rots), (np.array(vels) if vels else None)
     effects = np.zeros(count - 1)
     for out in (rot, vel) if vel is not None else (rot,):
         fl = noise.floor(out, amplitude).reshape(_PATTERNS, count)
