@@ -208,6 +208,16 @@ HUGE = {
         lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
         "steps",
     ),
+    "integrators.identify max_previous": (
+        lambda: _module("coning.integrators.identification").identify(_integrator(), 64, max_previous=64, limits=budget.Limits(seconds=60.0)),
+        "max_previous",
+    ),
+    "integrators.identify_record max_previous": (
+        lambda: _module("coning.integrators.records").identify_record(
+            _module("coning.integrators.records").Record(np.zeros((200_000, 3)), np.zeros((3125, 3)), np.arange(63, 200_000, 64)), 64, max_previous=64, limits=budget.Limits(memory=1e8)
+        ),
+        "max_previous",
+    ),
     "integrators.sculling_rate periods": (
         lambda: _module("coning.integrators.verification").sculling_rate(
             _integrator(), 2, _module("coning.sculling_motion").ScullingMotion(0.01, 1.0, 2 * np.pi * 10), 1e-3, periods=10**12
