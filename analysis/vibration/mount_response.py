@@ -140,13 +140,19 @@ def output_density(mount: Mount, excitation: BaseExcitation, freq) -> np.ndarray
 
 
 def _pieces(excitation: BaseExcitation) -> list:
-    """Intervals of the band where the set of nonzero channels is constant."""
+    """Intervals of the band where the set of nonzero channels is constant, each with the excitation of its channels only.
+
+    A profile is nonzero at its band's ends; the excitation of a piece keeps
+    only the profiles that cover the whole piece, so that its density has no
+    jump at the piece's ends.
+    """
     edges = excitation.edges
     out = []
     for lo, hi in zip(edges[:-1], edges[1:]):
         mid = math.sqrt(lo * hi)
-        if any(p is not None and p.band[0] <= mid <= p.band[1] for p in excitation.profiles):
-            out.append((float(lo), float(hi)))
+        keep = [p if p is not None and p.band[0] <= mid <= p.band[1] else None for p in excitation.profiles]
+        if any(p is not None for p in keep):
+            out.append((float(lo), float(hi), BaseExcitation(tuple(keep[:3]), tuple(keep[3:]), excitation.name, excitation.description)))
     return out
 
 
@@ -160,12 +166,13 @@ def _midpoint_error(spectrum: Spectrum, exact_mid: np.ndarray, mid: np.ndarray, 
 
 def _table(mount, excitation, lo, hi, modes, tolerance, max_points):
     """Refined table of one piece: frequencies, densities, the largest midpoint error, points left."""
-    inside = lambda x: x[(x > lo) & (x < hi)]  # noqa: E731
+    inside = lambda x: x[(x > lo * (1 + 1e-9)) & (x < hi * (1 - 1e-9))]  # noqa: E731 - the ends are added exactly
     start = [np.geomspace(lo, hi, max(2, int(math.ceil(_PER_DECADE * math.log10(hi / lo))) + 1)), inside(excitation.breakpoints)]
     for md in modes:
         z = min(md.damping_ratio, 0.5)
         start.append(inside(np.array([md.frequency * (1 - z), md.frequency, md.frequency * (1 + z)])))
-    f = np.unique(np.concatenate(start + [[lo, hi]]))
+    f = np.unique(np.concatenate([inside(x) for x in start] + [[lo, hi]]))
+    f = f[np.concatenate([[True], np.diff(f) > 1e-9 * f[1:]])]  # no two frequencies that round to one logarithm
     g = output_density(mount, excitation, f)
     peak = np.max(np.real(np.diagonal(g, axis1=-2, axis2=-1)), axis=0)
     floor = 1e-6 * np.where(peak > 0, peak, 1.0)
@@ -288,11 +295,11 @@ def mount_environment(mount: Mount, excitation: BaseExcitation, *, gyro: Sensor 
     accelerometer = accelerometer if accelerometer is not None else Sensor(decimation=gyro.decimation)
     modes = mount.modes()
     pieces = _pieces(excitation)
-    spans = np.array([math.log(hi / lo) for lo, hi in pieces])
+    spans = np.array([math.log(hi / lo) for lo, hi, _ in pieces])
     share = np.maximum(8, np.floor(max_points * spans / spans.sum())).astype(int)
     spectra, worst = [], 0.0
-    for (lo, hi), n in zip(pieces, share):
-        f, g, err = _table(mount, excitation, lo, hi, modes, tolerance, int(n))
+    for (lo, hi, part), n in zip(pieces, share):
+        f, g, err = _table(mount, part, lo, hi, modes, tolerance, int(n))
         worst = max(worst, err)
         label = "IMU through the mount" if len(pieces) == 1 else f"IMU through the mount, {lo:g}–{hi:g} Hz"
         spectra.append(Spectrum(f, g, label))
