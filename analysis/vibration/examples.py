@@ -1,7 +1,9 @@
 """Example environment files shipped with the package (``strapdown/analysis/vibration/environments/``).
 
-They are the examples of ``docs/environment-files.md`` and of the report section
-``vibration.md``, and read like any user file (:func:`strapdown.analysis.vibration.environment.load_environment`).
+They are the examples of ``docs/environment-files.md`` and ``docs/mount-files.md`` and of the report
+sections ``vibration.md`` and ``mount.md``, and read like any user file
+(:func:`strapdown.analysis.vibration.environment.load_environment`,
+:func:`~strapdown.analysis.vibration.profile.load_profile`, :func:`~strapdown.analysis.vibration.mount.load_mount`).
 
 Public API
 ----------

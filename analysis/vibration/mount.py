@@ -328,11 +328,13 @@ class Mount:
 
         Examples
         --------
-        Far below the modes the block follows the base: unit gain from base to IMU.
+        Far below the modes the block follows the base: unit gain from base to
+        IMU, up to the block's quasi-static tilt under acceleration, which tilts
+        the gravity reading (0.1 % here):
 
         >>> from strapdown.analysis.vibration.examples import ISOLATED_MOUNT
         >>> h = load_mount(ISOLATED_MOUNT).transfer(0.01)
-        >>> bool(np.allclose(h[:3, :3], np.eye(3), atol=1e-6)), bool(np.allclose(h[3:, 3:], np.eye(3), atol=1e-6))
+        >>> bool(np.allclose(h[:3, :3], np.eye(3), atol=1e-6)), bool(np.allclose(h[3:, 3:], np.eye(3), atol=2e-3))
         (True, True)
         """
         f = np.asarray(freq, dtype=float)
