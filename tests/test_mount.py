@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -363,3 +364,45 @@ def test_the_simulation_is_guarded_by_name():
             simulate_mount(mount, CONING_EXCITATION, rng=1, **kwargs)
     with pytest.raises(budget.BudgetExceeded, match="^`max_points`"):
         mount_environment(mount, CONING_EXCITATION, max_points=10**12)
+
+
+# --------------------------------------------------------------------------- the command
+def test_mount_environment_writes_an_environment_and_quotes_vectors_and_magnitudes(tmp_path):
+    import json
+
+    from cli_contract import run, violations
+
+    sensors = tmp_path / "sensors.toml"
+    sensors.write_text('[gyro]\nfilter = "lowpass1"\ncutoff_hz = 200.0\n[sampling]\ndecimation = 2\n', encoding="utf-8")
+    out = tmp_path / "env.toml"
+    argv = ["mount-environment", "--profile", str(AIRFRAME_PROFILE), "--mount", str(ISOLATED_MOUNT), "--sensors", str(sensors), "--out", str(out),
+            "--sample-interval", "1e-3", "--algorithms", "two-sample,optimal-3", "--json"]  # fmt: skip
+    outcome = run(argv, timeout=300.0)
+    assert not violations(outcome, expect="accept", argv=argv), outcome
+    data = json.loads(outcome.out)
+    assert data["written"] == str(out) and data["table"]["converged"] and len(data["modes"]) == 6
+    env = load_environment(out)
+    assert env.decimation == 2 and env.gyro.axes[0].analog.order == 1
+    for row in data["drift"]["algorithms"]:
+        reference = environment_drift(get(row["algorithm"]), env, 1e-3).total_vector
+        assert row["total_drift_vector_rad_s"] == pytest.approx(reference, rel=1e-6, abs=1e-9 * np.linalg.norm(reference))
+        assert row["total_drift_magnitude_rad_s"] == pytest.approx(np.linalg.norm(reference), rel=1e-6)
+        assert sum(np.array(b["drift_vector_rad_s"]) for b in row["bands"]) == pytest.approx(row["total_drift_vector_rad_s"], rel=1e-9, abs=1e-15)
+
+
+@pytest.mark.parametrize(
+    "extra, words",
+    [
+        (["--tolerance", "0.7"], "--tolerance"),
+        (["--algorithms", "two-sample"], "--algorithms"),
+        (["--sample-interval", "1e-3", "--algorithms", "no-such"], "--algorithms"),
+        (["--sensors", str(Path(__file__).resolve().parents[1] / "analysis" / "vibration" / "environments" / "qualification.toml")], "--sensors"),
+        (["--max-points", "1e12"], "--max-points"),
+    ],
+)
+def test_mount_environment_refuses_bad_input_in_one_line(extra, words):
+    from cli_contract import run, violations
+
+    argv = ["mount-environment", "--profile", str(AIRFRAME_PROFILE), "--mount", str(ISOLATED_MOUNT)] + extra
+    outcome = run(argv, timeout=300.0)
+    assert not violations(outcome, expect="refuse", names=(words,), argv=argv), outcome
