@@ -174,9 +174,11 @@ class Mode:
     frequency : float
         Natural frequency ``|λ|/2π`` [Hz].
     damping_ratio : float
-        ``−Re λ/|λ|`` [dimensionless] (1 for a real, overdamped pole).
+        ``−Re λ/|λ|`` [dimensionless].  An overdamped mode has two real poles
+        instead of a pair; each is listed as a mode of damping ratio 1 and
+        frequency ``|λ|/2π``.
     damped_frequency : float
-        ``Im λ/2π`` [Hz] (0 for an overdamped pole).
+        ``Im λ/2π`` [Hz] (0 for a real pole).
     shape : tuple of complex
         The displacement part of the eigenvector in ``(x, y, z, rx, ry, rz)``
         (translation of O [m], rotation [rad]), scaled so that its largest

@@ -63,6 +63,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import trapezoid
 
 from ...derivations.coning.algorithms import Algorithm
 from ..coning.drift_theory import coning_drift_function
@@ -234,7 +235,7 @@ class MountResponse:
             u = np.log(s.frequency)
             fine = np.exp(np.concatenate([np.linspace(a, b, 65)[:-1] for a, b in zip(u[:-1], u[1:])] + [u[-1:]]))
             auto = np.real(np.diagonal(s.at(fine), axis1=-2, axis2=-1))
-            total += np.trapezoid(auto * fine[:, None], np.log(fine), axis=0)
+            total += trapezoid(auto * fine[:, None], np.log(fine), axis=0)
         return np.sqrt(total)
 
 
@@ -291,8 +292,10 @@ def mount_environment(mount: Mount, excitation: BaseExcitation, *, gyro: Sensor 
     max_points = as_int(max_points, "max_points", minimum=8)
     what = f"`max_points` = {max_points:.3g} table frequencies"
     budget.check(budget.Estimate(max_points * _SECONDS_PER_POINT * 4, 8 * 16 * 36.0 * min(max_points, _CHUNK) + 16 * 36.0 * max_points, what), limits)
-    gyro = gyro if gyro is not None else Sensor()
-    accelerometer = accelerometer if accelerometer is not None else Sensor(decimation=gyro.decimation)
+    if gyro is None:
+        gyro = Sensor(decimation=1 if accelerometer is None else accelerometer.decimation)
+    if accelerometer is None:
+        accelerometer = Sensor(decimation=gyro.decimation)
     modes = mount.modes()
     pieces = _pieces(excitation)
     spans = np.array([math.log(hi / lo) for lo, hi, _ in pieces])
