@@ -69,6 +69,14 @@ def _environment():
     return load_environment(QUALIFICATION)
 
 
+def _mount():
+    from strapdown.analysis.vibration.examples import AIRFRAME_PROFILE, ISOLATED_MOUNT
+    from strapdown.analysis.vibration.mount import load_mount
+    from strapdown.analysis.vibration.profile import load_profile
+
+    return load_mount(ISOLATED_MOUNT), load_profile(AIRFRAME_PROFILE)
+
+
 def _aided_inputs():
     from strapdown.analysis.alignment.aided import AidedTuning, aided_inputs
     from strapdown.analysis.alignment.trajectory import Manoeuvre
@@ -174,6 +182,13 @@ HUGE = {
         "sample_interval",
     ),
     "vibration draw_components count": (lambda: _module("vibration.monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
+    "vibration simulate_mount duration": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1e9, sample_interval=1e-3, rng=1), "duration"),
+    "vibration simulate_mount sample_interval": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-12, rng=1), "sample_interval"),
+    "vibration simulate_mount realisations": (
+        lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-3, realisations=10**9, rng=1),
+        "realisations",
+    ),
+    "vibration mount_environment max_points": (lambda: _module("vibration.mount_response").mount_environment(*_mount(), max_points=10**12), "max_points"),
     "filtered_coning_check periods": (
         lambda: _module("vibration.simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
         "periods",
