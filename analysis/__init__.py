@@ -28,7 +28,8 @@ subpackage         analysis (numerics)                         derivations (SymP
                    mean coning drift and sculling
                    rectification in closed form, DOP853 and
                    Monte Carlo checks, tuned algorithms,
-                   sample rate for a drift budget
+                   sample rate for a drift budget, linear
+                   vibration profiles through an IMU mount
 ``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data
