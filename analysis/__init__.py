@@ -9,8 +9,8 @@ Installed as ``strapdown.analysis``, beside the symbolic side
 subpackage         analysis (numerics)                         derivations (SymPy)
 =================  ==========================================  ===================================
 ``core``           quaternions, dual numbers, validation,      reproducible SymPy runs
-                   units, Monte Carlo, filterpy adapter,       (``derivations.reproducible``),
-                   cache of generated code                     user TOML files read defensively
+                   units, Monte Carlo, verdicts, filterpy      (``derivations.reproducible``),
+                   adapter, cache of generated code            user TOML files read defensively
                                                                (``derivations.toml_files``)
 ``coning``         algorithm evaluation (real and dual),       algorithms as data (cross-step
                    regular precession and classical sculling,  indices), the registry of published

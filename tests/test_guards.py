@@ -219,6 +219,18 @@ HUGE = {
         lambda: _module("alignment.comparison").compare_methods(_imu_scenario(), _module("alignment.imu").SensorErrors(), n_trials=10**9, rng=1, methods=("analytic",)),
         "n_trials",
     ),
+    "observability.observability duration": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
+    "observability.observability duration of a million seconds": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e6)),
+        "duration",
+    ),
+    "observability.observability_gramian duration": (
+        lambda: _module("alignment.observability").observability_gramian(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
     "integrators.coning_drift_rate steps": (
         lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
         "steps",
