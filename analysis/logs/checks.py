@@ -19,7 +19,7 @@ each window), so their cost is one pass over the samples:
 ``gravity direction``
     Gravity reads about −g on z (FRD: z down); +g on z is a log with z up (FLU, ENU).
 ``gyro scale``
-    Where the body turns, the accelerometers see gravity turn in the body axes:
+    Where the body turns across gravity, the accelerometers see gravity turn in the body axes:
     ``Δf ≈ −Δθ × f`` (skipped in a drive, GNSS speed above 1 m/s, whose accelerations
     change the specific force too).  The least-squares factor k between the gyros' turn and the
     accelerometers' is 1; k = π/180 means degrees logged as radians, k = interval means
@@ -281,9 +281,9 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     pred = -np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same])
     df = np.diff(force, axis=0)[same]
     den = float(np.sum(pred * pred))
-    g_mid = np.linalg.norm((0.5 * (force[1:] + force[:-1]))[same], axis=1)
-    tilted = np.sqrt(np.sum(pred * pred, axis=1)) / np.where(g_mid > 0, g_mid, np.inf)  # the turn about the horizontal axes: a turn about gravity leaves f unchanged
-    moved = math.degrees(float(np.sqrt(np.mean(tilted * tilted)))) if dth.size else 0.0
+    # a turn about gravity does not move it in the body axes: only the part across it can be compared
+    across = np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same]) / max(float(np.median(fmag)), 1e-12) if dth.size else dth
+    moved = math.degrees(float(np.sqrt(np.mean(np.sum(across * across, axis=1))))) if dth.size else 0.0
     speed = _gnss_speed(inventory.gnss)
     if speed > _MOVING:
         out.append(Check("gyro scale", "skip", f"GNSS speed up to {speed:.3g} m/s", "a drive: its accelerations change the specific force as much as its turns, the two cannot be compared"))

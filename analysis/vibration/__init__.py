@@ -22,4 +22,12 @@ tuning
     Algorithms tuned to an environment (coning and sculling).
 rate_design
     Lowest sample rate and load for a drift budget in an environment.
+profile
+    Linear random-vibration profiles: breakpoints, dB/octave slopes, grms; the base excitation.
+mount
+    The six-degree-of-freedom IMU mount: rigid block on isolators, transfer matrix, modes.
+mount_response
+    The IMU's cross-spectra through the mount as an environment; drift per mode band.
+mount_simulation
+    DOP853 simulation of the mount under random base motion: Welch and drift checks.
 """
