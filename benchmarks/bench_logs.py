@@ -41,9 +41,19 @@ from strapdown.analysis.logs.reader import read_imu_log
 log = read_imu_log(sys.argv[1], latitude=0.7853981633974483)
 elapsed = time.perf_counter() - start
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
-print(json.dumps({"seconds": elapsed, "peak_bytes": peak, "samples": log.n_samples, "segments": len(log.segments),
+replayed = None
+if len(sys.argv) > 2:  # then the replay of the algorithms named, on the same process's log
+    from strapdown.derivations.coning.registry import get
+    from strapdown.analysis.logs.replay import replay
+    replay(log.segments, [get(name) for name in sys.argv[2].split(",")])
+    replayed = time.perf_counter() - start
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+print(json.dumps({"seconds": elapsed, "with_replay": replayed, "peak_bytes": peak, "samples": log.n_samples, "segments": len(log.segments),
                   "failures": [c.name for c in log.checks.failures]}))
 """
+
+#: The five algorithms replayed after reading (``--replay``), as ``bench_log_analysis.py`` replays them.
+ALGORITHMS = ("two-sample", "miller-3", "ignagni-1996-5", "ignagni-1996-4", "lebedev-panov-6")
 
 
 def _hour(minutes: float):
@@ -58,8 +68,8 @@ def _hour(minutes: float):
     return SyntheticTruth(t, np.tile(block.dtheta, (reps, 1)), np.tile(block.dv, (reps, 1)), block.latitude, f"{minutes:g} min at 1 kHz")
 
 
-def _child(path: Path) -> dict:
-    argv = [sys.executable, "-c", CHILD, str(path)]
+def _child(path: Path, replay: bool = False) -> dict:
+    argv = [sys.executable, "-c", CHILD, str(path)] + ([",".join(ALGORITHMS)] if replay else [])
     if shutil.which("taskset"):
         argv = ["taskset", "-c", "0"] + argv
     out = subprocess.run(argv, check=True, capture_output=True, text=True)
@@ -99,6 +109,7 @@ def main(argv=None) -> int:
     ap.add_argument("--minutes", type=float, default=60.0, help="length of the synthetic log [min] (default 60)")
     ap.add_argument("--keep", type=Path, default=None, help="write the synthetic logs here and keep them (and reuse them when they are there)")
     ap.add_argument("--repeat", type=int, default=5, help="runs of each child (default 5): the minimum and the median are printed")
+    ap.add_argument("--replay", action="store_true", help="also replay the five algorithms of bench_log_analysis.py in the same child: read + check + replay")
     args = ap.parse_args(argv)
     from strapdown.analysis.logs.synthetic import write_synthetic
 
@@ -124,6 +135,11 @@ def main(argv=None) -> int:
             r = runs[0]
             print(f"{p.name:<10} {p.stat().st_size / 1e6:8.1f} {r['samples']:10d} {secs[0]:7.2f} {statistics.median(secs):9.2f} {peak / 1e6:12.0f}  "
                   f"{r['failures'] or 'none'}   ({', '.join(f'{x:.2g}' for x in loads)})")  # fmt: skip
+            if args.replay:
+                full = [_child(p, replay=True) for _ in range(max(1, args.repeat))]
+                tot = sorted(x["with_replay"] for x in full)
+                print(f"{'':<10} read + check + replay of {len(ALGORITHMS)} algorithms: min {tot[0]:.2f} s, median {statistics.median(tot):.2f} s, "
+                      f"peak RSS {max(x['peak_bytes'] for x in full) / 1e6:.0f} MB")  # fmt: skip
         print("the machine's load average is that of all its cores (a shared machine runs slower)")
     finally:
         if args.keep is None:
