@@ -210,13 +210,8 @@ def align_recorded(args, options) -> Result:
     gnss = recorded.inventory.gnss
     if args.method == "aided" and gnss is None:
         raise UsageError(f"--method aided needs GNSS fixes in the log, and {recorded.path.name} has none (log inspect lists its topics)")
-    try:
-        r = align_log(log, lat, method=args.method, tuning=tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch,
-                      gnss=gnss, aided=aided, limits=limits_from(args))  # fmt: skip
-    except ValueError as e:
-        if args.method in ("multiposition", "aided") and "Expected" in str(e) and "`" not in str(e):
-            raise UsageError(f"--method {args.method}: {e}") from None
-        raise
+    r = align_log(log, lat, method=args.method, tuning=tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch,
+                  gnss=gnss, aided=aided, limits=limits_from(args))  # fmt: skip
     data = {
         "log": str(args.log),
         "format": recorded.format,
