@@ -200,3 +200,16 @@ def test_a_drive_is_not_refused_by_the_gyro_scale_check(tmp_path):
     check = read_imu_log(path).checks.by_name("gyro scale")
     assert check.status == "skip" and "GNSS speed" in check.value
     assert normal_gravity(LAT) > 9.8
+
+
+def test_aided_alignment_with_positions_only(tmp_path):
+    """Fixes without velocity: the filter measures the position alone (three innovations) and still lands within 3σ."""
+    path, end = _drive(tmp_path, ".ulg")
+    rec = read_imu_log(path)
+    fixes = replace(rec.inventory.gnss, velocity=None)
+    tuning = AidedTuning(gyro_noise=5 * ARW, accel_noise=5 * VRW, gyro_bias=1.0 * DEG_H, accel_bias=3e-3, velocity_noise=_SV, position_noise=_SP)
+    r = align_log(rec.longest, LAT, method="aided", gnss=fixes, aided=tuning)
+    assert r.history.innovation_names == ("p_N", "p_E", "p_D") and r.history.dof == 3
+    assert abs(_wrap(r.heading - float(end.heading[0]))) < 3.0 * r.heading_sigma
+    with_velocity = align_log(rec.longest, LAT, method="aided", gnss=rec.inventory.gnss, aided=tuning)
+    assert with_velocity.heading_sigma < r.heading_sigma  # the velocities add information

@@ -14,7 +14,9 @@ fix's (interpolated to the epoch boundary), so the innovation, its covariance
 ``S`` and the NIS come from the data alone.
 
 Start: at the first epoch boundary with a fix, the position and velocity are the
-fix's, the tilts level the specific force less the GNSS acceleration, and the
+fix's (without GNSS velocities, 2 s later, with the velocity and acceleration of a
+quadratic fitted to the fixes of ±2 s and the prior's velocity σ raised to the
+fit's), the tilts level the specific force less the GNSS acceleration, and the
 heading is the course over ground ``atan2(v_E, v_N)`` (a vehicle whose body x
 axis points along its track; the prior's azimuth σ must cover the slip) or the one
 given.  The GNSS antenna is taken at the IMU (no lever arm).
@@ -54,6 +56,7 @@ __all__ = ["AidedLogResult", "aided_log_alignment", "GNSS_NAMES"]
 GNSS_NAMES = ("v_N", "v_E", "v_D", "p_N", "p_E", "p_D")
 
 _MIN_SPEED = 1.0  # [m/s]: below it the course over ground does not give a heading
+_FIT = 2.0  # [s]: half-width of the fixes fitted for the start's velocity where the fixes have none
 
 
 @dataclass(frozen=True)
@@ -178,7 +181,9 @@ def aided_log_alignment(
     E = log.n_samples // M
     tb = t0 + D * np.arange(E + 1)  # epoch boundaries
     tg = np.asarray(gnss.time, dtype=float)
-    j0 = int(np.searchsorted(tb, tg[0]))
+    has_vel = gnss.velocity is not None
+    # without velocities, the start's velocity and acceleration are fitted to the fixes of ±2 s around it
+    j0 = int(np.searchsorted(tb, tg[0] + (0.0 if has_vel else _FIT)))
     j_end = int(np.searchsorted(tb, tg[-1], side="right")) - 1
     U = (min(E, j_end) - j0) // K if j_end > j0 else 0
     if U < 2:
@@ -186,20 +191,26 @@ def aided_log_alignment(
     what = f"`log` of {log.n_samples:.3g} samples ({E - j0:.3g} navigator epochs, {U} GNSS updates)"
     budget.check(budget.Estimate(budget.AIDED_EPOCH_SECONDS * (E - j0) + budget.AIDED_FIX.estimate(U, what=what).seconds, 200.0 * log.n_samples + 4e4 * U, what), limits)
     ep = preintegrate(log.dtheta[None, j0 * M : E * M], log.dv[None, j0 * M : E * M], dt, M)
-    has_vel = gnss.velocity is not None
     vel = np.asarray(gnss.velocity, dtype=float) if has_vel else None
     rows = np.arange(6) if has_vel else np.arange(3, 6)
 
     # the start: position and velocity of the fix, tilts from gravity, heading from the course
     ts = tb[j0]
     lat, lon, h = (np.array([float(_interp(ts, tg, x))]) for x in (gnss.latitude, gnss.longitude, gnss.altitude))
+    prior_velocity = tuning.prior_velocity
     if has_vel:
         v = _interp(np.array([ts]), tg, vel)
-        v1 = _interp(np.array([ts + 1.0]), tg, vel)
+        a_n = _interp(np.array([ts + 1.0]), tg, vel)[0] - v[0]  # the GNSS acceleration over the first second [m/s²]
     else:
-        p = lambda t: np.array([[float(_interp(t, tg, gnss.latitude)), float(_interp(t, tg, gnss.longitude)), float(_interp(t, tg, gnss.altitude))]])  # noqa: E731
-        v = ned_offset(*p(ts + 0.5)[0], *p(ts - 0.5)[0])[None]
-        v1 = ned_offset(*p(ts + 1.5)[0], *p(ts + 0.5)[0])[None]
+        near = np.abs(tg - ts) <= _FIT
+        if np.count_nonzero(near) < 5:
+            raise ValueError(f"Expected at least five GNSS fixes within {_FIT:g} s of the start ({ts:.4g} s) to fit its velocity, got {np.count_nonzero(near)}")
+        ned = ned_offset(gnss.latitude[near], gnss.longitude[near], gnss.altitude[near], lat[0], lon[0], h[0])
+        coef = np.polyfit(tg[near] - ts, ned, 2)  # (3 powers, 3 axes): acceleration/2, velocity, offset
+        v, a_n = coef[1][None], 2.0 * coef[0]
+        # the slope's standard deviation under the position noise: the velocity the prior must cover
+        X = np.vander(tg[near] - ts, 3)
+        prior_velocity = max(prior_velocity, float(tuning.position_noise * math.sqrt(np.linalg.inv(X.T @ X)[1, 1])))
     if heading is None:
         speed = float(np.hypot(v[0, 0], v[0, 1]))
         if speed < _MIN_SPEED:
@@ -209,7 +220,6 @@ def aided_log_alignment(
         psi0 = float(heading)
     n1 = max(1, int(round(1.0 / dt)))
     f_body = log.dv[j0 * M : j0 * M + n1].sum(axis=0) / (n1 * dt)
-    a_n = v1[0] - v[0]  # the GNSS acceleration over the first second [m/s²]
     c, s = math.cos(psi0), math.sin(psi0)
     a_b = np.array([c * a_n[0] + s * a_n[1], -s * a_n[0] + c * a_n[1], a_n[2]])
     tilt = tilts_from_specific_force((f_body - a_b)[None, None, :])[0, 0]
@@ -217,7 +227,7 @@ def aided_log_alignment(
     q = Rotation.from_matrix(C0).as_quat(scalar_first=True)[None]
     bg, ba = np.zeros((1, 3)), np.zeros((1, 3))
     P = np.diag(
-        np.square([tuning.prior_tilt, tuning.prior_tilt, tuning.prior_heading] + [tuning.prior_velocity] * 3 + [tuning.prior_position] * 3 + [tuning.gyro_bias] * 3 + [tuning.accel_bias] * 3)
+        np.square([tuning.prior_tilt, tuning.prior_tilt, tuning.prior_heading] + [prior_velocity] * 3 + [tuning.prior_position] * 3 + [tuning.gyro_bias] * 3 + [tuning.accel_bias] * 3)
     )
     R = np.diag([tuning.velocity_noise**2] * 3 + [tuning.position_noise**2] * 3)[np.ix_(rows, rows)]
     times, sig, gbs, abs_, ys, nis = [], [], [], [], [], []
