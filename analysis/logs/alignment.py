@@ -39,7 +39,7 @@ from ..alignment.tilt_attitude import angles_from_matrix, attitude_matrix
 from ..core.validation import positive
 from .filter_history import FilterHistory, filter_history
 from .imu_log import ImuLog
-from .positions import MultiPositionAlignment
+from .positions import MultiPositionAlignment, position_windows
 from .records import log_record
 
 __all__ = ["log_record", "LogAlignment", "align_log", "recorded_problem", "LOG_METHODS", "CALIBRATION_SEED"]
@@ -273,13 +273,7 @@ def recorded_problem(log: ImuLog, latitude: float, *, tuning: FilterTuning | Non
     w_earth = C0.T @ earth_rate_ned(latitude)  # the Earth's rate in the start body axes [rad/s]
     t_epochs = np.arange(Q.shape[0]) * ep.epoch
     R = Rotation.from_rotvec(-t_epochs[:, None] * w_earth[None, :]) * Rotation.from_quat(Q, scalar_first=True)  # body relative to the Earth
-    per = max(1, int(round(window / ep.epoch)))
-    n_windows = max(1, ep.n_epochs // per)
-    means = [R[w * per : (w + 1) * per + 1].mean() for w in range(n_windows)]
-    first = [0]
-    for w in range(1, n_windows):
-        if (means[first[-1]].inv() * means[w]).magnitude() > threshold:
-            first.append(w)
+    per, means, first = position_windows(R, ep.epoch, window, threshold)
     edges = [w * per for w in first] + [ep.n_epochs]
     head = log_record(replace(log, time=log.time[: edges[1] * M], dtheta=log.dtheta[: edges[1] * M], dv=log.dv[: edges[1] * M]), latitude)
     a = analytic_alignment(head)  # the mean attitude of the first position

@@ -35,6 +35,7 @@ Public API
 .. autosummary::
 
    LogPosition
+   position_windows
    find_positions
    MultiPositionAlignment
    multiposition_alignment
@@ -56,7 +57,7 @@ from ..core.validation import nonnegative, positive
 from .imu_log import ImuLog
 from .records import log_record
 
-__all__ = ["LogPosition", "find_positions", "MultiPositionAlignment", "multiposition_alignment"]
+__all__ = ["LogPosition", "position_windows", "find_positions", "MultiPositionAlignment", "multiposition_alignment"]
 
 _RESOLUTION = 0.1  # epoch of the attitude track [s]
 
@@ -90,6 +91,43 @@ class LogPosition:
     def angle(self) -> float:
         """Angle of the turn from the first position [rad]."""
         return float(Rotation.from_matrix(self.turn).magnitude())
+
+
+def position_windows(R: Rotation, epoch: float, window: float, threshold: float) -> tuple:
+    """The positions of an attitude track: its means over windows, and the windows where a new position starts.
+
+    A new position starts at the first window whose mean attitude has turned by more than
+    ``threshold`` from the first window of the current position (the rule of
+    :func:`~strapdown.analysis.logs.alignment.recorded_problem` and :func:`find_positions`).
+
+    Parameters
+    ----------
+    R : scipy.spatial.transform.Rotation
+        ``E + 1`` attitudes at the epoch boundaries (the body relative to the Earth).
+    epoch : float
+        Their spacing [s].
+    window : float
+        Averaging window [s].
+    threshold : float
+        Turn that starts a new position [rad].
+
+    Returns
+    -------
+    per : int
+        Epochs per window [count].
+    means : list of Rotation
+        The mean attitude of each window.
+    first : list of int
+        The first window of each position (``first[0] == 0``).
+    """
+    per = max(1, int(round(window / epoch)))
+    n_windows = max(1, (len(R) - 1) // per)
+    means = [R[w * per : (w + 1) * per + 1].mean() for w in range(n_windows)]
+    first = [0]
+    for w in range(1, n_windows):
+        if (means[first[-1]].inv() * means[w]).magnitude() > threshold:
+            first.append(w)
+    return per, means, first
 
 
 def _head(log: ImuLog, n: int) -> ImuLog:
@@ -153,13 +191,8 @@ def find_positions(log: ImuLog, latitude: float, *, threshold: float = math.radi
     C0 = _start_attitude(log, latitude, window) if C_start is None else np.asarray(C_start, dtype=float)
     R, epoch = _track(log, latitude, C0, M, gyro_bias)
     E = len(R) - 1
-    per = max(1, int(round(window / epoch)))
-    n_windows = max(1, E // per)
-    means = [R[w * per : (w + 1) * per + 1].mean() for w in range(n_windows)]
-    first = [0]
-    for w in range(1, n_windows):
-        if (means[first[-1]].inv() * means[w]).magnitude() > threshold:
-            first.append(w)
+    per, means, first = position_windows(R, epoch, window, threshold)
+    n_windows = len(means)
     bounds = first + [n_windows]
     cut = int(round(margin / epoch))
     out, ref0 = [], None
