@@ -62,14 +62,27 @@ before the bilinear forms are taken, and they make one part
 the drift is ``∫ u(f) df`` with the same integrand, taken by composite
 Gauss–Legendre quadrature in log f, every table frequency a break point
 (:func:`strapdown.analysis.core.quadrature.integrate`, to
-:data:`QUADRATURE_RTOL` of the integral of the integrand's magnitude).  Lines at distinct frequencies add: the cross
-terms of two lines average to zero unless the sum or difference of their
-frequencies is a multiple of the step rate 1/H (then the phases matter).
+:data:`QUADRATURE_RTOL` of the integral of the integrand's magnitude).
 
-Sign of the quoted numbers: vectors are in the body axes (frame I to this
-order); a signed value is the component along the environment's *coning
-axis*, the direction of the true coning rate Σ q/(2ω) (for a coning line, its
-axis), so that ``u > 0`` means the computed attitude lags.
+*Lines of different frequencies* add their drifts only where no pair of them
+aliases: the cross terms of two lines oscillate at ``f₁ ± f₂``, and where the
+sum or the difference is a multiple of the step rate 1/H the algorithm samples
+them at one phase and they leave a phase-locked mean.  Such a pair adds a part
+of kind ``"alias"`` (:mod:`strapdown.analysis.vibration.aliasing`, with its
+derivation); a pair near an alias is listed in
+:attr:`EnvironmentDrift.near_aliases` with its beat period (its mean over many
+beats is zero, so it is not in the total).  Components of a stationary spectrum
+at different frequencies are uncorrelated and add no such mean.
+
+The quoted quantity: the drift is a vector in the body axes (frame I to this
+order), :attr:`EnvironmentDrift.total_vector`, and its magnitude
+:attr:`EnvironmentDrift.magnitude`.  A signed value is a *projection*, on an
+axis that is named with it: :attr:`EnvironmentDrift.total` is the component
+along the environment's *coning axis*, the direction of the true coning rate
+Σ q/(2ω) (for a coning line, its axis), so that ``u > 0`` means the computed
+attitude lags about that axis; drift about other axes (a tail rotor coning
+about y when the main rotor cones about z) is in the vector and the magnitude,
+not in that projection.
 
 Public API
 ----------
@@ -101,6 +114,7 @@ from ...derivations.coning.algorithms import Algorithm
 from ..coning.drift_theory import coning_drift_function
 from ..core.quadrature import integrate
 from ..core.validation import positive
+from .aliasing import NEAR_ALIAS_BEAT, alias_pairs
 from .environment import Environment, Spectrum, VibrationLine
 
 __all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "coherent_groups", "line_response", "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals"]
@@ -296,11 +310,13 @@ class DriftPart:
     Attributes
     ----------
     kind : str
-        ``"line"`` or ``"spectrum"``.
+        ``"line"``, ``"spectrum"`` or ``"alias"`` (the cross terms of two lines
+        whose sum or difference frequency is a multiple of the step rate: an
+        algorithm part only, :mod:`strapdown.analysis.vibration.aliasing`).
     label : str
         Its name.
     band : tuple of float
-        Its frequency (twice for a line) or band [Hz].
+        Its frequency (twice for a line), band, or the two lines' frequencies (alias) [Hz].
     true_coning : ndarray (3,)
         Mean non-commutativity rate of the true motion ``q/(2ω)`` [rad/s].
     sensor : ndarray (3,)
@@ -360,6 +376,9 @@ class EnvironmentDrift:
         Unit direction of the true coning rate (module docstring); signed drifts are along it.
     sculling_axis : ndarray (3,)
         Unit direction of the true rectified specific force.
+    near_aliases : tuple of AliasPair
+        Pairs of lines near an alias with the step rate, with their beat
+        period (not in the mean: it averages out over many beats).
     """
 
     algorithm: Algorithm
@@ -367,6 +386,7 @@ class EnvironmentDrift:
     parts: tuple
     coning_axis: np.ndarray
     sculling_axis: np.ndarray
+    near_aliases: tuple = ()
 
     def _sum(self, name):
         return sum((getattr(p, name) for p in self.parts), np.zeros(3))
@@ -387,18 +407,28 @@ class EnvironmentDrift:
         return self._sum("algorithm")
 
     @property
+    def magnitude(self) -> float:
+        """``|total_vector|``, the drift rate [rad/s]: the one number to quote."""
+        return float(np.linalg.norm(self.total_vector))
+
+    @property
+    def sculling_magnitude(self) -> float:
+        """``|sculling_vector|``, the rectification-error rate [m/s²]."""
+        return float(np.linalg.norm(self.sculling_vector))
+
+    @property
     def total(self) -> float:
-        """Signed drift along the coning axis [rad/s]."""
+        """Projection of the drift on the coning axis [rad/s] (a component, not the drift rate: see :attr:`magnitude`)."""
         return float(self.total_vector @ self.coning_axis)
 
     @property
     def sensor(self) -> float:
-        """Signed pseudo-coning along the coning axis [rad/s]."""
+        """Projection of the pseudo-coning on the coning axis [rad/s]."""
         return float(self.sensor_vector @ self.coning_axis)
 
     @property
     def algorithm_part(self) -> float:
-        """Signed algorithm residual along the coning axis [rad/s]."""
+        """Projection of the algorithm residual on the coning axis [rad/s]."""
         return float(self.algorithm_vector @ self.coning_axis)
 
     @property
@@ -408,7 +438,7 @@ class EnvironmentDrift:
 
     @property
     def sculling(self) -> float:
-        """Signed rectification error along the sculling axis [m/s²]."""
+        """Projection of the rectification error on the sculling axis [m/s²]."""
         return float(self.sculling_vector @ self.sculling_axis)
 
     @property
@@ -422,7 +452,8 @@ class EnvironmentDrift:
         return float(self._sum("algorithm_sculling") @ self.sculling_axis)
 
 
-def environment_drift(algorithm: Algorithm, environment: Environment, sample_interval: float, *, rtol: float = QUADRATURE_RTOL) -> EnvironmentDrift:
+def environment_drift(algorithm: Algorithm, environment: Environment, sample_interval: float, *, rtol: float = QUADRATURE_RTOL,
+                      min_beat_period: float = NEAR_ALIAS_BEAT) -> EnvironmentDrift:  # fmt: skip
     """Mean coning drift and sculling rectification of ``algorithm`` in ``environment`` (module docstring).
 
     Parameters
@@ -436,6 +467,9 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
         Algorithm sample interval h [s], > 0 (step H = N h).
     rtol : float, keyword-only
         Relative tolerance of the spectrum quadrature.
+    min_beat_period : float, keyword-only
+        Pairs of lines whose beat with the step rate is longer than this are
+        listed as near an alias [s] (:func:`strapdown.analysis.vibration.aliasing.alias_pairs`).
 
     Returns
     -------
@@ -472,11 +506,17 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
     for i, (kind, label, band) in enumerate(r.parts):
         true, sensed, alg = r.true[i], r.sensed[i], r.algorithm[0, i]
         parts.append(DriftPart(kind, label, tuple(band), true[0], true[0] - sensed[0], alg[0], true[1], true[1] - sensed[1], alg[1]))
+    pairs = alias_pairs(algorithm, environment, sample_interval, min_beat_period=min_beat_period)
+    zero = np.zeros(3)
+    for p in pairs:
+        if p.exact:
+            label = f"{p.labels[0]} × {p.labels[1]} ({p.kind} {p.multiple}/H)"
+            parts.append(DriftPart("alias", label, p.frequencies, zero, zero, p.drift, zero, zero, p.sculling))
     total = sum((p.total for p in parts), np.zeros(3))
     scull = sum((p.total_sculling for p in parts), np.zeros(3))
-    c_axis = _axis(r.true[:, 0].sum(axis=0) if parts else np.zeros(3), total)
-    s_axis = _axis(r.true[:, 1].sum(axis=0) if parts else np.zeros(3), scull)
-    return EnvironmentDrift(algorithm, float(sample_interval), tuple(parts), c_axis, s_axis)
+    c_axis = _axis(r.true[:, 0].sum(axis=0) if r.parts else np.zeros(3), total)
+    s_axis = _axis(r.true[:, 1].sum(axis=0) if r.parts else np.zeros(3), scull)
+    return EnvironmentDrift(algorithm, float(sample_interval), tuple(parts), c_axis, s_axis, tuple(p for p in pairs if not p.exact))
 
 
 def line_response(algorithm: Algorithm, line: VibrationLine, environment: Environment, sample_interval: float) -> DriftPart:
