@@ -314,8 +314,17 @@ def alias_pairs(algorithm: Algorithm, environment: Environment, sample_interval:
         v, vs = -x * kk / (2.0 * step), -xs * kk / (2.0 * step)
         out.append(
             AliasPair(
-                (labels[a], labels[b]), (float(freq[a]), float(freq[b])), "sum" if sigma > 0 else "difference", abs(k), off,
-                math.inf if exact else 1.0 / abs(off), exact, np.real(v), _swing(v), np.real(vs), _swing(vs),
+                (labels[a], labels[b]),
+                (float(freq[a]), float(freq[b])),
+                "sum" if sigma > 0 else "difference",
+                abs(k),
+                off,
+                math.inf if exact else 1.0 / abs(off),
+                exact,
+                np.real(v),
+                _swing(v),
+                np.real(vs),
+                _swing(vs),
             )  # fmt: skip
         )
     out.sort(key=lambda p: (not p.exact, -p.beat_period if math.isfinite(p.beat_period) else 0.0))

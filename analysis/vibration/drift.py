@@ -107,12 +107,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm
 from ..coning.drift_theory import coning_drift_function
-from ..core.quadrature import integrate
 from ..core.validation import positive
 from .aliasing import NEAR_ALIAS_BEAT, alias_pairs
 from .environment import Environment, Spectrum, VibrationLine
@@ -121,8 +122,6 @@ __all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integ
 
 #: Relative tolerance of the spectrum quadrature (against the integral of the magnitude).
 QUADRATURE_RTOL = 1e-10
-#: Gauss–Legendre nodes per table interval of the estimate of the integrand's scale [count].
-QUADRATURE_NODES = 16
 
 
 def _w(m: np.ndarray) -> np.ndarray:
@@ -160,11 +159,6 @@ def sculling_vector(power: np.ndarray) -> np.ndarray:
     return -2.0 * np.imag(_w(power[..., :3, 3:]))
 
 
-def _sensed(power: np.ndarray, response: np.ndarray) -> np.ndarray:
-    """``conj(H_a) H_b P_ab``."""
-    return np.conj(response)[..., :, None] * response[..., None, :] * power
-
-
 class ResponseIntegrals:
     """Integrals of the drift integrand against a set of algorithm response functions.
 
@@ -192,13 +186,27 @@ class ResponseIntegrals:
         self.parts, self.true, self.sensed, self.algorithm = parts, true, sensed, algorithm
 
 
-def _integrand(environment: Environment, sample_interval: float, functions, freq: np.ndarray, power: np.ndarray) -> np.ndarray:
-    """Columns (true c, true s, sensed c, sensed s, alg_j c, alg_j s …), shape (n, 2 + 2 + 2J, 3)."""
+#: Channel pairs (a, b) of the cross-power entries the drift reads: the coning vector from the rate block,
+#: ``q = −2 Im(P_yz, P_zx, P_xy)`` (Hermitian), and the sculling vector from the rate–specific-force block,
+#: ``q_s = −2 Im(P_{ωy az} − P_{ωz ay}, P_{ωz ax} − P_{ωx az}, P_{ωx ay} − P_{ωy ax})``.
+_ROWS = np.array([1, 2, 0, 1, 2, 2, 0, 0, 1])
+_COLS = np.array([2, 0, 1, 5, 4, 3, 5, 4, 3])
+
+
+def _vectors(e: np.ndarray) -> tuple:
+    """Coning and sculling vectors of the entries ``e`` (..., 9) (:data:`_ROWS`, :data:`_COLS`)."""
+    q = -2.0 * np.imag(e[..., 0:3])
+    d = e[..., 3::2] - e[..., 4::2]
+    return q, -2.0 * np.imag(d)
+
+
+def _integrand(environment: Environment, sample_interval: float, functions, freq: np.ndarray, entries: np.ndarray) -> np.ndarray:
+    """Columns (true c, true s, sensed c, sensed s, alg_j c, alg_j s …), shape (n, 2 + 2 + 2J, 3), of the entries (n, 9)."""
     omega = 2.0 * math.pi * freq
     response = environment.response(omega, sample_interval)
-    sensed = _sensed(power, response)
-    q, qs = coning_vector(power), sculling_vector(power)
-    qt, qts = coning_vector(sensed), sculling_vector(sensed)
+    sensed = np.conj(response[:, _ROWS]) * response[:, _COLS] * entries
+    q, qs = _vectors(entries)
+    qt, qts = _vectors(sensed)
     inv = (1.0 / omega)[:, None]
     cols = [0.5 * q * inv, 0.5 * qs * inv, 0.5 * qt * inv, 0.5 * qts * inv]
     x = omega * sample_interval
@@ -208,21 +216,215 @@ def _integrand(environment: Environment, sample_interval: float, functions, freq
     return np.stack(cols, axis=1)
 
 
-def _spectrum_integral(environment, sample_interval, functions, spectrum: Spectrum, rtol: float) -> np.ndarray:
-    """∫ integrand df over the spectrum's table, in u = ln f (:func:`strapdown.analysis.core.quadrature.integrate`)."""
+#: Gauss–Legendre order of the direct adaptive quadrature (a panel against its two halves) [count].
+PANEL_ORDER = 4
+#: Halvings of a panel before the direct quadrature gives up [count].
+MAX_HALVINGS = 40
+#: Most integrand evaluations of the direct quadrature of one spectrum [count].
+MAX_EVALUATIONS = 2**21
+#: Largest array of integrand values evaluated at once [bytes].
+CHUNK_BYTES = 2**22
+_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(PANEL_ORDER)
 
-    def g(u):
+#: Width of a product-integration panel in ln f [-] (1 % in frequency).
+PRODUCT_WIDTH = 0.01
+#: Nodes of the product rule per panel (exact for responses of degree 7 in ln f) and of its check [count].
+PRODUCT_NODES, CHECK_NODES = 8, 4
+#: Largest change of ln G over one segment of the moments' quadrature [-].
+SEGMENT_LOG_RANGE = 2.0
+
+
+class _Unresolved(ValueError):
+    """The spectrum quadrature did not converge (its message says where)."""
+
+
+def _panel_values(g, a: np.ndarray, b: np.ndarray, size: int) -> tuple:
+    """Gauss–Legendre integrals of g over [a, b] (coarse), [a, m] and [m, b] (halves), and ∫|g| over the halves; in chunks."""
+    per_node = max(size * 8, 8)
+    chunk = max(1, CHUNK_BYTES // (per_node * 3 * PANEL_ORDER))
+    coarse, left, right, absolute = (np.empty((a.size, size)) for _ in range(4))
+    for k in range(0, a.size, chunk):
+        aa, bb = a[k : k + chunk], b[k : k + chunk]
+        mm = 0.5 * (aa + bb)
+        spans = [(aa, bb), (aa, mm), (mm, bb)]
+        u = np.concatenate([(0.5 * (lo + hi))[:, None] + (0.5 * (hi - lo))[:, None] * _GL_NODES[None, :] for lo, hi in spans], axis=0).ravel()
+        vals = g(u).reshape(3, aa.size, PANEL_ORDER, size)
+        half = np.array([0.5 * (hi - lo) for lo, hi in spans])[:, :, None]
+        ints = np.einsum("pkn,n,pkns->pks", np.broadcast_to(half, (3, aa.size, PANEL_ORDER)), _GL_WEIGHTS, vals)
+        coarse[k : k + chunk], left[k : k + chunk], right[k : k + chunk] = ints
+        absolute[k : k + chunk] = np.einsum("pkn,n,pkns->ks", np.broadcast_to(half[1:], (2, aa.size, PANEL_ORDER)), _GL_WEIGHTS, np.abs(vals[1:]))
+    return coarse, left, right, absolute
+
+
+def _adaptive(g, a: np.ndarray, b: np.ndarray, size: int, rtol: float, atol: float) -> np.ndarray:
+    """∫ g du over the panels [a, b] (values of ``size`` elements), each halved where it and its halves disagree.
+
+    A panel is accepted when ``|halves − panel| ≤ max(atol · width/Σwidth, rtol · |halves|)``
+    elementwise; its halves' sum is kept, and the halves of a rejected panel
+    start from the values already computed.
+    """
+    coarse, left, right, _ = _panel_values(g, a, b, size)
+    width = float(np.sum(b - a))
+    total = np.zeros(size)
+    evaluations = 3 * PANEL_ORDER * a.size
+    for _ in range(MAX_HALVINGS):
+        fine = left + right
+        if not np.all(np.isfinite(fine)):
+            bad = int(np.nonzero(~np.all(np.isfinite(fine), axis=1))[0][0])
+            raise _Unresolved(f"the integrand is not finite near {math.exp(0.5 * (a[bad] + b[bad])):.6g} Hz")
+        ok = np.all(np.abs(fine - coarse) <= np.maximum(atol * ((b - a) / width)[:, None], rtol * np.abs(fine)), axis=1)
+        total += fine[ok].sum(axis=0)
+        if ok.all():
+            return total
+        a, b, m = a[~ok], b[~ok], 0.5 * (a[~ok] + b[~ok])
+        coarse = np.concatenate([left[~ok], right[~ok]])
+        a, b = np.concatenate([a, m]), np.concatenate([m, b])
+        evaluations += 3 * PANEL_ORDER * a.size
+        if evaluations > MAX_EVALUATIONS:
+            raise _Unresolved(f"the integrand is not resolved by {MAX_EVALUATIONS} evaluations, near {math.exp(0.5 * (a[0] + b[0])):.6g} Hz")
+        _, left, right, _ = _panel_values(g, a, b, size)
+    worst = int(np.argmax(np.max(np.abs(left + right - coarse), axis=1)))
+    raise _Unresolved(f"the integrand is not resolved near {math.exp(0.5 * (a[worst] + b[worst])):.6g} Hz after {MAX_HALVINGS} halvings")
+
+
+class _ProductRule(NamedTuple):
+    """Product-integration weights of one spectrum (:func:`_product_rule`)."""
+
+    panels: np.ndarray  # (P + 1,) panel edges in u = ln f
+    segments: np.ndarray  # (S + 1,) segment edges (every table frequency among them)
+    first: np.ndarray  # (P + 1,) index of each panel's first segment
+    nodes: np.ndarray  # (P, PRODUCT_NODES) nodes in u
+    weights: np.ndarray  # (P, PRODUCT_NODES, 9) complex: ∫ G_e f L-interpolant du
+    check_nodes: np.ndarray  # (P, CHECK_NODES)
+    check_weights: np.ndarray  # (P, CHECK_NODES, 9)
+
+
+def _segments(spectrum: Spectrum) -> np.ndarray:
+    """Edges in u of the segments: each table interval split so that a segment spans at most
+    :data:`PRODUCT_WIDTH` in ln f and :data:`SEGMENT_LOG_RANGE` in ln G."""
+    u = np.log(spectrum.frequency)
+    auto = np.real(np.diagonal(spectrum.density, axis1=1, axis2=2))
+    with np.errstate(divide="ignore"):
+        logs = np.log(np.where(auto > 0, auto, np.nan))
+    jump = np.nan_to_num(np.nanmax(np.abs(np.diff(logs, axis=0)), axis=1, initial=0.0), nan=0.0) if auto.size else np.zeros(u.size - 1)
+    split = np.maximum(1, np.maximum(np.ceil(np.diff(u) / PRODUCT_WIDTH), np.ceil(jump / SEGMENT_LOG_RANGE))).astype(int)
+    starts = np.repeat(u[:-1], split) + np.repeat(np.diff(u) / split, split) * (np.arange(split.sum()) - np.repeat(np.cumsum(split) - split, split))
+    return np.append(starts, u[-1])
+
+
+@lru_cache(maxsize=16)
+def _product_rule(spectrum: Spectrum) -> _ProductRule:
+    """Weights that integrate ``G_e(f)`` against any response smooth on a panel (module docstring of the quadrature).
+
+    The segments (:func:`_segments`) are grouped into panels of at least
+    :data:`PRODUCT_WIDTH` in ln f.  On each panel a response r(u) is replaced
+    by its polynomial interpolant at the Gauss–Legendre nodes ``u_j``, so that
+    ``∫ G_e f r du ≈ Σ_j W_je r(u_j)`` with ``W_je = ∫ G_e f ℓ_j du`` (ℓ_j the
+    Lagrange basis), computed once from the Legendre moments of ``G_e f`` by
+    Gauss–Legendre of order 8 on every segment.
+    """
+    seg = _segments(spectrum)
+    widths = np.diff(seg)
+    # panels: consecutive segments until the width reaches PRODUCT_WIDTH
+    cum = np.concatenate([[0.0], np.cumsum(widths)])
+    first = [0]
+    while first[-1] < widths.size:
+        nxt = int(np.searchsorted(cum, cum[first[-1]] + PRODUCT_WIDTH * (1 - 1e-9), side="left"))
+        first.append(min(max(nxt, first[-1] + 1), widths.size))
+    first = np.array(first)
+    if first.size > 2 and cum[-1] - cum[first[-2]] < 0.5 * PRODUCT_WIDTH:  # a short last panel joins the one before
+        first = np.delete(first, -2)
+    panels = seg[first]
+    P = panels.size - 1
+    owner = np.repeat(np.arange(P), np.diff(first))  # panel of each segment
+    x8, w8 = np.polynomial.legendre.leggauss(8)
+    K = max(PRODUCT_NODES, CHECK_NODES)
+    moments = np.zeros((P, 9, K), dtype=complex)
+    lo_p, hi_p = panels[:-1], panels[1:]
+    chunk = 4096
+    for s0 in range(0, widths.size, chunk):
+        a, b = seg[:-1][s0 : s0 + chunk], seg[1:][s0 : s0 + chunk]
+        u = (0.5 * (a + b))[:, None] + (0.5 * (b - a))[:, None] * x8[None, :]
         f = np.exp(u)
-        vals = _integrand(environment, sample_interval, functions, f, spectrum.at(f)) * f[:, None, None]
-        return np.moveaxis(vals, 0, -1)
+        e = spectrum.entries(f.ravel(), _ROWS, _COLS).reshape(u.shape + (9,)) * f[..., None] * (0.5 * (b - a))[:, None, None] * w8[None, :, None]
+        own = owner[s0 : s0 + chunk]
+        xi = (2.0 * u - (lo_p[own] + hi_p[own])[:, None]) / (hi_p[own] - lo_p[own])[:, None]
+        leg = np.polynomial.legendre.legvander(xi, K - 1)  # (seg, 8, K)
+        contrib = np.einsum("sne,snk->sek", e, leg)
+        starts = np.concatenate([[0], np.nonzero(np.diff(own))[0] + 1])  # segments are in panel order
+        moments[own[starts]] += np.add.reduceat(contrib, starts, axis=0)
 
-    edges = np.log(spectrum.frequency)
-    nodes, weights = np.polynomial.legendre.leggauss(QUADRATURE_NODES)
-    mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
-    u = (mid[:, None] + half[:, None] * nodes[None, :]).ravel()
-    w = (half[:, None] * weights[None, :]).ravel()
-    scale = np.abs(g(u)) @ w  # ∫|integrand|, the scale of the absolute tolerance of each element
-    return integrate(g, edges, rtol=rtol, atol=rtol * float(np.max(scale)), panels=1)
+    def weights(n):
+        x, w = np.polynomial.legendre.leggauss(n)
+        leg = np.polynomial.legendre.legvander(x, n - 1)  # (n, n): L_k(x_j)
+        # r ≈ Σ_k c_k L_k with c_k = (2k+1)/2 Σ_j w_j r_j L_k(x_j); ∫ G f r = Σ_k c_k m_k
+        factor = (2 * np.arange(n) + 1) / 2.0
+        wts = np.einsum("j,jk,k,pek->pje", w, leg, factor, moments[:, :, :n])
+        nodes = (0.5 * (lo_p + hi_p))[:, None] + (0.5 * (hi_p - lo_p))[:, None] * x[None, :]
+        return nodes, wts
+
+    nodes, wts = weights(PRODUCT_NODES)
+    cnodes, cwts = weights(CHECK_NODES)
+    return _ProductRule(panels, seg, first, nodes, wts, cnodes, cwts)
+
+
+def quadrature_evaluations(spectrum: Spectrum) -> float:
+    """Integrand evaluations of one :func:`response_integrals` over ``spectrum``, once its weights are known [count].
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The spectrum.
+
+    Returns
+    -------
+    float
+        ``(PRODUCT_NODES + CHECK_NODES)`` per panel; panels where the response
+        is not smooth are integrated directly, which adds to this.
+    """
+    width = math.log(spectrum.frequency[-1] / spectrum.frequency[0])
+    return (PRODUCT_NODES + CHECK_NODES) * max(1.0, width / PRODUCT_WIDTH)
+
+
+def _spectrum_integral(environment, sample_interval, functions, spectrum: Spectrum, rtol: float) -> np.ndarray:
+    """∫ integrand df over the spectrum's table by product integration (:func:`_product_rule`).
+
+    The integrand is linear in the entries of G: on each panel the responses
+    (sensor filters, ``φ_j(ωh)/ω``) are integrated against the weights of the
+    product rule, and against those of a rule of order :data:`CHECK_NODES`;
+    where the two differ by more than the tolerance (a response that is not
+    smooth on the panel: a sharp resonance, ωh far above π), the panel is
+    integrated directly on its segments (:func:`_adaptive`), with the
+    interpolated spectrum at every node.
+    """
+    rule = _product_rule(spectrum)
+    columns = 4 + 2 * len(functions)
+    size = columns * 3
+
+    def by_panel(nodes, wts):
+        f = np.exp(nodes.ravel())
+        vals = _integrand(environment, sample_interval, functions, f, wts.reshape(-1, 9))
+        return vals.reshape(nodes.shape + (size,)).sum(axis=1)
+
+    main = by_panel(rule.nodes, rule.weights)
+    check = by_panel(rule.check_nodes, rule.check_weights)
+    if not np.all(np.isfinite(main)):
+        raise _Unresolved("the integrand is not finite")
+    atol = rtol * float(np.max(np.abs(main).sum(axis=0)))
+    widths = np.diff(rule.panels)
+    ok = np.all(np.abs(main - check) <= np.maximum(atol * (widths / widths.sum())[:, None], rtol * np.abs(main)), axis=1)
+    total = main[ok].sum(axis=0)
+    if not ok.all():
+        bad = np.nonzero(~ok)[0]
+        seg_index = np.concatenate([np.arange(rule.first[p], rule.first[p + 1]) for p in bad])
+        a, b = rule.segments[seg_index], rule.segments[seg_index + 1]
+
+        def g(u):
+            f = np.exp(u)
+            return (_integrand(environment, sample_interval, functions, f, spectrum.entries(f, _ROWS, _COLS)) * f[:, None, None]).reshape(f.size, size)
+
+        total = total + _adaptive(g, a, b, size, rtol, atol)
+    return total.reshape(columns, 3)
 
 
 def coherent_groups(lines) -> list:
@@ -284,12 +486,12 @@ def response_integrals(environment: Environment, sample_interval: float, functio
         groups = coherent_groups(environment.lines)
         freq = np.array([g[0].frequency for g in groups])
         power = np.stack([VibrationLine(g[0].frequency, sum(ln.amplitude for ln in g)).power for g in groups])
-        values.extend(_integrand(environment, h, functions, freq, power))
+        values.extend(_integrand(environment, h, functions, freq, power[:, _ROWS, _COLS]))
         parts.extend(("line", " + ".join(ln.label for ln in g), (g[0].frequency, g[0].frequency)) for g in groups)
     for s in environment.spectra:
         try:
             values.append(_spectrum_integral(environment, h, functions, s, rtol))
-        except ValueError as exc:
+        except _Unresolved as exc:
             raise ValueError(
                 f"Expected `sample_interval` = {h:g} s to give a response integral over spectrum {s.label!r} that converges; "
                 f"it does not ({exc}): the sensors' and the algorithm's responses are not resolved at this interval"
