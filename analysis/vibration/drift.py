@@ -94,6 +94,10 @@ Public API
    response_integrals
    coherent_groups
    line_response
+   segment_count
+   quadrature_evaluations
+   theory_warnings
+   SMALL_ANGLE
    QUADRATURE_RTOL
 
 References
@@ -118,7 +122,11 @@ from ..core.validation import positive
 from .aliasing import NEAR_ALIAS_BEAT, alias_pairs
 from .environment import Environment, Spectrum, VibrationLine
 
-__all__ = ["DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "coherent_groups", "line_response", "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals"]
+__all__ = [
+    "DriftPart", "EnvironmentDrift", "environment_drift", "response_integrals", "coherent_groups", "line_response",
+    "coning_vector", "sculling_vector", "QUADRATURE_RTOL", "ResponseIntegrals", "segment_count", "quadrature_evaluations",
+    "theory_warnings", "SMALL_ANGLE",
+]  # fmt: skip
 
 #: Relative tolerance of the spectrum quadrature (against the integral of the magnitude).
 QUADRATURE_RTOL = 1e-10
@@ -368,6 +376,21 @@ def _product_rule(spectrum: Spectrum) -> _ProductRule:
     return _ProductRule(panels, seg, first, nodes, wts, cnodes, cwts)
 
 
+def segment_count(spectrum: Spectrum) -> int:
+    """Segments of the product-integration weights of ``spectrum`` (their cost is per segment) [count].
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The spectrum.
+
+    Returns
+    -------
+    int
+    """
+    return int(_segments(spectrum).size - 1)
+
+
 def quadrature_evaluations(spectrum: Spectrum) -> float:
     """Integrand evaluations of one :func:`response_integrals` over ``spectrum``, once its weights are known [count].
 
@@ -581,6 +604,8 @@ class EnvironmentDrift:
     near_aliases : tuple of AliasPair
         Pairs of lines near an alias with the step rate, with their beat
         period (not in the mean: it averages out over many beats).
+    warnings : tuple of str
+        Where the environment lies outside the closed form's range (:func:`theory_warnings`).
     """
 
     algorithm: Algorithm
@@ -589,6 +614,7 @@ class EnvironmentDrift:
     coning_axis: np.ndarray
     sculling_axis: np.ndarray
     near_aliases: tuple = ()
+    warnings: tuple = ()
 
     def _sum(self, name):
         return sum((getattr(p, name) for p in self.parts), np.zeros(3))
@@ -654,6 +680,47 @@ class EnvironmentDrift:
         return float(self._sum("algorithm_sculling") @ self.sculling_axis)
 
 
+#: Rotation-vector amplitude above which the second-order closed form is flagged [rad]: the terms left out are
+#: of relative order θ², 1 % here.
+SMALL_ANGLE = 0.1
+
+
+def theory_warnings(environment: Environment, sample_interval: float) -> tuple:
+    """Where the environment lies outside the range of the closed form (empty when inside).
+
+    The closed form is second order in the vibration amplitude and exact in
+    ωh.  Its expansion parameters are the rotation-vector amplitude θ of the
+    vibration (:meth:`~strapdown.analysis.vibration.environment.Environment.rotation_amplitude`)
+    and the largest rotation over one sample ``Ω h`` (Ω: the rate amplitude,
+    :meth:`~strapdown.analysis.vibration.environment.Environment.rate_amplitude`);
+    the terms left out are of relative order θ² (and the algorithm's own
+    higher-order terms of order ``(Ω h)²``).  Either above
+    :data:`SMALL_ANGLE` is flagged.
+
+    Parameters
+    ----------
+    environment : Environment
+        The environment.
+    sample_interval : float
+        h [s], > 0.
+
+    Returns
+    -------
+    tuple of str
+    """
+    h = positive(sample_interval, "sample_interval")
+    out = []
+    theta = environment.rotation_amplitude()
+    if theta > SMALL_ANGLE:
+        out.append(f"outside the small-angle range of the closed form: the vibration's rotation-vector amplitude reaches {theta:.3g} rad "
+                   f"(lines plus 3σ of the spectra), and the terms it leaves out are of relative order θ² = {theta**2:.3g}")  # fmt: skip
+    step_angle = environment.rate_amplitude() * h
+    if step_angle > SMALL_ANGLE:
+        out.append(f"outside the small-angle range of the closed form: the rotation over one sample reaches Ω h = {step_angle:.3g} rad "
+                   f"(Ω: lines plus 3σ of the spectra's rate), and terms of relative order (Ω h)² = {step_angle**2:.3g} are left out")  # fmt: skip
+    return tuple(out)
+
+
 def environment_drift(algorithm: Algorithm, environment: Environment, sample_interval: float, *, rtol: float = QUADRATURE_RTOL,
                       min_beat_period: float = NEAR_ALIAS_BEAT) -> EnvironmentDrift:  # fmt: skip
     """Mean coning drift and sculling rectification of ``algorithm`` in ``environment`` (module docstring).
@@ -702,6 +769,10 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
+    if not isinstance(environment, Environment):
+        raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")
+    if not environment.has_motion:
+        raise ValueError("Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got none: its drift would be zero by construction")
     D = coning_drift_function(algorithm)
     r = response_integrals(environment, sample_interval, (D,), rtol=rtol)
     parts = []
@@ -718,7 +789,8 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
     scull = sum((p.total_sculling for p in parts), np.zeros(3))
     c_axis = _axis(r.true[:, 0].sum(axis=0) if r.parts else np.zeros(3), total)
     s_axis = _axis(r.true[:, 1].sum(axis=0) if r.parts else np.zeros(3), scull)
-    return EnvironmentDrift(algorithm, float(sample_interval), tuple(parts), c_axis, s_axis, tuple(p for p in pairs if not p.exact))
+    return EnvironmentDrift(algorithm, float(sample_interval), tuple(parts), c_axis, s_axis, tuple(p for p in pairs if not p.exact),
+                            theory_warnings(environment, sample_interval))  # fmt: skip
 
 
 def line_response(algorithm: Algorithm, line: VibrationLine, environment: Environment, sample_interval: float) -> DriftPart:

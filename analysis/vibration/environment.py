@@ -466,6 +466,43 @@ class Environment:
         return Environment(self.lines, self.spectra, gyro, accelerometer, self.name, self.description)
 
     @property
+    def has_motion(self) -> bool:
+        """Some line or spectrum has a nonzero amplitude or density."""
+        return any(np.any(ln.amplitude != 0) for ln in self.lines) or any(np.any(sp.density != 0) for sp in self.spectra)
+
+    def rotation_amplitude(self) -> float:
+        """Bound on the rotation-vector amplitude θ of the vibration [rad]: Σ |A|/ω over the lines plus 3σ of the spectra's angle.
+
+        The spectra's angle variance ``∫ Σ_c G_cc(f)/ω² df`` (rate channels) is
+        taken by the trapezoidal rule in ln f on the table.
+
+        Returns
+        -------
+        float
+        """
+        lines = sum(float(np.linalg.norm(ln.amplitude[:3])) / ln.omega for ln in self.lines)
+        var = 0.0
+        for sp in self.spectra:
+            f = sp.frequency
+            g = np.real(np.trace(sp.density[:, :3, :3], axis1=1, axis2=2)) / (2.0 * math.pi * f) ** 2 * f
+            var += float(np.trapezoid(g, np.log(f)))
+        return lines + 3.0 * math.sqrt(var)
+
+    def rate_amplitude(self) -> float:
+        """Bound on the body-rate amplitude Ω [rad/s]: Σ |A| over the lines plus 3σ of the spectra's rate.
+
+        Returns
+        -------
+        float
+        """
+        lines = sum(float(np.linalg.norm(ln.amplitude[:3])) for ln in self.lines)
+        var = 0.0
+        for sp in self.spectra:
+            f = sp.frequency
+            var += float(np.trapezoid(np.real(np.trace(sp.density[:, :3, :3], axis1=1, axis2=2)) * f, np.log(f)))
+        return lines + 3.0 * math.sqrt(var)
+
+    @property
     def frequency_range(self) -> tuple:
         """Lowest and highest frequency of any line or spectrum [Hz] (None if empty)."""
         values = [ln.frequency for ln in self.lines] + [f for s in self.spectra for f in s.band]
@@ -781,6 +818,10 @@ def load_environment(path, *, limits: EnvironmentLimits = ENVIRONMENT_LIMITS) ->
     if len(spectra_tables) > limits.spectra:
         raise ValueError(f"{path}: more than the limit of {limits.spectra} spectra")
     spectra = [_spectrum(path, i, t, limits) for i, t in enumerate(spectra_tables)]
+    if not lines and not spectra:
+        raise ValueError(f"{path}: no motion: expected at least one [[line]], [[sculling_line]], [[vibration_line]] or [[spectrum]], got none")
+    if not any(np.any(ln.amplitude != 0) for ln in lines) and not any(np.any(sp.density != 0) for sp in spectra):
+        raise ValueError(f"{path}: no motion: every line amplitude and spectral density is zero")
     sampling = data.get("sampling", {})
     rs = _Reader(path, "[sampling]", sampling, {"decimation"}, limits)
     decimation = rs.integer("decimation", 1, low=1, high=1024)
