@@ -48,6 +48,8 @@ Public API
 
    MonteCarloDrift
    monte_carlo_drift
+   Resolution
+   resolution
    draw_components
    sensor_matrices
    BAND_COMPONENTS
@@ -73,7 +75,7 @@ from ..core.validation import as_int, positive
 from . import _kernel as template
 from .environment import Environment, Spectrum
 
-__all__ = ["MonteCarloDrift", "monte_carlo_drift", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
+__all__ = ["MonteCarloDrift", "monte_carlo_drift", "Resolution", "resolution", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
 
 #: Random sinusoids per spectrum and realisation [count]: enough that the drift of a realisation,
 #: a quadratic form of Gaussian amplitudes, is nearly Gaussian, so that the normal interval is honest.
@@ -494,3 +496,75 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
         out_pairs[start : start + len(sel)] = 0.5 * (res[0::2] + res[1::2])
     total_samples = 2 * pairs * (warm_samples + steps * N * M)
     return MonteCarloDrift(out_pairs, 2 * pairs, int(total_samples), steps * N * h)
+
+
+# --------------------------------------------------------------------------- verdict
+#: A Monte Carlo resolves a value when its interval's half-width is below this fraction of the value's magnitude [-].
+RESOLVED_FRACTION = 0.5
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """Whether a Monte Carlo interval covers a value and is narrow enough to say anything about it.
+
+    Attributes
+    ----------
+    covers : bool
+        The interval contains the value.
+    resolved : bool
+        The interval's half-width is below ``fraction`` × |value|: it confirms
+        the value's size and sign, not only its compatibility with zero.
+    half_width : float
+        Half-width of the interval [units of the value].
+    more_pairs : int
+        Further pairs needed to resolve it (standard error ∝ 1/√pairs; 0 when resolved) [count].
+    criterion : str
+        The criterion in words, for reports.
+    """
+
+    covers: bool
+    resolved: bool
+    half_width: float
+    more_pairs: int
+    criterion: str
+
+
+def resolution(mean: float, standard_error: float, value: float, *, pairs: int, level: float = 0.95, fraction: float = RESOLVED_FRACTION) -> Resolution:
+    """Verdict of a Monte Carlo mean against a closed-form value, able to say "not resolved".
+
+    An interval as wide as the value covers it whatever the value is (zero
+    included), and confirms nothing: the verdict requires the half-width to be
+    below ``fraction`` × |value| before it calls the value resolved, and says
+    how many more pairs would get there.
+
+    Parameters
+    ----------
+    mean, standard_error : float
+        Monte Carlo mean and its standard error.
+    value : float
+        The closed-form value.
+    pairs : int, keyword-only
+        Pairs (independent samples) behind the standard error [count].
+    level : float, keyword-only
+        Confidence level of the normal interval.
+    fraction : float, keyword-only
+        Largest half-width, relative to |value|, of a resolved interval.
+
+    Returns
+    -------
+    Resolution
+
+    Examples
+    --------
+    >>> r = resolution(-2.65e-5, 1.63e-5, 3.15e-5, pairs=60)
+    >>> r.covers, r.resolved, r.more_pairs > 0
+    (True, False, True)
+    """
+    z = float(norm.ppf(0.5 + 0.5 * float(level)))
+    hw = z * abs(float(standard_error))
+    covers = abs(float(mean) - float(value)) <= hw
+    target = float(fraction) * abs(float(value))
+    resolved = covers and hw < target
+    more = 0 if hw < target else (math.inf if target == 0.0 else math.ceil(pairs * (hw / target) ** 2) - int(pairs))
+    crit = f"{100 * level:g} % interval half-width below {fraction:g} × |closed form|"
+    return Resolution(bool(covers), bool(resolved), hw, int(more) if math.isfinite(more) else -1, crit)

@@ -372,9 +372,10 @@ def classical_algorithm(samples: int, history: int = 0) -> tuple:
     A registry algorithm with the lag sums of
     :func:`strapdown.derivations.coning.drift.optimal_coning_algorithm` (the
     same drift under any single line) is preferred, first one whose pairwise
-    coefficients are those of Ignagni's form (the tuned algorithm's), then any
-    (``two-sample`` for N = 2, ``optimal-3`` for N = 3); without one, the
-    generated algorithm, which no registry name reaches.
+    coefficients are those of Ignagni's form (the tuned algorithm's form:
+    ``two-sample`` for N = 2, ``compressed-3`` for N = 3), then any with the
+    same lag sums; without one, the generated algorithm, which no registry name
+    reaches.
 
     Parameters
     ----------
@@ -391,8 +392,8 @@ def classical_algorithm(samples: int, history: int = 0) -> tuple:
     Examples
     --------
     >>> [classical_algorithm(n)[0].name for n in (2, 3)]
-    ['two-sample', 'optimal-3']
-    >>> classical_algorithm(4)[1]
+    ['two-sample', 'compressed-3']
+    >>> classical_algorithm(7)[1]      # no seven-sample algorithm in the registry
     False
     """
     generated = optimal_coning_algorithm(samples, history=history)
