@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The environment file of the environment commands' baselines.
-ENVIRONMENT = str(ROOT / "analysis" / "coning" / "environments" / "coning-10hz.toml")
+ENVIRONMENT = str(ROOT / "analysis" / "vibration" / "environments" / "coning-10hz.toml")
 
 #: A valid, fast invocation of every command (the fuzz mutates one option at a time).
 BASELINES = {

@@ -323,6 +323,6 @@ def register(commands) -> None:
     p.add_argument("--max-rate-hz", type=number, default=DEFAULT_RATES[-1], metavar="F", help=f"highest sample rate searched [Hz] (default {DEFAULT_RATES[-1]:g})")
     p.add_argument("--rates", type=count, default=len(DEFAULT_RATES), metavar="R", help=f"sample rates on the search grid [count] (default {len(DEFAULT_RATES)})")
     p.add_argument("--margin", type=number, default=FREQUENCY_MARGIN, metavar="D",
-                   help=f"relative frequency margin the budget must also hold at, in [0, 1) [dimensionless] (default {FREQUENCY_MARGIN:g})")  # fmt: skip
+                   help=f"relative frequency margin the budget must also hold at [dimensionless], 0 ≤ D < 1 (default {FREQUENCY_MARGIN:g})")  # fmt: skip
     add_limits(p)
 
