@@ -6,16 +6,18 @@ sculling lines, spectra, the gyro's and accelerometers' filters, decimation.
 
 from __future__ import annotations
 
+import math
 import sys
 
 import numpy as np
 
 from ...derivations.coning.registry import get
-from ..core.units import DEG, RAD_PER_S_TO_DEG_PER_H
-from ..core.validation import positive
+from ..core.units import DEG, DEG_PER_RT_H_TO_RAD_PER_RT_S, RAD_PER_S_TO_DEG_PER_H
+from ..core.validation import nonnegative, positive
 from ..vibration.aliasing import alias_pairs
 from ..vibration.drift import environment_drift, theory_warnings
 from ..vibration.environment import load_environment
+from ..vibration.noise import SensorNoise, noise_through_algorithm
 from ..vibration.rate_design import DEFAULT_RATES, FREQUENCY_MARGIN, rate_design
 from ..vibration.tuning import drift_across_band, tune
 from . import Result
@@ -105,9 +107,12 @@ def drift_command(args) -> Result:
         "coning_axis": _vec(axis),
         "along_coning_axis": {
             "axis": _vec(axis),
-            "total_rad_s": d.total, "total_deg_per_h": d.total * K,
-            "sensor_rad_s": d.sensor, "sensor_deg_per_h": d.sensor * K,
-            "algorithm_rad_s": d.algorithm_part, "algorithm_deg_per_h": d.algorithm_part * K,
+            "total_rad_s": d.total,
+            "total_deg_per_h": d.total * K,
+            "sensor_rad_s": d.sensor,
+            "sensor_deg_per_h": d.sensor * K,
+            "algorithm_rad_s": d.algorithm_part,
+            "algorithm_deg_per_h": d.algorithm_part * K,
         },  # fmt: skip
         "sculling": {
             "total_rectification_vector_m_s2": _vec(d.sculling_vector),
@@ -124,8 +129,7 @@ def drift_command(args) -> Result:
     ax = np.round(axis, 4).tolist()
     lines = [
         f"{alg.name} in {env.name}, h = {h:g} s (decimation {env.decimation}); vectors in body axes (x, y, z)",
-        f"coning drift |u| = {d.magnitude * K:.6g} deg/h, vector {_show(d.total_vector)} deg/h = sensor (pseudo-coning) {_show(d.sensor_vector)} "
-        f"+ algorithm {_show(d.algorithm_vector)}",
+        f"coning drift |u| = {d.magnitude * K:.6g} deg/h, vector {_show(d.total_vector)} deg/h = sensor (pseudo-coning) {_show(d.sensor_vector)} + algorithm {_show(d.algorithm_vector)}",
         f"  projection on the coning axis {ax}: total {d.total * K:+.6g} deg/h = sensor {d.sensor * K:+.6g} + algorithm {d.algorithm_part * K:+.6g}",
         f"rectification error |ΔẆ| = {d.sculling_magnitude:.6g} m/s², vector {_show(d.sculling_vector, 1.0)} m/s²",
         "",
@@ -141,6 +145,25 @@ def drift_command(args) -> Result:
             f"{p.multiple} × the step rate: beat period {p.beat_period:.4g} s; mean 0 over many beats (not in the total), "
             f"but up to {p.amplitude * K:.4g} deg/h over a flight shorter than a beat"
         )
+    if args.arw_deg_per_rt_h or args.quantization_rad:
+        noise = SensorNoise(nonnegative(args.arw_deg_per_rt_h, "--arw-deg-per-rt-h") * DEG_PER_RT_H_TO_RAD_PER_RT_S, nonnegative(args.quantization_rad, "--quantization-rad"))
+        n = noise_through_algorithm(alg, env, h, noise)
+        hours = positive(args.mission_s, "--mission-s")
+        rw = math.sqrt(float(np.trace(n.random_walk)) * hours)
+        residual = float(np.linalg.norm(n.residual)) * hours
+        data["noise"] = {
+            "variance_per_sample_rad2": n.variance, "mean_drift_vector_rad_s": _vec(n.mean),
+            "random_walk_rad2_per_s": [_vec(r) for r in n.random_walk], "equivalent_random_walk_rad_per_rt_s": n.equivalent_random_walk,
+            "algorithm_residual_magnitude_rad_s": float(np.linalg.norm(n.residual)), "crossover_time_s": None if math.isinf(n.crossover_time) else n.crossover_time,
+            "mission_s": hours, "products_random_walk_rad": rw, "residual_accumulated_rad": residual, "products_dominate": n.products_dominate(hours),
+        }  # fmt: skip
+        lines += [
+            "",
+            f"noise through the correction terms (σ² = {n.variance:.3g} rad² per sample and axis): mean drift 0 (white noise), random walk "
+            f"{n.equivalent_random_walk / DEG_PER_RT_H_TO_RAD_PER_RT_S:.3g} deg/√h per axis (the sensor's own ARW {args.arw_deg_per_rt_h:g} deg/√h)",
+            f"over {hours:g} s: products' random walk {rw / DEG * 3600:.3g} arcsec (1σ) against the algorithm's residual {residual / DEG * 3600:.3g} arcsec: "
+            + ("the noise products dominate: a higher-order algorithm buys nothing here" if n.products_dominate(hours) else "the residual dominates"),
+        ]
     return Result(data, "\n".join(lines))
 
 
@@ -309,6 +332,12 @@ def register(commands) -> None:
     p = commands.add("environment-drift", drift_command, "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)")
     add_algorithm(p)
     _common(p)
+    p.add_argument("--arw-deg-per-rt-h", type=number, default=0.0, metavar="N",
+                   help="gyro angle random walk, passed through the correction terms [deg/√h] (default 0: no noise section)")  # fmt: skip
+    p.add_argument("--quantization-rad", type=number, default=0.0, metavar="Q",
+                   help="quantum of the gyro increments, rounding error q²/12 [rad] (default 0)")  # fmt: skip
+    p.add_argument("--mission-s", type=number, default=3600.0, metavar="T",
+                   help="time over which the noise products' random walk is set against the residual [s] (default 3600)")  # fmt: skip
     p = commands.add("design-coning", design_coning_command, "coning algorithm tuned to a vibration environment: coefficients, algorithm file, drift across the band")
     _design_options(p)
     p = commands.add("design-sculling", design_sculling_command, "sculling (velocity) algorithm tuned to a vibration environment: coefficients and algorithm file")
@@ -325,4 +354,3 @@ def register(commands) -> None:
     p.add_argument("--margin", type=number, default=FREQUENCY_MARGIN, metavar="D",
                    help=f"relative frequency margin the budget must also hold at [dimensionless], 0 ≤ D < 1 (default {FREQUENCY_MARGIN:g})")  # fmt: skip
     add_limits(p)
-
