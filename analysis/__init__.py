@@ -42,7 +42,7 @@ subpackage         analysis (numerics)                         derivations (SymP
                    inertial and Kalman alignment, theory of
                    every error term, admissible rocking per
                    method
-``logs``           recorded IMU logs: reading, checks,        none
+``logs``           recorded IMU logs: reading, checks,         none
                    alignment and observability on a log
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)

@@ -232,6 +232,19 @@ HUGE = {
 }
 
 
+def _small_log():
+    """A small synthetic log on disk (read under tiny limits: the reader refuses it by its sample count)."""
+    import tempfile
+    from pathlib import Path
+
+    from strapdown.analysis.logs.synthetic import still_truth, write_synthetic
+
+    return write_synthetic(Path(tempfile.mkdtemp()) / "still.ulg", still_truth(duration=5.0, rate=100.0))
+
+
+HUGE["logs.read_imu_log path"] = (lambda: _module("logs.reader").read_imu_log(_small_log(), limits=budget.Limits(seconds=300.0, memory=1e6)), "path")
+
+
 def _run(call):
     tracemalloc.start()
     try:

@@ -232,7 +232,12 @@ class Commands:
 
     def _group(self, group: str):
         if group not in self._groups:
-            helps = {"algorithms": "the registry of algorithms: list it, show one", "derive": "regenerate a symbolic derivation", "reproduce": "reproduce published tables"}
+            helps = {
+                "algorithms": "the registry of algorithms: list it, show one",
+                "derive": "regenerate a symbolic derivation",
+                "log": "recorded IMU logs: inspect one, and the analyses of a log",
+                "reproduce": "reproduce published tables",
+            }
             parser = self.root.add_parser(group, description=helps.get(group, group))
             self._groups[group] = parser.add_subparsers(dest=f"{group}_command", metavar="SUBCOMMAND", parser_class=_Parser, required=True)
         return self._groups[group]
@@ -256,6 +261,7 @@ COMMANDS = {
     "drift": ("drift", "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)"),
     "environment-drift": ("environment", "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)"),
     "environment-rates": ("environment", "lowest sample rate and load of each algorithm, classical and tuned, for a drift budget in an environment"),
+    "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),

@@ -86,13 +86,16 @@ def _problem(args):
     tuning = _tuning(args)
     steps = duration / tuning.epoch
     check_work(args, _FILTER_STEP.estimate(steps, what=f"{steps:.3g} filter epochs (--duration / --epoch)"))
+    for flag, value in (("--topic", args.topic), ("--segment", args.segment)):
+        if value is not None and args.log is None:
+            raise UsageError(f"{flag} applies to a recorded log (--log)")
     if args.log is not None:
         if args.model != "stationary":
             raise UsageError(f"--model {args.model} does not apply to a recorded log (--log): its positions come from its motion")
         from ..logs.alignment import recorded_problem
-        from ..logs.native import read_log
+        from ._logs import load_log
 
-        log = read_log(args.log)
+        log = load_log(args).longest  # the positions are tracked through one gap-free segment
         return recorded_problem(log, lat, tuning=tuning), log
     if args.model == "stationary":
         return obs.stationary_problem(lat, attitude=attitude, tuning=tuning, duration=duration), None
@@ -171,7 +174,11 @@ def register(commands) -> None:
         default="stationary",
         help="stationary (twelve states at rest), rocking (with rocking states seen through the lever arm) or multi-position (default stationary)",
     )
-    p.add_argument("--log", default=None, help="recorded IMU log, .npz or .csv (docs/recorded-logs.md): the positions of its motion instead of --model [path] (default: none)")
+    p.add_argument(
+        "--log", default=None, help="recorded IMU log, any format of docs/recorded-logs.md: the positions of its motion (the Earth's rate taken out) instead of --model [path] (default: none)"
+    )
+    p.add_argument("--topic", default=None, help="with --log: the stream to read [name] (default: the stream of highest rate that covers the log)")
+    p.add_argument("--segment", default=None, metavar="START:END", help="with --log: the stretch to read, seconds from the log's start [s] (default: the whole log)")
     p.add_argument("--lat-deg", type=float, default=45.0, help="latitude φ [deg], |φ| < 90 (default 45)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="initial heading ψ0 [deg] (default 0)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="initial tilt β0 [deg], |β0| < 90 (default 0)")

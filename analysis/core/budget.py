@@ -71,6 +71,7 @@ __all__ = [
     "AIDED_EPOCH_SECONDS",
     "SENSOR_ERROR_ELEMENT",
     "INTEGRATOR_SAMPLE",
+    "LOG_SAMPLE",
     "coning_simulation",
     "coning_batch",
     "arrays",
@@ -83,6 +84,7 @@ __all__ = [
     "autocorrelation_sums",
     "vibration_monte_carlo",
     "sensor_errors",
+    "recorded_log",
 ]
 
 #: Default time limit [s]: five minutes, far above every documented command.
@@ -382,6 +384,10 @@ SENSOR_ERROR_ELEMENT = CostModel(seconds_per_unit=1e-7, bytes_per_unit=100.0)
 #: An integrator on exact coning increments, per sample (the library's algorithms; a slow black box
 #: takes longer): the increments, the step rotations, their prefix product and the errors (260 B per sample).
 INTEGRATOR_SAMPLE = CostModel(seconds_per_unit=1.5e-6, bytes_per_unit=400.0)
+#: Reading and checking a recorded IMU log, per sample of the stream read: the columns read
+#: (float64), the increments and the checks' one-second windows; the fixed part is the chunk
+#: of the file walked at a time (64 MiB), its record offsets and the records gathered from it.
+LOG_SAMPLE = CostModel(seconds_per_unit=1.5e-6, bytes_per_unit=220.0, fixed_seconds=1.0, fixed_bytes=2.5e8)
 
 
 def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, chunk_steps: int, what: str) -> Estimate:
@@ -562,6 +568,23 @@ def sensor_errors(elements, terms, *, what: str) -> Estimate:
     Estimate
     """
     return SENSOR_ERROR_ELEMENT.estimate(elements, what=what, seconds_factor=max(float(terms), 1.0))
+
+
+def recorded_log(samples, *, what: str) -> Estimate:
+    """Estimate of reading and checking ``samples`` samples of a recorded IMU log.
+
+    Parameters
+    ----------
+    samples : float
+        Samples of the stream read [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    return LOG_SAMPLE.estimate(samples, what=what)
 
 
 def arrays(elements, *, what: str, copies: float = 1.0) -> Estimate:

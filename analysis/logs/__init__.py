@@ -5,10 +5,22 @@ tools); none of them imports this one.
 
 Modules
 -------
+reader
+    :func:`~strapdown.analysis.logs.reader.read_imu_log`: any format, its inventory, segments and checks.
 imu_log
     A recorded IMU log: increments at a constant rate, in body axes.
-native
-    The package's own ``.npz`` and ``.csv`` formats.
+inventory
+    What a log holds: streams, timing, units, frame, filters, GNSS.
+streams
+    From one stream's samples to gap-free constant-rate segments.
+checks
+    Plausibility before analysis.
+ulog, dataflash, rosbag, euroc, native
+    One module per format (PX4, ArduPilot, ROS 1/2, EuRoC/TUM-VI, the package's own).
+framing
+    The record walk of the binary formats.
+synthetic
+    Synthetic logs with a known truth in every format.
 alignment
     Alignment and observability of a recorded log.
 examples
