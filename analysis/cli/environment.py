@@ -148,21 +148,21 @@ def drift_command(args) -> Result:
     if args.arw_deg_per_rt_h or args.quantization_rad:
         noise = SensorNoise(nonnegative(args.arw_deg_per_rt_h, "--arw-deg-per-rt-h") * DEG_PER_RT_H_TO_RAD_PER_RT_S, nonnegative(args.quantization_rad, "--quantization-rad"))
         n = noise_through_algorithm(alg, env, h, noise)
-        hours = positive(args.mission_s, "--mission-s")
-        rw = math.sqrt(float(np.trace(n.random_walk)) * hours)
-        residual = float(np.linalg.norm(n.residual)) * hours
+        mission = positive(args.mission, "--mission")
+        rw = math.sqrt(float(np.trace(n.random_walk)) * mission)
+        residual = float(np.linalg.norm(n.residual)) * mission
         data["noise"] = {
             "variance_per_sample_rad2": n.variance, "mean_drift_vector_rad_s": _vec(n.mean),
             "random_walk_rad2_per_s": [_vec(r) for r in n.random_walk], "equivalent_random_walk_rad_per_rt_s": n.equivalent_random_walk,
             "algorithm_residual_magnitude_rad_s": float(np.linalg.norm(n.residual)), "crossover_time_s": None if math.isinf(n.crossover_time) else n.crossover_time,
-            "mission_s": hours, "products_random_walk_rad": rw, "residual_accumulated_rad": residual, "products_dominate": n.products_dominate(hours),
+            "mission_s": mission, "products_random_walk_rad": rw, "residual_accumulated_rad": residual, "products_dominate": n.products_dominate(mission),
         }  # fmt: skip
         lines += [
             "",
             f"noise through the correction terms (σ² = {n.variance:.3g} rad² per sample and axis): mean drift 0 (white noise), random walk "
             f"{n.equivalent_random_walk / DEG_PER_RT_H_TO_RAD_PER_RT_S:.3g} deg/√h per axis (the sensor's own ARW {args.arw_deg_per_rt_h:g} deg/√h)",
-            f"over {hours:g} s: products' random walk {rw / DEG * 3600:.3g} arcsec (1σ) against the algorithm's residual {residual / DEG * 3600:.3g} arcsec: "
-            + ("the noise products dominate: a higher-order algorithm buys nothing here" if n.products_dominate(hours) else "the residual dominates"),
+            f"over {mission:g} s: products' random walk {rw / DEG * 3600:.3g} arcsec (1σ) against the algorithm's residual {residual / DEG * 3600:.3g} arcsec: "
+            + ("the noise products dominate: a higher-order algorithm buys nothing here" if n.products_dominate(mission) else "the residual dominates"),
         ]
     return Result(data, "\n".join(lines))
 
@@ -336,7 +336,7 @@ def register(commands) -> None:
                    help="gyro angle random walk, passed through the correction terms [deg/√h] (default 0: no noise section)")  # fmt: skip
     p.add_argument("--quantization-rad", type=number, default=0.0, metavar="Q",
                    help="quantum of the gyro increments, rounding error q²/12 [rad] (default 0)")  # fmt: skip
-    p.add_argument("--mission-s", type=number, default=3600.0, metavar="T",
+    p.add_argument("--mission", type=number, default=3600.0, metavar="T",
                    help="time over which the noise products' random walk is set against the residual [s] (default 3600)")  # fmt: skip
     p = commands.add("design-coning", design_coning_command, "coning algorithm tuned to a vibration environment: coefficients, algorithm file, drift across the band")
     _design_options(p)
