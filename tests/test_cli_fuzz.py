@@ -38,6 +38,8 @@ BASELINES = {
     "design-sculling": None,  # needs an environment with sculling: its errors are fuzzed through design-coning's options
     "environment-drift": ["--algorithm", "two-sample", "--environment", ENVIRONMENT, "--sample-interval", "1e-3"],
     "environment-rates": ["--environment", ENVIRONMENT, "--budget-deg-per-h", "25", "--rates", "5", "--tuned-up-to", "2"],
+    "mount-environment": ["--profile", str(ROOT / "analysis" / "vibration" / "environments" / "airframe-profile.toml"),
+                          "--mount", str(ROOT / "analysis" / "vibration" / "environments" / "isolated-imu-mount.toml"), "--tolerance", "0.01"],
     "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
     "drift": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"],
     "multistage": ["--duration", "200", "--step", "0.1"],

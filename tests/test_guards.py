@@ -75,6 +75,14 @@ def _environment():
     return load_environment(QUALIFICATION)
 
 
+def _mount():
+    from strapdown.analysis.vibration.examples import AIRFRAME_PROFILE, ISOLATED_MOUNT
+    from strapdown.analysis.vibration.mount import load_mount
+    from strapdown.analysis.vibration.profile import load_profile
+
+    return load_mount(ISOLATED_MOUNT), load_profile(AIRFRAME_PROFILE)
+
+
 def _aided_inputs():
     from strapdown.analysis.alignment.aided import AidedTuning, aided_inputs
     from strapdown.analysis.alignment.trajectory import Manoeuvre
@@ -180,6 +188,13 @@ HUGE = {
         "sample_interval",
     ),
     "vibration draw_components count": (lambda: _module("vibration.monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
+    "vibration simulate_mount duration": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1e9, sample_interval=1e-3, rng=1), "duration"),
+    "vibration simulate_mount sample_interval": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-12, rng=1), "sample_interval"),
+    "vibration simulate_mount realisations": (
+        lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-3, realisations=10**9, rng=1),
+        "realisations",
+    ),
+    "vibration mount_environment max_points": (lambda: _module("vibration.mount_response").mount_environment(*_mount(), max_points=10**12), "max_points"),
     "filtered_coning_check periods": (
         lambda: _module("vibration.simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
         "periods",
@@ -219,9 +234,31 @@ HUGE = {
         lambda: _module("alignment.comparison").compare_methods(_imu_scenario(), _module("alignment.imu").SensorErrors(), n_trials=10**9, rng=1, methods=("analytic",)),
         "n_trials",
     ),
+    "observability.observability duration": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
+    "observability.observability duration of a million seconds": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e6)),
+        "duration",
+    ),
+    "observability.observability_gramian duration": (
+        lambda: _module("alignment.observability").observability_gramian(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
     "integrators.coning_drift_rate steps": (
         lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
         "steps",
+    ),
+    "integrators.identify max_previous": (
+        lambda: _module("coning.integrators.identification").identify(_integrator(), 64, max_previous=64, limits=budget.Limits(seconds=60.0)),
+        "max_previous",
+    ),
+    "integrators.identify_record max_previous": (
+        lambda: _module("coning.integrators.records").identify_record(
+            _module("coning.integrators.records").Record(np.zeros((200_000, 3)), np.zeros((3125, 3)), np.arange(63, 200_000, 64)), 64, max_previous=64, limits=budget.Limits(memory=1e8)
+        ),
+        "max_previous",
     ),
     "integrators.sculling_rate periods": (
         lambda: _module("coning.integrators.verification").sculling_rate(

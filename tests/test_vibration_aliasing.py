@@ -21,7 +21,6 @@ from strapdown.analysis.core.units import RAD_PER_S_TO_DEG_PER_H
 from strapdown.analysis.vibration.drift import environment_drift, theory_warnings
 from strapdown.analysis.vibration.environment import Environment, VibrationLine, coning_line
 from strapdown.analysis.vibration.examples import QUALIFICATION
-from strapdown.analysis.vibration.monte_carlo import resolution
 from strapdown.analysis.vibration.noise import SensorNoise, noise_monte_carlo, noise_through_algorithm
 from strapdown.analysis.vibration.rate_design import rate_design
 from strapdown.analysis.vibration.sensor_dynamics import ChannelFilter, Sensor, analog_filter, digital_filter
@@ -269,14 +268,6 @@ def test_a_resonant_filter_gives_negative_pseudo_coning():
     wn, zeta = 2 * math.pi * 100.0, 0.2
     resonant = ChannelFilter(analog_filter("transfer_function", num=[wn**2], den=[1.0, 2 * zeta * wn, wn**2]))
     assert _sensor_part(resonant, np.array([60.0]))[0] < 0  # |H| > 1 there: the sensed motion cones more than the true one
-
-
-def test_the_monte_carlo_verdict_can_say_not_resolved():
-    v = resolution(2.65e-5, 3.2e-5 / 1.96, 3.15e-5, pairs=60)  # an interval as wide as the value: it covers, and says nothing
-    assert v.covers and not v.resolved and v.more_pairs > 0
-    w = resolution(1.00e-5, 0.1e-5, 1.02e-5, pairs=60)
-    assert w.covers and w.resolved and w.more_pairs == 0
-    assert not resolution(1.0, 0.01, 2.0, pairs=60).covers
 
 
 # --------------------------------------------------------------------------- 5. noise through the algorithm

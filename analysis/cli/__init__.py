@@ -383,7 +383,7 @@ def _write_stdout(text: str) -> None:
 
 
 # --------------------------------------------------------------------------- errors
-_TICKED = re.compile(r"`([A-Za-z_][\w-]*)`")
+_TICKED = re.compile(r"`(-{0,2}[A-Za-z_][\w-]*)`")  # a Python name, or an option the message names itself
 
 
 def _option_strings(parser) -> dict:
@@ -462,8 +462,8 @@ def _blame(message: str, args, argv=()) -> str:
         choices = {a.dest for a in getattr(parser, "_actions", ()) if a.choices is not None}
         for dest, option in options.items():
             value = getattr(args, dest, None)
-            if dest in choices or not isinstance(value, str) or len(value) < 2:
-                continue
+            if dest in choices or not isinstance(value, str) or len(value) < 2 or (argv and not _typed(option, argv)):
+                continue  # a default the user did not type is never blamed
             if any(w.strip(":,;()") == value for w in words) or f"{value!r}" in message:
                 flag = option
                 break

@@ -258,6 +258,7 @@ def _align(args) -> Result:
             theory_kalman_sigma_deg=deg(kt.sigma),
             nees={"times": k.times.tolist(), "mean": k.nees.tolist(), "band": list(k.nees_band), "dof": k.dim},
             nis={"times": k.times.tolist(), "mean": k.nis.tolist(), "band": list(k.nis_band), "dof": k.meas_dim, "mean_all_epochs": k.nis_all},
+            consistency=mc.consistency().as_dict(),
         )
     text = [
         f"{args.method} alignment, {r.n_trials} trials, T = {data['duration']:g} s: azimuth error mean {data['azimuth_error_mean_deg']:.6g} deg "
@@ -269,6 +270,7 @@ def _align(args) -> Result:
         text.append(f"theory: mean {data['theory_mean_deg']:.6g} deg, rms {data['theory_rms_deg']:.6g} deg (rocking {data['theory_rocking_rms_deg']:.6g} deg)")
     if mc.kalman is not None:
         text.append(f"NEES at the end {k.nees[-1]:.3g} (95 % band {k.nees_band[0]:.3g} .. {k.nees_band[1]:.3g}), NIS {k.nis[-1]:.3g} ({k.nis_band[0]:.3g} .. {k.nis_band[1]:.3g})")
+        text.append(f"consistent (every mean NEES and NIS in its band, 95 % for the family): {mc.consistency()}")
     return Result(data, "\n".join(text))
 
 
@@ -339,9 +341,10 @@ def register(commands) -> None:
     p.add_argument("--velocity-noise-m-s", type=float, default=None, help="kalman only: noise of the zero-velocity reference [m/s] (default 0.001)")
     p.add_argument(
         "--disturbance",
-        choices=["auto", "none", "white", "shaping"],
+        choices=["auto", "none", "white", "shaping", "matched"],
         default=None,
-        help="kalman only: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white or shaping (default auto)",
+        help="kalman only: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white, shaping "
+        "(rocking states driven by white noise) or matched (rocking states matched to the rocking's spectrum) (default auto)",
     )
     p.add_argument("--assumed-period", type=float, default=None, help="kalman only: rocking period the filter assumes [s] (default: the true one)")
     p.add_argument("--assumed-damping", type=float, default=None, help="kalman only: rocking damping ratio the filter assumes [dimensionless] (default: the true one)")

@@ -31,6 +31,7 @@ __all__ = [
     "rad_per_s",
     "deg_per_sqrt_h",
     "micro_g_per_sqrt_hz",
+    "milli_g",
 ]
 
 SECONDS_PER_HOUR = 3600.0
@@ -150,3 +151,22 @@ def micro_g_per_sqrt_hz(x):
         The same value(s) [µg/√Hz].
     """
     return x / STANDARD_GRAVITY * 1e6
+
+
+def milli_g(x):
+    """Acceleration m/s² → mg (thousandths of the standard gravity).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [m/s²].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [mg].
+
+    >>> round(milli_g(2e-3), 4)
+    0.2039
+    """
+    return x / STANDARD_GRAVITY * 1e3

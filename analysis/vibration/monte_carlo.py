@@ -48,8 +48,6 @@ Public API
 
    MonteCarloDrift
    monte_carlo_drift
-   Resolution
-   resolution
    draw_components
    sensor_matrices
    BAND_COMPONENTS
@@ -61,7 +59,7 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -71,15 +69,19 @@ from scipy.stats import norm
 from ...derivations.coning.algorithms import Algorithm
 from ..coning.kernels import available, compiled_module, increment_source
 from ..core import budget
-from ..core.validation import as_int, positive
+from ..core.validation import as_float, as_int, positive
+from ..core.verdicts import Verdict, equivalence
 from . import _kernel as template
 from .environment import Environment, Spectrum
 
-__all__ = ["MonteCarloDrift", "monte_carlo_drift", "Resolution", "resolution", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
+__all__ = ["CLOSED_FORM_MARGIN", "MonteCarloDrift", "monte_carlo_drift", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
 
 #: Random sinusoids per spectrum and realisation [count]: enough that the drift of a realisation,
 #: a quadratic form of Gaussian amplitudes, is nearly Gaussian, so that the normal interval is honest.
 BAND_COMPONENTS = 16
+#: The closed form agrees with the Monte Carlo when the true mean is within this fraction of it (TOST,
+#: :meth:`MonteCarloDrift.agrees`); the closed form leaves out terms of relative order α², far below it.
+CLOSED_FORM_MARGIN = 0.1
 #: Gauss–Legendre nodes per sensor sample [count] (exact for polynomials of degree 5; the test
 #: suite checks the drift against twice as many).
 QUADRATURE_POINTS = 3
@@ -371,6 +373,43 @@ class MonteCarloDrift:
         v = self.pairs[:, 3:] @ a if sculling else self.pairs[:, :3] @ a
         return float(v.mean()), float(v.std(ddof=1) / math.sqrt(v.size))
 
+    def agrees(self, axis, reference: float, relative_margin: float, *, sculling: bool = False, what: str = "the closed form", level: float = 0.95) -> Verdict:
+        """Does the mean component along ``axis`` agree with ``reference`` within ``±relative_margin·|reference|``? (TOST over the pairs.)
+
+        Parameters
+        ----------
+        axis : array_like of three
+            Direction.
+        reference : float
+            The value it should equal (a closed form), non-zero [rad/s or m/s²].
+        relative_margin : float
+            The margin as a fraction of ``|reference|``, > 0.
+        sculling : bool, keyword-only
+            The rectification instead of the drift.
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+            Its trials are the antithetic pairs.
+
+        Raises
+        ------
+        ValueError
+            For a zero reference or a margin that is not positive.
+        """
+        ref = as_float(reference, "reference")
+        if ref == 0.0:
+            raise ValueError("Expected a non-zero `reference` (the margin is relative to it), got 0")
+        m, se = self.along(axis, sculling=sculling)
+        margin = positive(relative_margin, "relative_margin") * abs(ref)
+        text = f"mean within ±{relative_margin:.0%} of {what} (TOST over {self.pairs.shape[0]} antithetic pairs, {level:.0%})"
+        v = equivalence(m, se, self.pairs.shape[0], reference=ref, margin=margin, criterion=text, level=level)
+        return replace(v, trial="pairs")
+
     def interval(self, axis, *, level: float = 0.95, sculling: bool = False) -> tuple:
         """Two-sided confidence interval of the component along ``axis`` (normal, by the pair standard error).
 
@@ -496,75 +535,3 @@ def monte_carlo_drift(algorithm: Algorithm, environment: Environment, sample_int
         out_pairs[start : start + len(sel)] = 0.5 * (res[0::2] + res[1::2])
     total_samples = 2 * pairs * (warm_samples + steps * N * M)
     return MonteCarloDrift(out_pairs, 2 * pairs, int(total_samples), steps * N * h)
-
-
-# --------------------------------------------------------------------------- verdict
-#: A Monte Carlo resolves a value when its interval's half-width is below this fraction of the value's magnitude [-].
-RESOLVED_FRACTION = 0.5
-
-
-@dataclass(frozen=True)
-class Resolution:
-    """Whether a Monte Carlo interval covers a value and is narrow enough to say anything about it.
-
-    Attributes
-    ----------
-    covers : bool
-        The interval contains the value.
-    resolved : bool
-        The interval's half-width is below ``fraction`` × |value|: it confirms
-        the value's size and sign, not only its compatibility with zero.
-    half_width : float
-        Half-width of the interval [units of the value].
-    more_pairs : int
-        Further pairs needed to resolve it (standard error ∝ 1/√pairs; 0 when resolved) [count].
-    criterion : str
-        The criterion in words, for reports.
-    """
-
-    covers: bool
-    resolved: bool
-    half_width: float
-    more_pairs: int
-    criterion: str
-
-
-def resolution(mean: float, standard_error: float, value: float, *, pairs: int, level: float = 0.95, fraction: float = RESOLVED_FRACTION) -> Resolution:
-    """Verdict of a Monte Carlo mean against a closed-form value, able to say "not resolved".
-
-    An interval as wide as the value covers it whatever the value is (zero
-    included), and confirms nothing: the verdict requires the half-width to be
-    below ``fraction`` × |value| before it calls the value resolved, and says
-    how many more pairs would get there.
-
-    Parameters
-    ----------
-    mean, standard_error : float
-        Monte Carlo mean and its standard error.
-    value : float
-        The closed-form value.
-    pairs : int, keyword-only
-        Pairs (independent samples) behind the standard error [count].
-    level : float, keyword-only
-        Confidence level of the normal interval.
-    fraction : float, keyword-only
-        Largest half-width, relative to |value|, of a resolved interval.
-
-    Returns
-    -------
-    Resolution
-
-    Examples
-    --------
-    >>> r = resolution(-2.65e-5, 1.63e-5, 3.15e-5, pairs=60)
-    >>> r.covers, r.resolved, r.more_pairs > 0
-    (True, False, True)
-    """
-    z = float(norm.ppf(0.5 + 0.5 * float(level)))
-    hw = z * abs(float(standard_error))
-    covers = abs(float(mean) - float(value)) <= hw
-    target = float(fraction) * abs(float(value))
-    resolved = covers and hw < target
-    more = 0 if hw < target else (math.inf if target == 0.0 else math.ceil(pairs * (hw / target) ** 2) - int(pairs))
-    crit = f"{100 * level:g} % interval half-width below {fraction:g} × |closed form|"
-    return Resolution(bool(covers), bool(resolved), hw, int(more) if math.isfinite(more) else -1, crit)

@@ -17,6 +17,12 @@ At the command line::
     strapdown design-coning --samples 2 --environment my-imu.toml --sample-interval 1e-3
     strapdown environment-rates --environment my-imu.toml --budget-deg-per-h 0.5
 
+A designer who has a linear random-vibration specification of the structure
+(breakpoints in g²/Hz) and an IMU mount, rather than the IMU's own spectra,
+gets the environment from them (:doc:`../mount-files`)::
+
+    strapdown mount-environment --profile airframe.toml --mount mount.toml --out my-imu.toml --sample-interval 1e-3
+
 This page writes a small environment, checks the closed form against a
 simulation that shares nothing with it, and then runs the package's example of
 a MEMS IMU in a rotorcraft bay.
