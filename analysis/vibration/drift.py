@@ -772,7 +772,10 @@ def environment_drift(algorithm: Algorithm, environment: Environment, sample_int
     if not isinstance(environment, Environment):
         raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")
     if not environment.has_motion:
-        raise ValueError("Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got none: its drift would be zero by construction")
+        raise ValueError(
+            "Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got no motion: no line or spectrum, "
+            "or every amplitude and density zero (a file of sensors only); its drift would be zero by construction"
+        )
     D = coning_drift_function(algorithm)
     r = response_integrals(environment, sample_interval, (D,), rtol=rtol)
     parts = []

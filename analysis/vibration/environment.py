@@ -773,8 +773,7 @@ def load_environment(path, *, limits: EnvironmentLimits = ENVIRONMENT_LIMITS) ->
     Raises
     ------
     ValueError
-        A file that cannot be read or is not valid TOML, a file without motion
-        (no line or spectrum, or only zero amplitudes), an unknown key, a
+        A file that cannot be read or is not valid TOML, an unknown key, a
         missing one, a value of the wrong kind or out of range, a filter that is
         unstable or has a gain other than 1 at zero frequency, a spectrum that
         is not positive semidefinite; the message names the file, the table
@@ -824,8 +823,4 @@ def load_environment(path, *, limits: EnvironmentLimits = ENVIRONMENT_LIMITS) ->
     decimation = rs.integer("decimation", 1, low=1, high=1024)
     gyro = _sensor(path, data, "gyro", decimation, limits)
     accel = _sensor(path, data, "accelerometer", decimation, limits)
-    if not lines and not spectra:
-        raise ValueError(f"{path}: no motion: expected at least one [[line]], [[sculling_line]], [[vibration_line]] or [[spectrum]], got none")
-    if not any(np.any(ln.amplitude != 0) for ln in lines) and not any(np.any(sp.density != 0) for sp in spectra):
-        raise ValueError(f"{path}: no motion: every line amplitude and spectral density is zero")
     return Environment(tuple(lines), tuple(spectra), gyro, accel, top.text("name", path.stem), top.text("description", ""))

@@ -347,7 +347,10 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
         raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")
     u = positive(budget, "budget")
     if not environment.has_motion:
-        raise ValueError("Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got none: without it every algorithm meets any budget")
+        raise ValueError(
+            "Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got no motion: no line or spectrum, "
+            "or every amplitude and density zero; without motion every algorithm would meet any budget"
+        )
     grid = np.sort(as_array(rates, "rates", nonempty=True).ravel())
     if np.any(grid <= 0):
         raise ValueError("Expected `rates` > 0")
