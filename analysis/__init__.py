@@ -44,7 +44,9 @@ subpackage         analysis (numerics)                         derivations (SymP
                    every error term, admissible rocking per
                    method
 ``logs``           recorded IMU logs: reading, checks,         none
-                   alignment and observability on a log
+                   alignment and observability on a log,
+                   the vibration environment of a log,
+                   algorithms replayed on it, static noise
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

@@ -118,6 +118,13 @@ def _bound_case():
     return BoundCase("white", "normal", math.radians(45.0), 0.0, 0.0, math.radians(1.0))
 
 
+def _log_segment():
+    from strapdown.analysis.logs.imu_log import ImuLog
+
+    n = 10_000
+    return ImuLog(1e-3 * np.arange(1, n + 1), np.zeros((n, 3)), np.zeros((n, 3)))
+
+
 # (call, the argument its message must name); each call would allocate gigabytes or run for hours.
 HUGE = {
     "coning.simulate duration": (lambda: __import__("strapdown.analysis.coning.simulator", fromlist=["simulate"]).simulate(ALG, _coning(), 0.0025, 1e12), "duration"),
@@ -234,6 +241,9 @@ HUGE = {
         lambda: _module("alignment.comparison").compare_methods(_imu_scenario(), _module("alignment.imu").SensorErrors(), n_trials=10**9, rng=1, methods=("analytic",)),
         "n_trials",
     ),
+    "logs.replay segments": (lambda: _module("logs.replay").replay([_log_segment()] * 10**6, [get("two-sample")]), "segments"),
+    "logs.estimate_environment segments": (lambda: _module("logs.environment_estimate").estimate_environment([_log_segment()] * 10**6), "segments"),
+    "logs.welch_cross_spectra stretches": (lambda: _module("logs.cross_spectra").welch_cross_spectra([np.zeros((10_000, 6))] * 10**6, 1e-3, 1000), "stretches"),
     "observability.observability duration": (
         lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
         "duration",

@@ -235,7 +235,7 @@ class Commands:
             helps = {
                 "algorithms": "the registry of algorithms: list it, show one",
                 "derive": "regenerate a symbolic derivation",
-                "log": "recorded IMU logs: inspect one, and the analyses of a log",
+                "log": "recorded IMU logs: inspect one, its vibration environment, algorithms replayed on it, the noise of a static stretch",
                 "reproduce": "reproduce published tables",
             }
             parser = self.root.add_parser(group, description=helps.get(group, group))
@@ -261,6 +261,9 @@ COMMANDS = {
     "drift": ("drift", "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)"),
     "environment-drift": ("environment", "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)"),
     "environment-rates": ("environment", "lowest sample rate and load of each algorithm, classical and tuned, for a drift budget in an environment"),
+    "log allan": ("log_analysis", "Allan deviation of a static log: ARW, bias instability and RRW with intervals, written as a sensor file"),
+    "log coning": ("log_analysis", "replay coning algorithms on a log: mean correction rate of each, their exact drift differences, the closed form beside"),
+    "log environment": ("log_analysis", "vibration environment of a log: lines and cross-spectra with intervals, written as an environment file"),
     "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),

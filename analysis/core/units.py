@@ -25,6 +25,8 @@ __all__ = [
     "PPM",
     "DEG_PER_RT_H_TO_RAD_PER_RT_S",
     "M_S_PER_RT_H_TO_M_S_PER_RT_S",
+    "DEG_PER_H_PER_RT_H_TO_RAD_PER_S_PER_RT_S",
+    "MICRO_G",
     "deg",
     "rad",
     "deg_per_h",
@@ -55,6 +57,10 @@ PPM = 1e-6
 DEG_PER_RT_H_TO_RAD_PER_RT_S = DEG / math.sqrt(SECONDS_PER_HOUR)
 #: Factor from m/s/√h (velocity random walk) to m/s/√s.
 M_S_PER_RT_H_TO_M_S_PER_RT_S = 1.0 / math.sqrt(SECONDS_PER_HOUR)
+#: Factor from deg/h/√h (rate random walk) to rad/s/√s.
+DEG_PER_H_PER_RT_H_TO_RAD_PER_S_PER_RT_S = DEG_PER_H_TO_RAD_PER_S / math.sqrt(SECONDS_PER_HOUR)
+#: One micro-g [m/s²] (g the standard gravity).
+MICRO_G = STANDARD_GRAVITY * 1e-6
 
 
 def deg(x):

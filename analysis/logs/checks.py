@@ -19,7 +19,7 @@ each window), so their cost is one pass over the samples:
 ``gravity direction``
     Gravity reads about −g on z (FRD: z down); +g on z is a log with z up (FLU, ENU).
 ``gyro scale``
-    Where the body turns, the accelerometers see gravity turn in the body axes:
+    Where the body turns across gravity, the accelerometers see gravity turn in the body axes:
     ``Δf ≈ −Δθ × f``.  The least-squares factor k between the gyros' turn and the
     accelerometers' is 1; k = π/180 means degrees logged as radians, k = interval means
     rates in the increment columns.
@@ -268,7 +268,9 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     pred = -np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same])
     df = np.diff(force, axis=0)[same]
     den = float(np.sum(pred * pred))
-    moved = math.degrees(float(np.sqrt(np.mean(np.sum(dth * dth, axis=1))))) if dth.size else 0.0
+    # a turn about gravity does not move it in the body axes: only the part across it can be compared
+    across = np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same]) / max(float(np.median(fmag)), 1e-12) if dth.size else dth
+    moved = math.degrees(float(np.sqrt(np.mean(np.sum(across * across, axis=1))))) if dth.size else 0.0
     if den > 0 and moved > 0.5 and dth.shape[0] >= 5:
         k = float(np.sum(df * pred) / den)
         if 0.7 < k < 1.4:
