@@ -63,6 +63,12 @@ def _sweep_case():
     return SweepCase(latitude=math.radians(45.0), sigma=math.radians(1.0))
 
 
+def _lines():
+    from strapdown.analysis.vibration.environment import Environment, VibrationLine
+
+    return Environment((VibrationLine(60.0, [0.1, 0, 0, 0, 0, 0]), VibrationLine(140.0, [0, 0.1j, 0, 0, 0, 0])))
+
+
 def _environment():
     from strapdown.analysis.vibration.environment import load_environment
 
@@ -200,6 +206,15 @@ HUGE = {
         lambda: _module("vibration.simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
         "periods",
     ),
+    "vibration line_drift_check periods": (
+        lambda: _module("vibration.simulation").line_drift_check(get("two-sample"), _lines(), 1 / 400, periods=10**9),
+        "periods",
+    ),
+    "vibration noise_monte_carlo realisations": (
+        lambda: _module("vibration.noise").noise_monte_carlo(get("two-sample"), _lines(), 1e-3, _module("vibration.noise").SensorNoise(1e-3), realisations=10**9, steps=100),
+        "realisations",
+    ),
+    "vibration rate_design rates": (lambda: _module("vibration.rate_design").rate_design(_environment(), 1e-6, rates=np.geomspace(100.0, 1e4, 10**6)), "rates"),
     "trajectory.position_solution duration": (lambda: _module("alignment.trajectory").position_solution(_module("alignment.trajectory").Manoeuvre(), 1e9), "duration"),
     "trajectory.trajectory_state times": (lambda: _module("alignment.trajectory").trajectory_state(_module("alignment.trajectory").Manoeuvre(), [0.0, 1e9]), "times"),
     "trajectory.trajectory_increments duration": (lambda: _module("alignment.trajectory").trajectory_increments(_module("alignment.trajectory").Manoeuvre(), 100.0, 1e9), "duration"),

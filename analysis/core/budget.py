@@ -62,6 +62,8 @@ __all__ = [
     "VIBRATION_DRAW",
     "VIBRATION_PAIR_BYTES",
     "FILTERED_CONING_SAMPLE",
+    "SPECTRUM_SEGMENT",
+    "RESPONSE_EVALUATION",
     "TRAJECTORY_STEP",
     "TRAJECTORY_SAMPLE",
     "AIDED_FIX",
@@ -355,6 +357,12 @@ VIBRATION_SAMPLE = CostModel(seconds_per_unit=3e-8, bytes_per_unit=0.0, fixed_se
 VIBRATION_DRAW = CostModel(seconds_per_unit=5e-5, bytes_per_unit=3e3)
 #: Memory per antithetic pair of the vibration Monte Carlo: its spawned stream and its result row [bytes].
 VIBRATION_PAIR_BYTES = 1e3
+#: Product-integration weights of a vibration spectrum, per table segment (eight interpolated spectra, their
+#: Legendre moments), computed once per spectrum; chunked, so the working set does not grow with the table.
+SPECTRUM_SEGMENT = CostModel(seconds_per_unit=3e-5, bytes_per_unit=600.0, fixed_seconds=0.05, fixed_bytes=2e7)
+#: One node of a vibration response integral, per algorithm response function integrated at it (the sensors'
+#: responses, the function, the drift columns).
+RESPONSE_EVALUATION = CostModel(seconds_per_unit=3e-6, bytes_per_unit=0.0, fixed_seconds=0.0, fixed_bytes=2e7)
 #: DOP853 reference of a coning line seen through filtered gyros (rtol 1e-13), per sensor sample
 #: (at least 16 integration steps per coning period): the integration to every sample and the states kept.
 FILTERED_CONING_SAMPLE = CostModel(seconds_per_unit=3e-3, bytes_per_unit=1e3, fixed_seconds=0.5)
