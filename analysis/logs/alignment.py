@@ -2,7 +2,9 @@
 
 :func:`align_log` runs a method on a log once (no Monte Carlo): ``analytic``,
 ``inertial``, ``kalman`` (the inertial-frame coarse stage, then the filter
-from its result and covariance, :mod:`~strapdown.analysis.alignment.coarse_to_fine`) or ``compass``.
+from its result and covariance, :mod:`~strapdown.analysis.alignment.coarse_to_fine`), ``compass``,
+``multiposition`` (:mod:`~strapdown.analysis.logs.positions`) or ``aided`` (a drive with GNSS,
+:mod:`~strapdown.analysis.logs.aided`).
 :func:`recorded_problem` finds the positions of the log's motion (turns larger
 than a threshold between still stretches) and builds the multi-position
 observability problem of :mod:`~strapdown.analysis.alignment.observability`.
@@ -67,7 +69,8 @@ class LogAlignment:
         ``"stable"`` (analytic), ``"end"`` or ``"first position"`` (multiposition: the mean attitude
         of the first still stretch).
     heading_sigma : float or None
-        Kalman: the filter's standard deviation of the azimuth at the end [rad].
+        ``kalman`` and ``aided``: the filter's standard deviation of the azimuth at the end;
+        ``multiposition``: that of its least squares (with the sensor noise given) [rad].
     heading_error : float or None
         Against the log's metadata, where it carries the truth [rad] (and, for
         the epoch-based methods, where the log ends on a whole epoch: the
@@ -80,7 +83,7 @@ class LogAlignment:
     positions : tuple of LogPosition
         ``multiposition``: the still stretches aligned (empty for the other methods).
     gyro_bias, accel_bias : ndarray or None
-        ``multiposition``: the sensor biases it estimated, body axes [rad/s, m/s²].
+        ``multiposition`` and ``aided``: the sensor biases estimated, body axes [rad/s, m/s²].
     tilt_sigma : tuple of float or None
         The standard deviations of the two tilts at the reference instant, where the method gives them [rad].
     multiposition : MultiPositionAlignment or None
