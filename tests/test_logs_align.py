@@ -213,3 +213,12 @@ def test_aided_alignment_with_positions_only(tmp_path):
     assert abs(_wrap(r.heading - float(end.heading[0]))) < 3.0 * r.heading_sigma
     with_velocity = align_log(rec.longest, LAT, method="aided", gnss=rec.inventory.gnss, aided=tuning)
     assert with_velocity.heading_sigma < r.heading_sigma  # the velocities add information
+
+
+def test_a_one_position_method_warns_on_a_log_that_turns(tmp_path, capsys):
+    path, _, _ = _turntable(tmp_path, [0.5, 0.5 + math.pi])
+    assert cli.main(["align", "--method", "analytic", "--lat-deg", "45", "--log", str(path)]) == 0
+    warnings = [line for line in capsys.readouterr().err.splitlines() if "positions" in line]
+    assert len(warnings) == 1 and "2 positions" in warnings[0] and "180°" in warnings[0] and "multiposition" in warnings[0]
+    assert cli.main(["align", "--method", "analytic", "--lat-deg", "45", "--log", str(_still(tmp_path))]) == 0
+    assert "positions" not in capsys.readouterr().err

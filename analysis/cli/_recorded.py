@@ -210,6 +210,17 @@ def align_recorded(args, options) -> Result:
     gnss = recorded.inventory.gnss
     if args.method == "aided" and gnss is None:
         raise UsageError(f"--method aided needs GNSS fixes in the log, and {recorded.path.name} has none (log inspect lists its topics)")
+    if args.method in ("analytic", "inertial", "kalman", "compass"):  # methods that take the block for still (or rocking about one attitude)
+        from ..logs.positions import find_positions
+
+        found = find_positions(log, lat)
+        if len(found) > 1:
+            turns = ", ".join(f"{deg(p.angle):.3g}°" for p in found[1:])
+            sys.stderr.write(
+                f"strapdown align: warning: {recorded.path.name}: the block turns between {len(found)} positions (turns of {turns} from the first): "
+                f"--method {args.method} takes it for one; --method multiposition uses the positions\n"
+            )
+            sys.stderr.flush()
     r = align_log(log, lat, method=args.method, tuning=tuning, formula=options.formula, observation=options.observation, inertial_epoch=options.inertial_epoch,
                   gnss=gnss, aided=aided, limits=limits_from(args))  # fmt: skip
     data = {
