@@ -292,6 +292,18 @@ def _small_log():
 HUGE["logs.read_imu_log path"] = (lambda: _module("logs.reader").read_imu_log(_small_log(), limits=budget.Limits(seconds=300.0, memory=1e6)), "path")
 
 
+def _drive():
+    """A short drive with its GNSS fixes (refused under tiny limits by the size of its log)."""
+    from strapdown.analysis.logs.imu_log import ImuLog
+    from strapdown.analysis.logs.synthetic import vehicle_truth
+
+    truth, _ = vehicle_truth(_module("alignment.trajectory").Manoeuvre(speed=5.0), duration=10.0, rate=20.0)
+    return ImuLog(truth.time, truth.dtheta, truth.dv), truth.gnss
+
+
+HUGE["logs.aided_log_alignment log"] = (lambda: _module("logs.aided").aided_log_alignment(*_drive(), limits=budget.Limits(seconds=300.0, memory=1e3)), "log")
+
+
 def _run(call):
     tracemalloc.start()
     try:

@@ -36,7 +36,7 @@ Public API
 ----------
 AidedTuning, AidedSequence, aided_sequence, AidedInputs, aided_inputs,
 AidedResult, aided_alignment, aided_floor, AidedKernel, AidedMonteCarlo,
-aided_monte_carlo, time_to_align
+aided_monte_carlo, time_to_align, navigator_step, ned_offset
 """
 
 from __future__ import annotations
@@ -73,6 +73,8 @@ __all__ = [
     "AidedMonteCarlo",
     "aided_monte_carlo",
     "time_to_align",
+    "navigator_step",
+    "ned_offset",
 ]
 
 
@@ -473,24 +475,9 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
     heading, nees, nis = np.empty((n, U)), np.empty((n, U)), np.empty((n, U))
     Pinv, Sinv = np.linalg.inv(seq.posterior), np.linalg.inv(seq.innovation)
     KT = np.swapaxes(seq.gains, 1, 2)
-    zeros = np.zeros(n)
     u = 0
     for j in range(E):  # one step per epoch, vectorised over trials
-        RN, RE = radii(lat)
-        cl = np.cos(lat)
-        wie = EARTH_RATE * np.stack([cl, zeros, -np.sin(lat)], axis=-1)
-        wen = np.stack([v[:, 1] / (RE + h), -v[:, 0] / (RN + h), -v[:, 1] * np.tan(lat) / (RE + h)], axis=-1)
-        win = wie + wen
-        dv_nav = quat.rotate(q, ep.velocity[:, j] - ba * D) - _cross(win, quat.rotate(q, ep.moment[:, j]))
-        gd = normal_gravity(lat) * (1.0 - 2.0 * h / WGS84_A)
-        v_new = v + dv_nav - _cross(2.0 * wie + wen, v) * D
-        v_new[:, 2] += gd * D
-        va = 0.5 * (v + v_new)
-        lat_new = lat + va[:, 0] * D / (RN + h)
-        lon = lon + va[:, 1] * D / ((RE + h) * cl)
-        h = h - va[:, 2] * D
-        q = quat.multiply(quat.multiply(quat.rotvec_to_quat(-win * D, validate=False), q), quat.multiply(ep.rotation[:, j], quat.rotvec_to_quat(-bg * D, validate=False)))
-        v, lat = v_new, lat_new
+        q, v, lat, lon, h = navigator_step(q, v, lat, lon, h, bg, ba, ep.rotation[:, j], ep.velocity[:, j], ep.moment[:, j], D)
         if u < U and seq.updates[u] == j:
             vt = inputs.truth_velocity[j + 1]
             y = np.concatenate([v - vt, _ned_offset(lat, lon, h, lat_t[j + 1], lon_t[j + 1], h0)], axis=1) + noise[:, u]
@@ -510,6 +497,78 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
             heading[:, u] = -phi[:, 2]
             u += 1
     return AidedResult(seq.update_times, heading, nees, nis, seq.heading_sigma, ge.turn_on, ae.turn_on)
+
+
+def navigator_step(q, v, lat, lon, h, gyro_bias, accel_bias, rotation, velocity, moment, epoch):
+    """One epoch of the aided navigator (local-level NED, WGS-84), vectorised over trials.
+
+    The attitude quaternion Λ of ``C_b^n`` is stepped by the epoch rotation (the
+    gyro bias estimate taken out) and the turn of the navigation frame
+    ``ω_in^n = ω_ie^n + ω_en^n``; the velocity by the rotation-compensated velocity
+    increment (the accelerometer bias estimate taken out, the frame's turn over the epoch by
+    the velocity's first moment), gravity (with its free-air decrease), Coriolis and
+    transport terms; latitude, longitude and height by the trapezoidal rule.
+
+    Parameters
+    ----------
+    q : ndarray
+        ``(n, 4)`` attitude quaternions of ``C_b^n``.
+    v : ndarray
+        ``(n, 3)`` NED velocity [m/s].
+    lat, lon, h : ndarray
+        ``(n,)`` latitude, longitude [rad] and height [m].
+    gyro_bias, accel_bias : ndarray
+        ``(n, 3)`` bias estimates, body axes [rad/s, m/s²].
+    rotation : ndarray
+        ``(n, 4)`` the epoch rotation (:mod:`~strapdown.analysis.alignment.preintegration`).
+    velocity, moment : ndarray
+        ``(n, 3)`` the epoch's velocity increment [m/s] and its first moment [m], epoch-start body frame.
+    epoch : float
+        The epoch D [s].
+
+    Returns
+    -------
+    tuple
+        ``(q, v, lat, lon, h)`` at the epoch's end.
+
+    References
+    ----------
+    Groves (2013), sec. 5.4 (the local-navigation-frame equations).
+    """
+    D = epoch
+    RN, RE = radii(lat)
+    cl = np.cos(lat)
+    wie = EARTH_RATE * np.stack([cl, np.zeros_like(lat), -np.sin(lat)], axis=-1)
+    wen = np.stack([v[:, 1] / (RE + h), -v[:, 0] / (RN + h), -v[:, 1] * np.tan(lat) / (RE + h)], axis=-1)
+    win = wie + wen
+    dv_nav = quat.rotate(q, velocity - accel_bias * D) - _cross(win, quat.rotate(q, moment))
+    gd = normal_gravity(lat) * (1.0 - 2.0 * h / WGS84_A)
+    v_new = v + dv_nav - _cross(2.0 * wie + wen, v) * D
+    v_new[:, 2] += gd * D
+    va = 0.5 * (v + v_new)
+    lat_new = lat + va[:, 0] * D / (RN + h)
+    lon = lon + va[:, 1] * D / ((RE + h) * cl)
+    h = h - va[:, 2] * D
+    q = quat.multiply(quat.multiply(quat.rotvec_to_quat(-win * D, validate=False), q), quat.multiply(rotation, quat.rotvec_to_quat(-gyro_bias * D, validate=False)))
+    return q, v_new, lat_new, lon, h
+
+
+def ned_offset(lat, lon, h, lat_ref, lon_ref, h_ref):
+    """NED metres of a position from a reference one (the position-error states, to first order).
+
+    Parameters
+    ----------
+    lat, lon, h : array_like
+        The position [rad, rad, m].
+    lat_ref, lon_ref, h_ref : array_like
+        The reference [rad, rad, m].
+
+    Returns
+    -------
+    ndarray
+        ``(..., 3)`` [m].
+    """
+    return _ned_offset(lat, lon, h, lat_ref, lon_ref, h_ref)
 
 
 def aided_floor(sequence: AidedSequence, gyro_bias, accel_bias) -> np.ndarray:

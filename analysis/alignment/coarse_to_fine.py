@@ -259,7 +259,9 @@ class CoarseToFineResult:
     fine: FineAlignmentResult
 
 
-def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel, *, rng=None, score: bool = True, velocity_noise: float | None = None, draws=None) -> CoarseToFineResult:
+def coarse_to_fine(
+    record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel, *, rng=None, score: bool = True, velocity_noise: float | None = None, draws=None, history: bool = False
+) -> CoarseToFineResult:
     """Coarse alignment on the first T_c seconds, then the fine filter from its result and covariance.
 
     Parameters
@@ -280,6 +282,8 @@ def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel,
     draws : FilterDraws, optional, keyword-only
         The fine filter's random numbers, instead of ``rng`` (zeros for a recorded log: no
         synthetic noise on recorded data).
+    history : bool, keyword-only
+        Keep the fine filter's time histories (:func:`~strapdown.analysis.alignment.fine.fine_alignment`).
 
     Returns
     -------
@@ -300,7 +304,7 @@ def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel,
     if k % model.samples_per_epoch:
         raise ValueError(f"Expected `coarse.duration` a whole number of filter epochs ({model.epoch:g} s), got {coarse.duration:g}")
     model = replace(model, P0=coarse_prior(coarse, model.P0, tuning))
-    fine = fine_alignment(tail, tuning, rng=rng, model=model, score=score, initial_attitude=C_coarse, velocity_noise=velocity_noise, draws=draws)
+    fine = fine_alignment(tail, tuning, rng=rng, model=model, score=score, initial_attitude=C_coarse, velocity_noise=velocity_noise, draws=draws, history=history)
     known = ~np.isnan(C_true).any(axis=(1, 2))  # a recorded log may not carry the truth
     err = np.full((record.n_trials, 3), np.nan)
     if known.any():

@@ -466,6 +466,13 @@ class FineAlignmentResult:
         State dimension (degrees of freedom of one NEES).
     meas_dim : int
         Measurement dimension (of one NIS).
+    sigma : ndarray or None
+        ``(E, 3)`` the filter's standard deviations of φ_N, φ_E and the azimuth error after each
+        update [rad] (with ``history=True``).
+    gyro_bias_estimate, accel_bias_estimate : ndarray or None
+        ``(n, E, 3)`` the estimates ε̂^n [rad/s] and ∇̂^n [m/s²] after each update, NED (with ``history=True``).
+    innovation : ndarray or None
+        ``(n, E, 3)`` the innovations y = z − H x̂⁻ [m/s] (with ``history=True``).
     """
 
     estimate: AlignmentEstimate
@@ -476,6 +483,10 @@ class FineAlignmentResult:
     heading_sigma: np.ndarray
     dim: int
     meas_dim: int
+    sigma: np.ndarray | None = None
+    gyro_bias_estimate: np.ndarray | None = None
+    accel_bias_estimate: np.ndarray | None = None
+    innovation: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -685,6 +696,7 @@ def fine_alignment(
     score: bool = True,
     compiled: bool | None = None,
     initial_attitude=None,
+    history: bool = False,
 ) -> FineAlignmentResult:
     """Run the fine-alignment filter on every trial of a record.
 
@@ -724,6 +736,9 @@ def fine_alignment(
         ``(n, 3, 3)`` attitudes ``C̃_b^n`` the navigator starts from (a coarse
         alignment's, whose errors the model's prior describes); default the
         true attitude turned by errors drawn from the prior.
+    history : bool, keyword-only
+        Keep the time histories of the filter (its standard deviations, the bias estimates and
+        the innovations, and the NIS, which needs no truth) in the result; runs the numpy loop.
 
     Returns
     -------
@@ -791,27 +806,37 @@ def fine_alignment(
     v = tuning.prior_velocity * draws.velocity  # the zero-velocity start, its error drawn from the prior
     if tuning.lever_arm_known:
         v = v + np.einsum("nij,nj->ni", C, _cross(record.end_rate[:, 0], r))
-    Sinv, Pinv = (np.linalg.inv(seq.innovation), np.linalg.inv(seq.posterior)) if score else (None, None)
+    Sinv = np.linalg.inv(seq.innovation) if score or history else None
+    Pinv = np.linalg.inv(seq.posterior) if score else None
     Fdd = model.F[12:, 12:] if model.has_rocking_states else np.zeros((0, 0))
-    loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) else _epoch_loop
-    C, nees, nis, heading_error = loop(
-        C, v, dR, ep.velocity, ep.moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r,
-        tuning.lever_arm_known, Fdd, model.H, seq.gains, Pinv, Sinv,
-    )  # fmt: skip
+    kept = {} if history else None
+    loop = kernels.fine_alignment_loop if kernels.use_compiled(compiled, 30 * n * E) and not history else _epoch_loop
+    args = (C, v, dR, ep.velocity, ep.moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r,
+            tuning.lever_arm_known, Fdd, model.H, seq.gains, Pinv, Sinv)  # fmt: skip
+    C, nees, nis, heading_error = loop(*args, kept) if history else loop(*args)
     a = angles_from_matrix(C)
     t = record.truth_angles[:, E]
     est = AlignmentEstimate("kalman", a.heading, a.beta, a.gamma, t[:, 0], t[:, 1], t[:, 2], "end")
-    return FineAlignmentResult(est, D * np.arange(1, E + 1), nees, nis, heading_error, np.sqrt(seq.posterior[:, 2, 2]), model.dim, 3)
+    extra = {}
+    if history:
+        extra = dict(sigma=np.sqrt(np.diagonal(seq.posterior, axis1=1, axis2=2)[:, 0:3]), gyro_bias_estimate=kept["eps"], accel_bias_estimate=kept["acc"], innovation=kept["y"])
+    return FineAlignmentResult(est, D * np.arange(1, E + 1), nees, nis, heading_error, np.sqrt(seq.posterior[:, 2, 2]), model.dim, 3, **extra)
 
 
-def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever_arm_known, Fdd, H, gains, Pinv, Sinv):
-    """The numpy reference of :func:`~strapdown.analysis.alignment.kernels.fine_alignment_loop` (same arguments): one step per epoch, vectorised over trials."""
+def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, eps_true, acc_true, rock_true, E_earth, Wx, gn, D, r, lever_arm_known, Fdd, H, gains, Pinv, Sinv, history=None):
+    """The numpy reference of :func:`~strapdown.analysis.alignment.kernels.fine_alignment_loop` (same arguments): one step per epoch, vectorised over trials.
+
+    ``history``, a dict, receives the bias estimates (``"eps"``, ``"acc"``) and the innovations (``"y"``), ``(n, E, 3)`` each;
+    the NIS is computed wherever ``Sinv`` is given (it needs no truth).
+    """
     n, E = dR.shape[0], dR.shape[1]
     dim, shaping = H.shape[1], Fdd.shape[0] > 0
     eps, acc = np.zeros((n, 3)), np.zeros((n, 3))
     xd = np.zeros((n, Fdd.shape[0]))
     score = Pinv is not None
     nees, nis, heading_error = np.full((n, E), np.nan), np.full((n, E), np.nan), np.empty((n, E))
+    if history is not None:
+        history.update(eps=np.empty((n, E, 3)), acc=np.empty((n, E, 3)), y=np.empty((n, E, 3)))
     KT = np.swapaxes(gains, 1, 2)
     HT = H.T
     err = np.empty((n, dim))
@@ -835,6 +860,10 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
         eps, acc = eps + x[:, 6:9], acc + x[:, 9:12]
         if shaping:
             xd = x[:, 12:]
+        if history is not None:
+            history["eps"][:, j], history["acc"][:, j], history["y"][:, j] = eps, acc, y
+        if Sinv is not None:
+            nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
         # consistency against the truth of the simulation
         err[:, 0:3] = _small_rotation(np.einsum("nij,nkj->nik", C, C_true[:, j + 1]))
         heading_error[:, j] = -err[:, 2]  # ψ̂ − ψ = −φ_D
@@ -846,7 +875,6 @@ def _epoch_loop(C, v, dR, velocity, moment, meas_noise, w_end, C_true, v_true, e
         if shaping:
             err[:, 12:] = rock_true[:, j + 1] - xd
         nees[:, j] = np.sum((err @ Pinv[j]) * err, axis=1)
-        nis[:, j] = np.sum((y @ Sinv[j]) * y, axis=1)
     return C, nees, nis, heading_error
 
 

@@ -20,16 +20,23 @@ _METHOD_OPTIONS = {
     "--formula": ("analytic",),
     "--observation": ("inertial",),
     "--epoch": ("inertial", "kalman"),
-    "--prior-heading-deg": ("kalman",),
-    "--prior-tilt-deg": ("kalman",),
+    "--prior-heading-deg": ("kalman", "aided"),
+    "--prior-tilt-deg": ("kalman", "aided"),
     "--velocity-noise-m-s": ("kalman",),
     "--disturbance": ("kalman",),
     "--assumed-period": ("kalman",),
     "--assumed-damping": ("kalman",),
     "--assumed-amplitude-deg": ("kalman",),
     "--lever-arm-known": ("kalman",),
-    "--imu": ("kalman",),
+    "--imu": ("kalman", "multiposition", "aided"),
+    "--figure": ("kalman", "aided"),
+    "--gnss-velocity-noise-m-s": ("aided",),
+    "--gnss-position-noise": ("aided",),
+    "--gnss-interval": ("aided",),
 }
+
+#: Methods that run on a recorded log only (the Monte Carlo runs analytic, inertial and kalman).
+LOG_ONLY_METHODS = ("compass", "multiposition", "aided")
 
 def _check_work(args, samples: int, trials: int, workers: int) -> None:
     """Refuse a Monte Carlo whose estimate exceeds ``--time-limit`` / ``--memory-limit-mb``, before it starts."""
@@ -141,7 +148,7 @@ def _options(args, scenario, errors):
     from ..core.units import rad
     from ..core.validation import as_float, positive
 
-    if args.method != "kalman":
+    if args.method != "kalman" or args.log is not None and args.method in LOG_ONLY_METHODS:
         return AlignmentOptions(formula=args.formula or "levelled", observation=args.observation or "position", inertial_epoch=positive(1.0 if args.epoch is None else args.epoch, "--epoch"))
     kind = args.disturbance or "auto"
     moving = args.rocking != "none" and np.any(scenario.lever_arm)
@@ -186,9 +193,11 @@ def _align(args) -> Result:
     from ..core.units import deg
     from ..core.validation import as_int
 
-    for flag, value in (("--topic", args.topic), ("--segment", args.segment), ("--imu", args.imu)):
+    for flag, value in (("--topic", args.topic), ("--segment", args.segment), ("--imu", args.imu), ("--figure", args.figure)):
         if value is not None and args.log is None:
             raise UsageError(f"{flag} applies to a recorded log (--log)")
+    if args.method in LOG_ONLY_METHODS and args.log is None:
+        raise UsageError(f"--method {args.method} runs on a recorded log: give --log FILE (the Monte Carlo runs analytic, inertial and kalman)")
     if args.log is not None:  # one alignment of a recorded log, no Monte Carlo
         from ._recorded import align_recorded
 
@@ -285,9 +294,11 @@ def register(commands) -> None:
     p = commands.add("align", _align, "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory", progress="own")
     p.add_argument(
         "--method",
-        choices=["analytic", "inertial", "kalman"],
+        choices=["analytic", "inertial", "kalman", "compass", "multiposition", "aided"],
         required=True,
-        help="alignment method: analytic (formula (2) on averaged outputs), inertial (inertial frame) or kalman (fine alignment) (required)",
+        help="alignment method: analytic (formula (2) on averaged outputs), inertial (inertial frame), kalman (fine alignment); "
+        "with --log also compass (compass loop), multiposition (still positions between turns, the biases estimated) "
+        "and aided (in motion, with the log's GNSS fixes) [name] (required)",
     )
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
     p.add_argument(
@@ -303,6 +314,10 @@ def register(commands) -> None:
         help="kalman with --log: sensor specification TOML, [gyro] arw_deg_per_rt_h, bias_instability_deg_per_h, [accel] vrw_m_s_per_rt_h, bias_instability_ug "
         "(a data sheet, or the output of log allan) [path] (default: none; then --arw-deg-per-rt-h and --vrw-m-s-per-rt-h are required)",
     )
+    p.add_argument("--figure", default=None, help="kalman and aided with --log: a PNG of the filter's σ, bias estimates and NIS against time [path] (default: none)")
+    p.add_argument("--gnss-velocity-noise-m-s", type=float, default=0.05, help="aided only: GNSS velocity noise per axis [m/s] (default 0.05)")
+    p.add_argument("--gnss-position-noise", type=float, default=1.0, help="aided only: GNSS position noise per axis [m] (default 1)")
+    p.add_argument("--gnss-interval", type=float, default=1.0, help="aided only: time between the filter's GNSS updates [s] (default 1)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="stable heading ψ0 [deg] (default 0: body x north, y east, z down)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 about the body x axis [deg], |β0| < 90 (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 of the body x axis [deg], |γ0| < 90 (default 0)")

@@ -24,7 +24,15 @@ synthetic
 segments
     The gap-free segments of a log, as the analyses take them.
 alignment
-    Alignment and observability of a recorded log.
+    Alignment and observability of a recorded log (every method of ``align --log``).
+records
+    A log as the alignment toolkit's record of one trial.
+filter_history
+    An alignment filter's histories on a log and the χ² test of its NIS.
+positions
+    The still positions of a log and the multi-position alignment.
+aided
+    GNSS-aided in-motion alignment of a recorded drive.
 replay
     Coning algorithms replayed on a log: mean correction rates, exact drift differences.
 cross_spectra

@@ -2,7 +2,9 @@
 
 :func:`align_log` runs a method on a log once (no Monte Carlo): ``analytic``,
 ``inertial``, ``kalman`` (the inertial-frame coarse stage, then the filter
-from its result and covariance, :mod:`~strapdown.analysis.alignment.coarse_to_fine`) or ``compass``.
+from its result and covariance, :mod:`~strapdown.analysis.alignment.coarse_to_fine`), ``compass``,
+``multiposition`` (:mod:`~strapdown.analysis.logs.positions`) or ``aided`` (a drive with GNSS,
+:mod:`~strapdown.analysis.logs.aided`).
 :func:`recorded_problem` finds the positions of the log's motion (turns larger
 than a threshold between still stretches) and builds the multi-position
 observability problem of :mod:`~strapdown.analysis.alignment.observability`.
@@ -21,64 +23,36 @@ Public API
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..alignment.aided import AidedTuning
 from ..alignment.analytic import analytic_alignment
 from ..alignment.coarse_to_fine import coarse_model, coarse_to_fine, split_record
 from ..alignment.compass_loop import CompassLoopDesign, compass_loop_alignment
 from ..alignment.fine import FilterDraws, FilterTuning
-from ..alignment.imu import ImuRecord, Scenario, SensorErrors
+from ..alignment.imu import SensorErrors
 from ..alignment.inertial import inertial_alignment
 from ..alignment.observability import ObservabilityProblem, stationary_problem
 from ..alignment.preintegration import chain_rotations, preintegrate
-from ..alignment.tilt_attitude import attitude_matrix
+from ..alignment.tilt_attitude import angles_from_matrix, attitude_matrix
 from ..core.validation import positive
+from .filter_history import FilterHistory, filter_history
 from .imu_log import ImuLog
+from .positions import MultiPositionAlignment, position_windows
+from .records import log_record
 
 __all__ = ["log_record", "LogAlignment", "align_log", "recorded_problem", "LOG_METHODS", "CALIBRATION_SEED"]
 
 #: Methods :func:`align_log` runs.
-LOG_METHODS = ("analytic", "inertial", "kalman", "compass")
+LOG_METHODS = ("analytic", "inertial", "kalman", "compass", "multiposition", "aided")
 
 #: Seed of the simulated trials that calibrate the coarse stage's covariance (``kalman``): a
 #: property of the filter's model, not of the data, fixed so that an alignment of a recorded
 #: log is a function of the log and the options alone.
 CALIBRATION_SEED = 20240613
-
-
-def log_record(log: ImuLog, latitude: float, *, truth_stride: int | None = None) -> ImuRecord:
-    """The log as a one-trial record (its truth from the metadata where it has it, NaN elsewhere).
-
-    Parameters
-    ----------
-    log : ImuLog
-        The samples.
-    latitude : float
-        Latitude φ [rad].
-    truth_stride : int, optional, keyword-only
-        Truth instants every ``truth_stride`` samples (NaN between the start
-        and the end; default: the start and the end).
-
-    Returns
-    -------
-    ImuRecord
-    """
-    N, dt = log.n_samples, log.dt
-    stable = log.angles("stable")
-    sc = Scenario(latitude, *(stable if stable is not None else np.zeros(3)), sample_rate=1.0 / dt, duration=N * dt)
-    stride = N if truth_stride is None else int(truth_stride)
-    idx = np.arange(0, N + 1, stride)
-    if idx[-1] != N:
-        idx = np.append(idx, N)
-    angles = np.full((1, idx.size, 3), np.nan)
-    end = log.angles("end")
-    if end is not None:
-        angles[0, -1] = end
-    z = np.zeros((1, idx.size, 3))
-    return ImuRecord(sc, SensorErrors(), log.dtheta[None], log.dv[None], idx * dt, angles, z, z.copy(), np.zeros((1, 3)), np.zeros((1, 3)))
 
 
 @dataclass(frozen=True)
@@ -92,15 +66,28 @@ class LogAlignment:
     heading, beta, gamma : float
         Estimates at the reference instant [rad].
     reference : str
-        ``"stable"`` (analytic) or ``"end"``.
+        ``"stable"`` (analytic), ``"end"`` or ``"first position"`` (multiposition: the mean attitude
+        of the first still stretch).
     heading_sigma : float or None
-        Kalman: the filter's standard deviation of the azimuth at the end [rad].
+        ``kalman`` and ``aided``: the filter's standard deviation of the azimuth at the end;
+        ``multiposition``: that of its least squares (with the sensor noise given) [rad].
     heading_error : float or None
         Against the log's metadata, where it carries the truth [rad] (and, for
         the epoch-based methods, where the log ends on a whole epoch: the
         estimate is the attitude at the end of the last one).
     duration : float
         Length of the log [s].
+    history : FilterHistory or None
+        (Not compared by ``==``, as the arrays below.) ``kalman`` and ``aided``: the filter's standard deviations, bias estimates, innovations
+        and NIS over time, with the test of its NIS (:mod:`~strapdown.analysis.logs.filter_history`).
+    positions : tuple of LogPosition
+        ``multiposition``: the still stretches aligned (empty for the other methods).
+    gyro_bias, accel_bias : ndarray or None
+        ``multiposition`` and ``aided``: the sensor biases estimated, body axes [rad/s, m/s²].
+    tilt_sigma : tuple of float or None
+        The standard deviations of the two tilts at the reference instant, where the method gives them [rad].
+    multiposition : MultiPositionAlignment or None
+        ``multiposition``: the whole solution (the attitude at the end too, carried by the gyros).
     """
 
     method: str
@@ -111,6 +98,12 @@ class LogAlignment:
     heading_sigma: float | None
     heading_error: float | None
     duration: float
+    history: FilterHistory | None = field(default=None, compare=False)
+    positions: tuple = field(default=(), compare=False)
+    gyro_bias: np.ndarray | None = field(default=None, compare=False)
+    accel_bias: np.ndarray | None = field(default=None, compare=False)
+    tilt_sigma: tuple | None = None
+    multiposition: MultiPositionAlignment | None = field(default=None, compare=False)
 
 
 def align_log(
@@ -126,6 +119,9 @@ def align_log(
     compass: CompassLoopDesign | None = None,
     calibration_trials: int = 64,
     rng=None,
+    gnss=None,
+    aided: AidedTuning | None = None,
+    limits=None,
 ) -> LogAlignment:
     """Align a recorded log once with ``method``.
 
@@ -155,6 +151,12 @@ def align_log(
         Stream of that calibration (default :data:`CALIBRATION_SEED`).  Nothing random is
         added to the recorded data: the filter starts from zero velocity and its
         zero-velocity measurements are the log's, without synthetic noise.
+    gnss : GnssTrack, optional, keyword-only
+        ``aided``: the log's GNSS fixes (:attr:`Inventory.gnss <strapdown.analysis.logs.inventory.Inventory>`).
+    aided : AidedTuning, optional, keyword-only
+        ``aided``: the filter (default :class:`~strapdown.analysis.alignment.aided.AidedTuning`).
+    limits : Limits, optional, keyword-only
+        ``aided``: the largest work accepted.
 
     Returns
     -------
@@ -171,9 +173,26 @@ def align_log(
     if method not in LOG_METHODS:
         raise ValueError(f"Expected `method` in {LOG_METHODS}, got {method!r}")
     tuning = FilterTuning() if tuning is None else tuning
+    if method == "aided":
+        from .aided import aided_log_alignment
+
+        if gnss is None:
+            raise ValueError("Expected `gnss` fixes for the aided alignment, got a log without GNSS")
+        ar = aided_log_alignment(log, gnss, tuning=aided, limits=limits)
+        truth = log.angles("end")
+        err = float(wrap_angle(ar.heading - truth[0])) if truth is not None else None
+        return LogAlignment(method, ar.heading, ar.beta, ar.gamma, "end", ar.heading_sigma, err, log.n_samples * log.dt, ar.history,
+                            gyro_bias=ar.gyro_bias, accel_bias=ar.accel_bias, tilt_sigma=ar.tilt_sigma)  # fmt: skip
+    if method == "multiposition":
+        from .positions import multiposition_alignment
+
+        mp = multiposition_alignment(log, latitude, gyro_noise=tuning.gyro_noise, accel_noise=tuning.accel_noise)
+        a = angles_from_matrix(mp.attitude)
+        return LogAlignment(method, float(a.heading), float(a.beta), float(a.gamma), "first position", mp.heading_sigma, None, log.n_samples * log.dt,
+                            positions=mp.positions, gyro_bias=mp.gyro_bias, accel_bias=mp.accel_bias, tilt_sigma=mp.tilt_sigma, multiposition=mp)  # fmt: skip
     g = as_generator(CALIBRATION_SEED if rng is None else rng)
     T = log.n_samples * log.dt
-    sigma = None
+    sigma, tilt_sigma, history = None, None, None
     if method == "analytic":
         est = analytic_alignment(log_record(log, latitude), formula=formula)
     elif method == "inertial":
@@ -194,8 +213,12 @@ def align_log(
             cm = coarse_model(sc, noise, coarse_duration=k * log.dt, n_trials=calibration_trials, rng=g)
             tail_epochs = (log.n_samples - k) // M
             still = FilterDraws(np.zeros((1, 3)), np.zeros((1, tail_epochs, 3)), np.zeros((1, 3)))  # no synthetic noise on recorded data
-            res = coarse_to_fine(replace(rec, scenario=sc), tuning, cm, score=False, draws=still)
-            est, sigma = res.fine.estimate, float(res.fine.heading_sigma[-1])
+            res = coarse_to_fine(replace(rec, scenario=sc), tuning, cm, score=False, draws=still, history=True)
+            fine = res.fine
+            est, sigma = fine.estimate, float(fine.heading_sigma[-1])
+            tilt_sigma = (float(fine.sigma[-1, 0]), float(fine.sigma[-1, 1]))
+            history = filter_history(k * log.dt + fine.times, fine.sigma, fine.gyro_bias_estimate[0], fine.accel_bias_estimate[0], fine.innovation[0], fine.nis[0],
+                                     bias_frame="NED", innovation_names=("v_N", "v_E", "v_D"))  # fmt: skip
         else:
             _, tail = split_record(rec, k)
             C0 = attitude_matrix(np.stack([coarse.heading, coarse.beta, coarse.gamma], axis=-1))
@@ -203,7 +226,7 @@ def align_log(
     truth = log.angles("stable" if est.reference == "stable" else "end")
     at_end = est.reference == "stable" or method in ("analytic", "inertial") or (log.n_samples - k) % M == 0
     err = float(wrap_angle(est.heading[0] - truth[0])) if truth is not None and at_end else None
-    return LogAlignment(method, float(est.heading[0]), float(est.beta[0]), float(est.gamma[0]), est.reference, sigma, err, T)
+    return LogAlignment(method, float(est.heading[0]), float(est.beta[0]), float(est.gamma[0]), est.reference, sigma, err, T, history, tilt_sigma=tilt_sigma)
 
 
 def recorded_problem(log: ImuLog, latitude: float, *, tuning: FilterTuning | None = None, threshold: float = math.radians(5.0), window: float = 20.0) -> ObservabilityProblem:
@@ -253,13 +276,7 @@ def recorded_problem(log: ImuLog, latitude: float, *, tuning: FilterTuning | Non
     w_earth = C0.T @ earth_rate_ned(latitude)  # the Earth's rate in the start body axes [rad/s]
     t_epochs = np.arange(Q.shape[0]) * ep.epoch
     R = Rotation.from_rotvec(-t_epochs[:, None] * w_earth[None, :]) * Rotation.from_quat(Q, scalar_first=True)  # body relative to the Earth
-    per = max(1, int(round(window / ep.epoch)))
-    n_windows = max(1, ep.n_epochs // per)
-    means = [R[w * per : (w + 1) * per + 1].mean() for w in range(n_windows)]
-    first = [0]
-    for w in range(1, n_windows):
-        if (means[first[-1]].inv() * means[w]).magnitude() > threshold:
-            first.append(w)
+    per, means, first = position_windows(R, ep.epoch, window, threshold)
     edges = [w * per for w in first] + [ep.n_epochs]
     head = log_record(replace(log, time=log.time[: edges[1] * M], dtheta=log.dtheta[: edges[1] * M], dv=log.dv[: edges[1] * M]), latitude)
     a = analytic_alignment(head)  # the mean attitude of the first position

@@ -20,7 +20,8 @@ each window), so their cost is one pass over the samples:
     Gravity reads about −g on z (FRD: z down); +g on z is a log with z up (FLU, ENU).
 ``gyro scale``
     Where the body turns across gravity, the accelerometers see gravity turn in the body axes:
-    ``Δf ≈ −Δθ × f``.  The least-squares factor k between the gyros' turn and the
+    ``Δf ≈ −Δθ × f`` (skipped in a drive, GNSS speed above 1 m/s, whose accelerations
+    change the specific force too).  The least-squares factor k between the gyros' turn and the
     accelerometers' is 1; k = π/180 means degrees logged as radians, k = interval means
     rates in the increment columns.
 ``Earth rate``
@@ -157,13 +158,25 @@ def _windows(segments):
         s_th = dth.sum(axis=1)
         rates.append(s_th / (w * h))
         forces.append(dv.sum(axis=1) / (w * h))
-        dev = dth - s_th[:, None, :] / w
-        spread.append(np.sqrt(np.mean(np.sum(dev * dev, axis=2), axis=1)) / h)
+        # rms deviation of the increments from the window's mean, as mean square less squared mean (no temporary of the samples' size)
+        ms = np.einsum("mwi,mwi->m", dth, dth) / w - np.einsum("mi,mi->m", s_th, s_th) / (w * w)
+        spread.append(np.sqrt(np.maximum(ms, 0.0)) / h)
         h_all.append(np.full(m, h))
         ids.append(np.full(m, len(ids)))
     if not rates:
         return None
     return np.concatenate(rates), np.concatenate(forces), np.concatenate(spread), np.concatenate(h_all), np.concatenate(ids)
+
+
+_MOVING = 1.0  # GNSS speed above which the log is a drive, not a block at rest or rocking [m/s]
+
+
+def _gnss_speed(gnss) -> float:
+    """Largest horizontal GNSS speed of the log [m/s] (0 without GNSS velocity)."""
+    if gnss is None or gnss.velocity is None or not np.size(gnss.velocity):
+        return 0.0
+    v = np.asarray(gnss.velocity, dtype=float)
+    return float(np.max(np.hypot(v[:, 0], v[:, 1])))
 
 
 def _near(x, target, tol=0.2) -> bool:
@@ -271,7 +284,10 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
     # a turn about gravity does not move it in the body axes: only the part across it can be compared
     across = np.cross(dth, (0.5 * (force[1:] + force[:-1]))[same]) / max(float(np.median(fmag)), 1e-12) if dth.size else dth
     moved = math.degrees(float(np.sqrt(np.mean(np.sum(across * across, axis=1))))) if dth.size else 0.0
-    if den > 0 and moved > 0.5 and dth.shape[0] >= 5:
+    speed = _gnss_speed(inventory.gnss)
+    if speed > _MOVING:
+        out.append(Check("gyro scale", "skip", f"GNSS speed up to {speed:.3g} m/s", "a drive: its accelerations change the specific force as much as its turns, the two cannot be compared"))
+    elif den > 0 and moved > 0.5 and dth.shape[0] >= 5:
         k = float(np.sum(df * pred) / den)
         if 0.7 < k < 1.4:
             out.append(Check("gyro scale", "pass", f"k = {k:.3g}", "the gyros' turns match gravity turning in the accelerometers"))
@@ -286,7 +302,12 @@ def check_log(segments, inventory, *, latitude: float | None = None) -> LogCheck
         else:
             out.append(Check("gyro scale", "fail", f"k = {k:.3g}", "the gyros' turns and gravity's turn in the accelerometers disagree (units, sign or axes of the gyros)"))
     else:
-        out.append(Check("gyro scale", "skip", f"{moved:.2g}° rms turn between windows", "the body hardly turns: the gyros' units cannot be compared with the accelerometers"))
+        out.append(
+            Check(
+                "gyro scale", "skip", f"{moved:.2g}° rms turn about the horizontal between windows",
+                "the body hardly tilts (a turn about gravity leaves the accelerometers unchanged): the gyros' units cannot be compared with them",
+            )  # fmt: skip
+        )
 
     # Earth rate at rest
     rest = (np.abs(fmag / g0 - 1.0) < 0.02) & (np.linalg.norm(rate, axis=1) < math.radians(0.5)) & (spread < math.radians(5.0))

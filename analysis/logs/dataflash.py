@@ -18,11 +18,19 @@ Streams read
     angles and velocities of the EKF, integrated from the raw samples with a coning
     correction before the filters (``_delta_angle_acc += delta_angle + delta_coning``).
 
-Not read as streams: the batch sampler (``ISBH``/``ISBD``: bursts of
-``INS_LOG_BAT_CNT`` raw samples of *one* sensor at a time, gyro and accelerometer in
-turn, as int16 × ``mul``; pre-filter unless ``INS_LOG_BAT_OPT`` bit 1 asks for
-post-filter samples), ``GYR``/``ACC`` (one sensor each, at its own sample times).  The
-inventory lists them with their rate.
+``ISB[k]`` (the batch sampler, ``ISBH``/``ISBD``)
+    Bursts of ``INS_LOG_BAT_CNT`` raw samples of *one* sensor of IMU k, as int16 × ``mul``
+    (``AP_InertialSensor::BatchSampler``; pre-filter unless ``INS_LOG_BAT_OPT`` bit 1 asks
+    for post-filter samples).  ArduPilot takes the gyro's and the accelerometer's bursts in
+    turn, so in its logs no gyro sample has an accelerometer sample at its time and the
+    stream cannot give increments: the inventory says so and names ``IMU[k]`` and ``IMT[k]``.
+    Where a gyro burst and an accelerometer burst cover the same samples (same start within a
+    quarter sample, same count and rate), they are paired and read (rate × interval), each
+    burst its own segment; never chosen by default.
+``GYRACC[k]`` (``GYR``/``ACC``)
+    The raw samples of each sensor at its own ``SampleUS``, paired where the two sensors'
+    sample times agree within a quarter sample (a chip that samples both together); the
+    inventory says how many pair, and refuses the stream where fewer than half do.
 
 ArduPilot's body frame is FRD (x forward, y right, z down), the package's own axes;
 ``TimeUS`` is microseconds since boot.
@@ -203,6 +211,7 @@ def read_dataflash(path, *, topic: str | None = None, guard=None, progress: bool
     fm = _Formats()
     counts, first, last = {}, {}, {}
     params, messages = {}, []
+    isbh, raw_times = [], {}
 
     def key_of(kind, rec_inst):
         name = fm.names.get(kind)
@@ -228,6 +237,12 @@ def read_dataflash(path, *, topic: str | None = None, guard=None, progress: bool
             dt = fm.dtypes[kind]
             o = off[kd == kind] + 3
             name = fm.names[kind]
+            if name == "ISBH":
+                isbh.append(gather(buf, o, dt.itemsize).view(dt).ravel().copy())
+            if name in ("GYR", "ACC") and "SampleUS" in dt.names:
+                raw_rows = gather(buf, o, dt.itemsize).view(dt).ravel()
+                inst = inst_column(kind, raw_rows)
+                raw_times.setdefault(name, []).append((np.zeros(raw_rows.size, int) if inst is None else inst, raw_rows["SampleUS"].astype(np.int64)))
             if name in ("PARM", "MSG"):
                 rows = gather(buf, o, dt.itemsize).view(dt).ravel()
                 if name == "PARM":
@@ -267,18 +282,27 @@ def read_dataflash(path, *, topic: str | None = None, guard=None, progress: bool
         elif base == "IMT":
             info = StreamInfo(name, n, rate, t0, t1, "increments", True, "delta angles and velocities of the EKF, integrated from the raw samples before the filters")
         elif base in ("ISBH", "ISBD"):
-            info = StreamInfo(name, n, rate, t0, t1, "rates", False, "batch sampler: bursts of one sensor at a time (gyro and accelerometer in turn), int16 × mul: not read as a stream")
+            info = StreamInfo(name, n, rate, t0, t1, "other", False, "batch sampler messages: read as the streams ISB[k], one per IMU instance")
         elif base in ("GYR", "ACC"):
-            info = StreamInfo(name, n, rate, t0, t1, "rates", False, "raw samples of one sensor at its own sample times: not read as a stream")
+            info = StreamInfo(name, n, rate, t0, t1, "rates", False, "raw samples of one sensor at its own sample times: paired with the other sensor's as the stream GYRACC[k]")
         elif base == "GPS":
             info = StreamInfo(name, n, rate, t0, t1, "other", False, "GNSS fixes: the latitude check and the aided alignment use them")
         else:
             info = StreamInfo(name, n, rate, t0, t1, "other", False, "")
         streams.append(info)
         by_topic[name] = (kind, i)
-    chosen = choose_topic(streams, topic, duration, p.name)
+    batches = _batches(isbh, t_start) if isbh else None
+    if batches is not None:
+        streams += _batch_streams(batches, t_start)
+    pairs = _raw_pairs(raw_times)
+    streams += _raw_streams(pairs, t_start)
+    continuous = [s for s in streams if not s.topic.startswith("ISB[")]  # bursts are read when asked for, never by default
+    chosen = choose_topic(continuous if topic is None and any(s.readable for s in continuous) else streams, topic, duration, p.name)
     if guard is not None:
         guard(chosen.samples, chosen.topic)
+    if chosen.topic.startswith(("ISB[", "GYRACC[")):
+        samples = _read_paired(p, chosen, batches, pairs, t_start, progress)
+        return LogContents("dataflash", tuple(streams), samples, _filters(params, "raw"), _software(messages), t_start * 1e-6, duration, None, {}, tuple(notes))
     kind_c, inst_c = by_topic[chosen.topic]
     base_c = chosen.topic.split("[")[0]
     gps = [(by_topic[s.topic], s.topic) for s in streams if s.topic.startswith("GPS[")][:1]
@@ -343,10 +367,165 @@ def read_dataflash(path, *, topic: str | None = None, guard=None, progress: bool
                     vel = np.stack([rows["Spd"] * np.cos(crs), rows["Spd"] * np.sin(crs), rows["VZ"]], axis=-1)[ok].astype(float)
                 tg = (rows["TimeUS"][ok].astype(float) - t_start) * 1e-6
                 gnss = GnssTrack(gps[0][1], tg, np.radians(lat[ok].astype(float)), np.radians(lon[ok].astype(float)), alt[ok].astype(float), vel)
+    return LogContents("dataflash", tuple(streams), samples, _filters(params, base_c), _software(messages), t_start * 1e-6, duration, gnss, {}, tuple(notes))
+
+
+def _software(messages) -> str:
+    return next((m for m in messages if m.startswith(("Ardu", "APM", "Rover", "Plane", "Copter", "Sub", "Blimp"))), "ArduPilot")
+
+
+def _filters(params, base: str) -> tuple:
+    """The filter parameters and whether they act on the stream read (``IMU``, ``IMT`` or ``raw``)."""
     filters = []
+    post = int(params.get("INS_LOG_BAT_OPT", 0)) & 2
     for name, (on_imu, on_imt, evidence) in ARDUPILOT_FILTERS.items():
         if name in params:
-            filters.append(SensorFilter(name, params[name], on_imu if base_c == "IMU" else on_imt, evidence))
+            acts = on_imu if base == "IMU" else on_imt if base == "IMT" else (bool(post) if on_imu is not None else None)
+            filters.append(SensorFilter(name, params[name], acts, evidence))
     filters.append(SensorFilter("sensor digital low-pass (driver)", None, True, "the IMU chip's own digital low-pass, set by its backend driver: in front of every sample"))
-    software = next((m for m in messages if m.startswith(("Ardu", "APM", "Rover", "Plane", "Copter", "Sub", "Blimp"))), "ArduPilot")
-    return LogContents("dataflash", tuple(streams), samples, tuple(filters), software, t_start * 1e-6, duration, gnss, {}, tuple(notes))
+    return tuple(filters)
+
+
+#: ArduPilot's batch-sampler sensor types (``AP_InertialSensor::BatchSampler``, ``sensor_type``).
+ISB_ACCEL, ISB_GYRO = 0, 1
+
+
+def _batches(isbh, t_start: int):
+    """The batch headers: one row per batch, fields of ISBH (TimeUS, N, type, instance, mul, smp_cnt, SampleUS, smp_rate)."""
+    rows = np.concatenate(isbh)
+    names = rows.dtype.names
+    need = ("N", "type", "instance", "mul", "smp_cnt", "SampleUS", "smp_rate")
+    if not all(c in names for c in need):
+        return None
+    return rows
+
+
+def _batch_pairs(b, instance: int):
+    """Indices (gyro batch, accel batch) of ``instance`` that cover the same samples: same start (within a quarter sample), count and rate."""
+    sel = b["instance"] == instance
+    g = np.flatnonzero(sel & (b["type"] == ISB_GYRO))
+    a = np.flatnonzero(sel & (b["type"] == ISB_ACCEL))
+    out = []
+    if not g.size or not a.size:
+        return out
+    a_start = b["SampleUS"][a].astype(np.int64)
+    order = np.argsort(a_start)
+    for i in g:
+        rate = float(b["smp_rate"][i])
+        tol = 0.25e6 / rate if rate > 0 else 0.0
+        t = int(b["SampleUS"][i])
+        j = int(np.searchsorted(a_start[order], t))
+        for jj in (j - 1, j):
+            if 0 <= jj < order.size:
+                k = a[order[jj]]
+                if abs(int(b["SampleUS"][k]) - t) <= tol and b["smp_cnt"][k] == b["smp_cnt"][i] and abs(float(b["smp_rate"][k]) - rate) <= 1e-6 * rate:
+                    out.append((int(i), int(k)))
+                    break
+    return out
+
+
+def _batch_streams(b, t_start: int) -> list:
+    """One stream ``ISB[k]`` per IMU instance of the batch sampler, readable where gyro and accelerometer batches pair."""
+    out = []
+    for inst in np.unique(b["instance"]):
+        inst = int(inst)
+        sel = b["instance"] == inst
+        ng, na = int(np.count_nonzero(sel & (b["type"] == ISB_GYRO))), int(np.count_nonzero(sel & (b["type"] == ISB_ACCEL)))
+        rate = float(np.median(b["smp_rate"][sel]))
+        cnt = int(np.median(b["smp_cnt"][sel]))
+        t = (b["SampleUS"][sel].astype(np.int64) - t_start) * 1e-6
+        pairs = _batch_pairs(b, inst)
+        if pairs:
+            note = (f"batch sampler, IMU {inst}: {len(pairs)} bursts of {cnt} raw samples at {rate:.6g} Hz where the gyro's and the accelerometer's "
+                    "cover the same samples, paired (rate × interval; int16 / mul; each burst its own segment)")  # fmt: skip
+            out.append(StreamInfo(f"ISB[{inst}]", len(pairs) * cnt, rate, float(t.min()), float(t.max()), "rates", True, note))
+        else:
+            note = (f"batch sampler, IMU {inst}: {ng} gyro and {na} accelerometer bursts of {cnt} raw samples at {rate:.6g} Hz, taken in turn, never over "
+                    f"the same samples: no gyro sample has an accelerometer sample at its time, so no increments can be formed; read IMU[{inst}] "
+                    f"(filtered, at the logging rate) or IMT[{inst}] (raw increments) with --topic")  # fmt: skip
+            out.append(StreamInfo(f"ISB[{inst}]", (ng + na) * cnt, rate, float(t.min()), float(t.max()), "rates", False, note))
+    return out
+
+
+def _raw_pairs(raw_times) -> dict:
+    """Per instance, the indices of the GYR and ACC samples at common sample times (SampleUS equal within a quarter of the median interval)."""
+    out = {}
+    if "GYR" not in raw_times or "ACC" not in raw_times:
+        return out
+    gi, gt = (np.concatenate([r[k] for r in raw_times["GYR"]]) for k in (0, 1))
+    ai, at = (np.concatenate([r[k] for r in raw_times["ACC"]]) for k in (0, 1))
+    for inst in np.intersect1d(np.unique(gi), np.unique(ai)):
+        g_idx, a_idx = np.flatnonzero(gi == inst), np.flatnonzero(ai == inst)
+        tg, ta = gt[g_idx], at[a_idx]
+        step = float(np.median(np.diff(np.sort(tg)))) if tg.size > 1 else 0.0
+        order = np.argsort(ta)
+        j = np.clip(np.searchsorted(ta[order], tg), 1, max(1, ta.size - 1))
+        cand = np.stack([order[j - 1], order[np.minimum(j, ta.size - 1)]], axis=1)
+        best = cand[np.arange(tg.size), np.argmin(np.abs(ta[cand] - tg[:, None]), axis=1)]
+        ok = np.abs(ta[best] - tg) <= 0.25 * step
+        out[int(inst)] = (g_idx[ok], a_idx[best[ok]], tg.size, ta.size, tg[ok], step)
+    return out
+
+
+def _raw_streams(pairs, t_start: int) -> list:
+    out = []
+    for inst, (_, _, ng, na, t, step) in pairs.items():
+        rate = 1e6 / step if step > 0 else 0.0
+        t0 = float((t.min() - t_start) * 1e-6) if t.size else 0.0
+        t1 = float((t.max() - t_start) * 1e-6) if t.size else 0.0
+        if t.size >= 2 and t.size >= 0.5 * min(ng, na):
+            note = f"GYR[{inst}] and ACC[{inst}], the raw samples of each sensor, paired where their SampleUS agree within a quarter sample ({t.size} of {ng} and {na})"
+            out.append(StreamInfo(f"GYRACC[{inst}]", int(t.size), rate, t0, t1, "rates", True, note))
+        else:
+            note = (f"GYR[{inst}] ({ng} samples) and ACC[{inst}] ({na}) are sampled at different times (only {t.size} agree within a quarter sample): "
+                    f"no increments can be paired; read IMU[{inst}] or IMT[{inst}] with --topic")  # fmt: skip
+            out.append(StreamInfo(f"GYRACC[{inst}]", int(t.size), rate, t0, t1, "rates", False, note))
+    return out
+
+
+def _read_paired(p: Path, chosen, batches, pairs, t_start: int, progress: bool) -> StreamSamples:
+    """The samples of ``ISB[k]`` (paired batches) or ``GYRACC[k]`` (paired raw samples), as rates in body axes."""
+    inst = int(chosen.topic.split("[")[1].rstrip("]"))
+    fm = _Formats()
+    want = ("ISBD",) if chosen.topic.startswith("ISB[") else ("GYR", "ACC")
+    got = {w: [] for w in want}
+
+    def take(buf, off, kd):
+        for kind in np.unique(kd):
+            kind = int(kind)
+            if fm.names.get(kind) in want:
+                dt = fm.dtypes[kind]
+                got[fm.names[kind]].append(gather(buf, off[kd == kind] + 3, dt.itemsize).view(dt).ravel().copy())
+
+    _walk(p, fm, take, progress, f"reading {chosen.topic}")
+    frame = "FRD body frame (x forward, y right, z down), ArduPilot's own: no conversion"
+    if chosen.topic.startswith("ISB["):
+        d = np.concatenate(got["ISBD"])
+        order = np.lexsort((d["seqno"], d["N"]))
+        d = d[order]
+        times, gyro, accel = [], [], []
+        for gi, ai in _batch_pairs(batches, inst):
+            vals = []
+            for bi in (gi, ai):
+                rows = d[d["N"] == batches["N"][bi]]
+                cnt, mul = int(batches["smp_cnt"][bi]), float(batches["mul"][bi])
+                v = np.stack([rows["x"].ravel(), rows["y"].ravel(), rows["z"].ravel()], axis=-1)[:cnt] / mul
+                vals.append(v)
+            m = min(vals[0].shape[0], vals[1].shape[0])
+            rate = float(batches["smp_rate"][gi])
+            times.append((int(batches["SampleUS"][gi]) - t_start) * 1e-6 + np.arange(m) / rate)
+            gyro.append(vals[0][:m])
+            accel.append(vals[1][:m])
+        conv = "the batch sampler's raw samples (int16 / mul) of the paired gyro and accelerometer bursts, rate × interval"
+        units = "int16 counts / mul → rad/s and m/s²"
+        return StreamSamples(chosen.topic, np.concatenate(times), np.concatenate(gyro), np.concatenate(accel), "rates", conv, units, frame)
+    g_all, a_all = np.concatenate(got["GYR"]), np.concatenate(got["ACC"])
+    g_idx, a_idx = pairs[inst][0], pairs[inst][1]
+    g_sel, a_sel = g_all[g_idx], a_all[a_idx]
+    order = np.argsort(g_sel["SampleUS"])
+    g_sel, a_sel = g_sel[order], a_sel[order]
+    t = (g_sel["SampleUS"].astype(np.int64) - t_start) * 1e-6
+    gyro = np.stack([g_sel["GyrX"], g_sel["GyrY"], g_sel["GyrZ"]], axis=-1).astype(float)
+    accel = np.stack([a_sel["AccX"], a_sel["AccY"], a_sel["AccZ"]], axis=-1).astype(float)
+    conv = "GYR and ACC raw samples at common sample times (SampleUS), rate × interval"
+    return StreamSamples(chosen.topic, t, gyro, accel, "rates", conv, "rad/s and m/s² (SI in the log)", frame)

@@ -20,6 +20,8 @@ Public API
    walk_ulog
    walk_dataflash
    gather
+   extract_ulog
+   scan_ulog
    ULOG_MESSAGE_TYPES
    DATAFLASH_HEADER
 """
@@ -29,7 +31,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["walk_ulog", "walk_dataflash", "gather", "ULOG_MESSAGE_TYPES", "DATAFLASH_HEADER"]
+__all__ = ["walk_ulog", "walk_dataflash", "gather", "extract_ulog", "scan_ulog", "FIELD_TYPES", "ULOG_MESSAGE_TYPES", "DATAFLASH_HEADER"]
+
+#: Field types :func:`extract_ulog` reads (little-endian), by code.
+FIELD_TYPES = ("<f4", "<u4", "<u2", "<u8", "<f8", "<i4", "<i8")
 
 #: The ULog message types (the third byte of a record header) of the ULog specification
 #: (docs.px4.io, "ULog File Format"): F, I, M, P, Q, A, R, D, L, C, S, O, B.
@@ -199,3 +204,117 @@ def gather(buf: np.ndarray, offsets: np.ndarray, width: int) -> np.ndarray:
     if offsets.size:
         _gather(buf, np.asarray(offsets, dtype=np.int64), int(width), out)
     return out
+
+
+@njit(cache=True)
+def _extract_ulog(buf, offsets, sizes, kinds, msg_id, min_size, field_offsets, field_codes, out, start):  # pragma: no cover - compiled
+    s2, s4, s8 = np.zeros(2, np.uint8), np.zeros(4, np.uint8), np.zeros(8, np.uint8)
+    f4, u4, i4, u2 = s4.view(np.float32), s4.view(np.uint32), s4.view(np.int32), s2.view(np.uint16)
+    u8, f8, i8 = s8.view(np.uint64), s8.view(np.float64), s8.view(np.int64)
+    k = start
+    n_out = out.shape[0]
+    n_fields = field_offsets.size
+    for r in range(offsets.size):
+        if kinds[r] != 68 or sizes[r] < min_size or k >= n_out:
+            continue
+        o = offsets[r]
+        if (np.int64(buf[o + 3]) | (np.int64(buf[o + 4]) << 8)) != msg_id:
+            continue
+        base = o + 5
+        for j in range(n_fields):
+            at = base + field_offsets[j]
+            code = field_codes[j]
+            if code == 2:
+                s2[0], s2[1] = buf[at], buf[at + 1]
+                out[k, j] = u2[0]
+            elif code == 0 or code == 1 or code == 5:
+                for i in range(4):
+                    s4[i] = buf[at + i]
+                out[k, j] = f4[0] if code == 0 else (u4[0] if code == 1 else i4[0])
+            else:
+                for i in range(8):
+                    s8[i] = buf[at + i]
+                out[k, j] = u8[0] if code == 3 else (f8[0] if code == 4 else i8[0])
+        k += 1
+    return k
+
+
+def extract_ulog(buf: np.ndarray, offsets, sizes, kinds, msg_id: int, min_size: int, field_offsets, field_codes, out: np.ndarray, start: int) -> int:
+    """Read the fields of one subscription's data records straight into rows of ``out`` (float64).
+
+    Parameters
+    ----------
+    buf : ndarray of uint8
+        The chunk of the file.
+    offsets, sizes, kinds : ndarray
+        The records of the chunk (:func:`walk_ulog`).
+    msg_id : int
+        The subscription whose records are read.
+    min_size : int
+        Smallest payload accepted (the format's size plus the two bytes of the id) [bytes].
+    field_offsets : ndarray of int64
+        Offset of each field after the id [bytes].
+    field_codes : ndarray of int64
+        Type of each field, an index into :data:`FIELD_TYPES`.
+    out : ndarray of float64, shape (N, len(field_offsets))
+        Rows to fill.
+    start : int
+        First row to fill.
+
+    Returns
+    -------
+    int
+        The next row to fill (rows beyond ``out`` are dropped).
+    """
+    return int(_extract_ulog(buf, offsets, sizes, kinds, np.int64(msg_id), np.int64(min_size), np.asarray(field_offsets, dtype=np.int64),
+                             np.asarray(field_codes, dtype=np.int64), out, np.int64(start)))  # fmt: skip
+
+
+@njit(cache=True)
+def _scan_ulog(buf, offsets, sizes, kinds, t_offset, min_size, tallies):  # pragma: no cover - compiled
+    short = 0
+    for r in range(offsets.size):
+        if kinds[r] != 68:
+            continue
+        o = offsets[r]
+        m = np.int64(buf[o + 3]) | (np.int64(buf[o + 4]) << 8)
+        if t_offset[m] < 0:
+            tallies[0, m] += 1
+            continue
+        if sizes[r] < min_size[m]:
+            short += 1
+            continue
+        at = o + 5 + t_offset[m]
+        ts = np.int64(0)
+        for i in range(8):
+            ts |= np.int64(buf[at + i]) << np.int64(8 * i)
+        if tallies[0, m] == 0:
+            tallies[1, m] = ts
+        tallies[2, m] = ts
+        tallies[0, m] += 1
+    return short
+
+
+def scan_ulog(buf: np.ndarray, offsets, sizes, kinds, t_offset, min_size, tallies) -> int:
+    """Count the data records of each subscription and note their first and last timestamps.
+
+    Parameters
+    ----------
+    buf : ndarray of uint8
+        The chunk.
+    offsets, sizes, kinds : ndarray
+        Its records (:func:`walk_ulog`).
+    t_offset : ndarray of int64, shape (65536,)
+        Per message id, the offset of its ``timestamp`` after the id, or a negative number
+        where the format has none (its records are counted only) [bytes].
+    min_size : ndarray of int64, shape (65536,)
+        Per message id, the smallest payload of a whole record [bytes].
+    tallies : ndarray of int64, shape (3, 65536)
+        Records, first and last timestamp per message id, updated in place.
+
+    Returns
+    -------
+    int
+        Records shorter than their format (not counted) [count].
+    """
+    return int(_scan_ulog(buf, offsets, sizes, kinds, t_offset, min_size, tallies))

@@ -50,11 +50,53 @@ __all__ = ["read_log", "read_native", "write_log"]
 _FRAME = "the package's body axes (x forward, y right, z down), as the format defines them: no conversion"
 
 
+def _member(f, z: zipfile.ZipFile, info: zipfile.ZipInfo) -> np.ndarray:
+    """One ``.npy`` member, decompressed in one call into a buffer of its size and viewed as its array (no chunked copies).
+
+    The member's CRC-32 is checked as :mod:`zipfile` checks it.
+    """
+    import io
+
+    from numpy.lib import format as npy
+
+    f.seek(info.header_offset)
+    head = f.read(30)
+    if len(head) < 30 or head[:4] != b"PK\x03\x04":
+        raise zipfile.BadZipFile(f"bad local header of {info.filename}")
+    skip = int.from_bytes(head[26:28], "little") + int.from_bytes(head[28:30], "little")
+    f.seek(info.header_offset + 30 + skip)
+    raw = f.read(info.compress_size)
+    if len(raw) < info.compress_size:
+        raise EOFError(f"{info.filename} ends {info.compress_size - len(raw)} bytes early")
+    if info.compress_type == zipfile.ZIP_DEFLATED:
+        data = zlib.decompress(raw, -15, info.file_size)
+    elif info.compress_type == zipfile.ZIP_STORED:
+        data = raw
+    else:
+        with z.open(info) as m:
+            data = m.read()
+    del raw
+    if len(data) != info.file_size or zlib.crc32(data) != info.CRC:
+        raise zipfile.BadZipFile(f"{info.filename} does not match its size and CRC-32")
+    bio = io.BytesIO(data[:65536])
+    version = npy.read_magic(bio)
+    if version not in ((1, 0), (2, 0)):
+        return np.load(io.BytesIO(data), allow_pickle=False)
+    shape, fortran, dtype = (npy.read_array_header_1_0 if version == (1, 0) else npy.read_array_header_2_0)(bio)
+    if dtype.hasobject:
+        raise ValueError(f"{info.filename} holds Python objects, not numbers")
+    count = int(np.prod(shape, dtype=np.int64))
+    if bio.tell() + count * dtype.itemsize != len(data):
+        raise zipfile.BadZipFile(f"{info.filename} holds {len(data) - bio.tell()} bytes of data for an array of shape {shape}")
+    arr = np.frombuffer(data, dtype=dtype, count=count, offset=bio.tell())
+    return arr.reshape(shape[::-1]).T if fortran else arr.reshape(shape)
+
+
 def _load_npz(p: Path) -> dict:
-    """The arrays of an ``.npz``; a truncated or corrupt archive is a ValueError naming the file."""
+    """The arrays of an ``.npz``, each member decompressed once; a truncated or corrupt archive is a ValueError naming the file."""
     try:
-        with np.load(p, allow_pickle=False) as z:
-            return {k: z[k] for k in z.files}
+        with open(p, "rb") as f, zipfile.ZipFile(f) as z:
+            return {info.filename[:-4] if info.filename.endswith(".npy") else info.filename: _member(f, z, info) for info in z.infolist()}
     except (zipfile.BadZipFile, zlib.error, EOFError) as e:
         raise ValueError(f"Expected a complete .npz archive, got a truncated or corrupt file {p.name} ({type(e).__name__}: {e})") from None
     except ValueError as e:

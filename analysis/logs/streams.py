@@ -23,6 +23,7 @@ Public API
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -34,6 +35,8 @@ __all__ = ["StreamSamples", "LogContents", "choose_topic", "split_segments", "GA
 
 #: An interval longer than this many nominal intervals is a gap (a new segment starts after it).
 GAP_FACTOR = 1.5
+
+_CHUNK = 1 << 20  # samples per chunk of the jitter's sums
 
 #: A stream "covers" the log when it spans at least this fraction of the log's duration.
 _COVER = 0.8
@@ -221,16 +224,21 @@ def split_segments(time, gyro, accel, *, held: str, window=None, metadata=None, 
     if t.size < 2:
         raise ValueError(f"Expected at least two samples in `segment` {window}, got {t.size}")
     d = np.diff(t)
-    positive = d[d > 0]
-    h = float(np.median(positive)) if positive.size else float("nan")
+    if d.min() > 0:  # the usual case: no copy of the positive intervals
+        h = float(np.median(d))
+    else:
+        positive = d[d > 0]
+        h = float(np.median(positive)) if positive.size else float("nan")
+        del positive
     gap = d > GAP_FACTOR * h
     glitch = ~(d >= 0.5 * h)
     cut = np.flatnonzero(gap | glitch)
     starts = np.concatenate([[0], cut + 1])
     ends = np.concatenate([cut + 1, [t.size]])
     gaps = tuple(Gap(float(t[i]), float(d[i]), int(round(d[i] / h)) - 1) for i in np.flatnonzero(gap))
-    segments, dev = [], []
+    segments = []
     meta = dict(metadata or {})
+    squares, peak, count = 0.0, 0.0, 0
     for s, e in zip(starts, ends):
         n = e - s
         if n < 2:
@@ -238,14 +246,16 @@ def split_segments(time, gyro, accel, *, held: str, window=None, metadata=None, 
         ts = t[s:e]
         hs = (ts[-1] - ts[0]) / (n - 1)
         grid = ts[0] + hs * np.arange(n)
-        dev.append(np.diff(ts) - hs)
+        for c in range(s, e - 1, _CHUNK):  # the intervals inside the segment against their mean (the jitter), a chunk at a time
+            x = d[c : min(c + _CHUNK, e - 1)] - hs
+            squares += float(x @ x)
+            peak = max(peak, float(np.abs(x).max()))
+        count += n - 1
         g, a = gyro[s:e], accel[s:e]
         if held == "rates":
             g, a = g * hs, a * hs
         segments.append(ImuLog(grid, g, a, meta))
-    jit = np.concatenate(dev) if dev else np.zeros(0)
-    rms = float(np.sqrt(np.mean(jit**2))) if jit.size else 0.0
-    peak = float(np.max(np.abs(jit))) if jit.size else 0.0
+    rms = math.sqrt(max(squares, 0.0) / count) if count else 0.0
     integ = None
     if integration is not None and np.size(integration):
         integ = float(np.median(integration))

@@ -36,8 +36,11 @@ Public API
    SyntheticTruth
    still_truth
    rocking_truth
+   turntable_truth
+   vehicle_truth
    write_synthetic
    SYNTHETIC_FORMATS
+   BATCH_MULTIPLIERS
 """
 
 from __future__ import annotations
@@ -52,8 +55,9 @@ from pathlib import Path
 import numpy as np
 
 from ..core.validation import as_array, positive
+from .inventory import GnssTrack
 
-__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "write_synthetic", "SYNTHETIC_FORMATS"]
+__all__ = ["SyntheticTruth", "still_truth", "rocking_truth", "turntable_truth", "vehicle_truth", "write_synthetic", "SYNTHETIC_FORMATS", "BATCH_MULTIPLIERS"]
 
 #: What :func:`write_synthetic` writes (its ``format`` argument).
 SYNTHETIC_FORMATS = ("ulog", "dataflash", "rosbag1", "rosbag2", "euroc", "npz", "csv")
@@ -75,6 +79,8 @@ class SyntheticTruth:
         Where the log is (GNSS fixes and metadata) [rad].
     description : str
         What it is.
+    gnss : GnssTrack or None
+        The GNSS fixes to write with ``gnss=True`` (default: fixes at rest at ``latitude``, 5 Hz).
     """
 
     time: np.ndarray
@@ -82,6 +88,7 @@ class SyntheticTruth:
     dv: np.ndarray
     latitude: float = math.radians(45.0)
     description: str = "synthetic"
+    gnss: GnssTrack | None = None
 
     def __post_init__(self):
         t = as_array(self.time, "time").ravel()
@@ -181,6 +188,121 @@ def rocking_truth(
     return SyntheticTruth(t[:n], rec.dtheta[0, :n], rec.dv[0, :n], latitude, f"sine rocking, amplitude {tuple(amplitude)} deg, period {period:g} s")
 
 
+def turntable_truth(
+    headings, dwell: float = 120.0, turn: float = 10.0, rate: float = 100.0, *, latitude: float = math.radians(45.0), beta: float = 0.0, gamma: float = 0.0
+) -> tuple:
+    """A block on a turntable with a vertical axis: at rest in each heading, turned between them.
+
+    The attitude is ``C_b^n(t) = R_z(ψ(t) − ψ_1) C_1``, ``C_1 = R_z(ψ_1) R_x(−β) R_y(γ)``, with ψ
+    constant for ``dwell`` seconds in each heading and a half-cosine turn of ``turn`` seconds to the
+    next, so that ``ω_ib^b = C_b^nᵀ (ω_ie^n + ψ' e_D)`` and ``f^b = −C_b^nᵀ g^n``.  The increments are
+    the four-point Gauss–Legendre quadrature of these rates over each interval (every join of the
+    profile falls on a sample boundary, so each interval is smooth: error at round-off).
+
+    Parameters
+    ----------
+    headings : sequence of float
+        ψ of each position [rad] (a turn takes the shorter or longer way as the numbers say).
+    dwell : float
+        Time at rest in each position [s].
+    turn : float
+        Duration of each turn [s].
+    rate : float
+        Sample rate [Hz].
+    latitude : float, keyword-only
+        Latitude φ [rad].
+    beta, gamma : float, keyword-only
+        Tilts of the block on the table [rad].
+
+    Returns
+    -------
+    truth : SyntheticTruth
+        The increments.
+    end_attitude : ndarray
+        ``(3, 3)`` ``C_b^n`` at the end.
+    """
+    from ..alignment.earth import earth_rate_ned, gravity_ned
+    from ..alignment.tilt_attitude import attitude_matrix
+
+    psi = np.asarray(headings, dtype=float).ravel()
+    h_us = round(1e6 / positive(rate, "rate"))
+    h = h_us * 1e-6
+    n_dwell, n_turn = int(round(positive(dwell, "dwell") / h)), int(round(positive(turn, "turn") / h))
+    n = psi.size * n_dwell + (psi.size - 1) * n_turn
+    t_end = np.arange(1, n + 1) * h
+    C1 = attitude_matrix([psi[0], beta, gamma])
+    W, gn = earth_rate_ned(latitude), gravity_ned(latitude)
+
+    def profile(t):
+        """ψ(t) − ψ_1 and ψ'(t)."""
+        period = (n_dwell + n_turn) * h
+        k = np.minimum((t // period).astype(int), psi.size - 1)
+        s = t - k * period - n_dwell * h  # time into the turn after position k
+        inside = (s > 0) & (k < psi.size - 1)
+        d = np.where(k < psi.size - 1, psi[np.minimum(k + 1, psi.size - 1)] - psi[k], 0.0)
+        x = np.clip(s / (n_turn * h), 0.0, 1.0)
+        ang = psi[k] - psi[0] + np.where(inside, 0.5 * d * (1.0 - np.cos(math.pi * x)), 0.0)
+        rate_ = np.where(inside, 0.5 * d * math.pi / (n_turn * h) * np.sin(math.pi * x), 0.0)
+        return ang, rate_
+
+    def body(t):
+        a, r = profile(t)
+        c, sn = np.cos(a), np.sin(a)
+        Rz = np.zeros((t.size, 3, 3))
+        Rz[:, 0, 0], Rz[:, 0, 1], Rz[:, 1, 0], Rz[:, 1, 1], Rz[:, 2, 2] = c, -sn, sn, c, 1.0
+        C = Rz @ C1
+        w = np.einsum("kji,kj->ki", C, W[None, :] + r[:, None] * np.array([0.0, 0.0, 1.0]))
+        f = np.einsum("kji,j->ki", C, -gn)
+        return w, f, C
+
+    nodes, weights = np.polynomial.legendre.leggauss(4)
+    dth, dv = np.zeros((n, 3)), np.zeros((n, 3))
+    for x, wgt in zip(nodes, weights):
+        w, f, _ = body(t_end - h + 0.5 * h * (x + 1.0))
+        dth += 0.5 * h * wgt * w
+        dv += 0.5 * h * wgt * f
+    C_end = body(t_end[-1:])[2][0]
+    truth = SyntheticTruth(t_end, dth, dv, latitude, f"turntable: headings {np.degrees(psi).round(3).tolist()} deg, {dwell:g} s each, {turn:g} s turns")
+    return truth, C_end
+
+
+def vehicle_truth(manoeuvre, duration: float = 300.0, rate: float = 100.0, *, gnss_rate: float = 5.0, limits=None) -> tuple:
+    """A vehicle driving a manoeuvre (:mod:`~strapdown.analysis.alignment.trajectory`): its ideal increments and GNSS fixes.
+
+    Parameters
+    ----------
+    manoeuvre : Manoeuvre
+        The drive (start position, speed profile, heading weave).
+    duration : float
+        Length [s].
+    rate : float
+        IMU sample rate [Hz].
+    gnss_rate : float, keyword-only
+        Rate of the fixes [Hz] (from t = 0, on the IMU's microsecond grid).
+    limits : Limits, optional, keyword-only
+        Work limits of the trajectory (:func:`~strapdown.analysis.alignment.trajectory.trajectory_increments`).
+
+    Returns
+    -------
+    truth : SyntheticTruth
+        The increments, with ``gnss`` the exact fixes (position and NED velocity).
+    state : TrajectoryState
+        The true state at the end of the log (``attitude``, ``heading``).
+    """
+    from ..alignment.trajectory import trajectory_increments, trajectory_state
+
+    h, t = _grid(duration, rate)
+    dth, dv, sol = trajectory_increments(manoeuvre, 1.0 / h, t.size * h, limits=limits)
+    n = min(t.size, dth.shape[0])
+    step_us = round(1e6 / positive(gnss_rate, "gnss_rate"))
+    tg = np.arange(0, int(round(t[n - 1] * 1e6)) + 1, step_us) * 1e-6
+    st = trajectory_state(manoeuvre, tg, solution=sol)
+    gnss = GnssTrack("truth", tg, st.latitude, st.longitude, np.full(tg.size, st.height), st.velocity)
+    end = trajectory_state(manoeuvre, [t[n - 1]], solution=sol)
+    desc = f"vehicle: {manoeuvre.speed:g} m/s, weave {math.degrees(manoeuvre.weave_amplitude):g} deg over {manoeuvre.weave_period:g} s"
+    return SyntheticTruth(t[:n], dth[:n], dv[:n], float(manoeuvre.latitude), desc, gnss), end
+
+
 # --------------------------------------------------------------------------- atomic writes
 def _atomic(path: Path, write) -> Path:
     tmp = path.with_name(f".{path.name}.partial")
@@ -237,6 +359,17 @@ def _records(msg_id: int, fields, columns: dict, n: int) -> np.ndarray:
     return rec
 
 
+def _fixes(truth: SyntheticTruth, stamps, start_us: int):
+    """``(time [µs of the log's clock], lat [deg], lon [deg], alt [m], NED velocity (M, 3) [m/s])`` of the fixes to write."""
+    g = truth.gnss
+    if g is None:  # at rest at the truth's latitude, 5 Hz
+        tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
+        m = tg.size
+        return tg, np.full(m, math.degrees(truth.latitude)), np.full(m, 8.5), np.full(m, 450.0), np.zeros((m, 3))
+    vel = np.zeros((g.time.size, 3)) if g.velocity is None else np.asarray(g.velocity, dtype=float)
+    return start_us + np.round(g.time * 1e6).astype(np.int64), np.degrees(g.latitude), np.degrees(g.longitude), np.asarray(g.altitude, dtype=float), vel
+
+
 def _write_ulog(path: Path, truth: SyntheticTruth, layout: str, gnss: bool, start_us: int = 1_000_000):
     h = truth.interval
     h_us = int(round(h * 1e6))
@@ -267,13 +400,12 @@ def _write_ulog(path: Path, truth: SyntheticTruth, layout: str, gnss: bool, star
                 f.write(d)
             _records(0, sc_fields, cols, truth.time.size).tofile(f)
             if gnss:
-                tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
-                lat = math.degrees(truth.latitude)
-                g = {"timestamp": tg, "fix_type": 3}
+                tg, lat, lon, alt, vel = _fixes(truth, stamps, start_us)
+                g = {"timestamp": tg, "fix_type": 3, "vel_n_m_s": vel[:, 0], "vel_e_m_s": vel[:, 1], "vel_d_m_s": vel[:, 2]}
                 if layout == "new":
-                    g.update(latitude_deg=lat, longitude_deg=8.5, altitude_msl_m=450.0)
+                    g.update(latitude_deg=lat, longitude_deg=lon, altitude_msl_m=alt)
                 else:
-                    g.update(lat=int(round(lat * 1e7)), lon=85_000_000, alt=450_000)
+                    g.update(lat=np.round(lat * 1e7).astype(np.int64), lon=np.round(lon * 1e7).astype(np.int64), alt=np.round(alt * 1e3).astype(np.int64))
                 _records(1, gps_fields, g, tg.size).tofile(f)
 
     _atomic(path, write)
@@ -284,6 +416,13 @@ _DF_IMU = ("IMU", "QBffffffIIfBBHH", "TimeUS,I,GyrX,GyrY,GyrZ,AccX,AccY,AccZ,EG,
 _DF_IMT = ("IMT", "QBfffffffff", "TimeUS,I,DelT,DelvT,DelaT,DelAX,DelAY,DelAZ,DelVX,DelVY,DelVZ")
 _DF_GPS = ("GPS", "QBBIHBcLLeffffB", "TimeUS,I,Status,GMS,GWk,NSats,HDop,Lat,Lng,Alt,Spd,GCrs,VZ,Yaw,U")
 _DF_PARM = ("PARM", "QNff", "TimeUS,Name,Value,Default")
+_DF_ISBH = ("ISBH", "QHBBHHQf", "TimeUS,N,type,instance,mul,smp_cnt,SampleUS,smp_rate")
+_DF_ISBD = ("ISBD", "QHHaaa", "TimeUS,N,seqno,x,y,z")
+_DF_GYR = ("GYR", "QBQfff", "TimeUS,I,SampleUS,GyrX,GyrY,GyrZ")
+_DF_ACC = ("ACC", "QBQfff", "TimeUS,I,SampleUS,AccX,AccY,AccZ")
+#: ArduPilot's batch-sampler multipliers (``AP_InertialSensor::BatchSampler``): INT16_MAX/radians(2000) and INT16_MAX/(26 g).
+BATCH_MULTIPLIERS = {"gyro": 938, "accel": 128}
+_BATCH_COUNT = 64  # samples per burst of the synthetic batch sampler
 _DF_MSG = ("MSG", "QZ", "TimeUS,Message")
 
 
@@ -309,13 +448,42 @@ def _df_fmt(kind: int, spec) -> bytes:
     return bytes([0xA3, 0x95, 128, kind, length]) + name.encode().ljust(4, b"\0") + fmt.encode().ljust(16, b"\0") + labels.encode().ljust(64, b"\0")
 
 
-def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, start_us: int = 5_000_000):
+def _batch_records(truth: SyntheticTruth, stamps, mode: str):
+    """ISBH and ISBD records of the batch sampler: bursts of 64 samples, gyro and accelerometer over the same samples (``"paired"``) or in turn (``"alternating"``)."""
+    n_blocks = truth.time.size // _BATCH_COUNT
+    heads, data = [], []
+    seq = 0
+    for b in range(n_blocks):
+        for sensor, kind, offset in (("gyro", 1, 0), ("accel", 0, 0 if mode == "paired" else 2)):
+            if (b - offset) % 4:
+                continue
+            lo = b * _BATCH_COUNT
+            values = (truth.gyro if sensor == "gyro" else truth.accel)[lo : lo + _BATCH_COUNT]
+            q = np.clip(np.round(values * BATCH_MULTIPLIERS[sensor]), -32768, 32767).astype(np.int16)
+            t_end = int(stamps[lo + _BATCH_COUNT - 1])
+            heads.append({"TimeUS": t_end, "N": seq, "type": kind, "instance": 0, "mul": BATCH_MULTIPLIERS[sensor], "smp_cnt": _BATCH_COUNT,
+                          "SampleUS": int(stamps[lo]), "smp_rate": 1.0 / truth.interval})  # fmt: skip
+            for k in range(_BATCH_COUNT // 32):
+                part = q[32 * k : 32 * (k + 1)]
+                data.append({"TimeUS": t_end, "N": seq, "seqno": k, "x": part[:, 0], "y": part[:, 1], "z": part[:, 2]})
+            seq += 1
+    cols = lambda rows, key: [r[key] for r in rows]  # noqa: E731
+    H = _df_records(133, _DF_ISBH, len(heads), {k: cols(heads, k) for k in heads[0]}) if heads else None
+    D = _df_records(134, _DF_ISBD, len(data), {k: np.array(cols(data, k)) for k in data[0]}) if data else None
+    return H, D
+
+
+def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, start_us: int = 5_000_000, batch: str | None = None, raw: bool = False):
     h = truth.interval
     stamps = start_us + np.round(truth.time * 1e6).astype(np.int64)
     fmt_fmt = bytes([0xA3, 0x95, 128, 128, 89]) + b"FMT\0" + b"BBnNZ".ljust(16, b"\0") + b"Type,Length,Name,Format,Columns".ljust(64, b"\0")
     specs = {129: _DF_PARM, 130: _DF_MSG, 131: _DF_IMU if held == "rates" else _DF_IMT}
     if gnss:
         specs[132] = _DF_GPS
+    if batch is not None:
+        specs[133], specs[134] = _DF_ISBH, _DF_ISBD
+    if raw:
+        specs[135], specs[136] = _DF_GYR, _DF_ACC
 
     def write(tmp):
         with open(tmp, "wb") as f:
@@ -334,9 +502,19 @@ def _write_dataflash(path: Path, truth: SyntheticTruth, held: str, gnss: bool, s
                 cols.update({f"DelA{a}": truth.dtheta[:, i] for i, a in enumerate("XYZ")})
                 cols.update({f"DelV{a}": truth.dv[:, i] for i, a in enumerate("XYZ")})
                 _df_records(131, _DF_IMT, truth.time.size, cols).tofile(f)
+            if batch is not None:
+                for rec in _batch_records(truth, stamps, batch):
+                    if rec is not None:
+                        rec.tofile(f)
+            if raw:
+                for kind, spec, values, names in ((135, _DF_GYR, truth.gyro, "GyrX GyrY GyrZ"), (136, _DF_ACC, truth.accel, "AccX AccY AccZ")):
+                    cols = {"TimeUS": stamps, "I": 0, "SampleUS": stamps}
+                    cols.update({c: values[:, i] for i, c in enumerate(names.split())})
+                    _df_records(kind, spec, truth.time.size, cols).tofile(f)
             if gnss:
-                tg = np.arange(start_us, int(stamps[-1]) + 1, 200_000)
-                cols = {"TimeUS": tg, "Status": 3, "NSats": 12, "Lat": int(round(math.degrees(truth.latitude) * 1e7)), "Lng": 85_000_000, "Alt": 45000}
+                tg, lat, lon, alt, vel = _fixes(truth, stamps, start_us)
+                cols = {"TimeUS": tg, "Status": 3, "NSats": 12, "Lat": np.round(lat * 1e7).astype(np.int64), "Lng": np.round(lon * 1e7).astype(np.int64),
+                        "Alt": np.round(alt * 100).astype(np.int64), "Spd": np.hypot(vel[:, 0], vel[:, 1]), "GCrs": np.degrees(np.arctan2(vel[:, 1], vel[:, 0])) % 360.0, "VZ": vel[:, 2]}  # fmt: skip
                 _df_records(132, _DF_GPS, tg.size, cols).tofile(f)
 
     _atomic(path, write)
@@ -421,7 +599,10 @@ def _write_native(path: Path, truth: SyntheticTruth, held: str):
     return _atomic(path, write)
 
 
-def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, held: str = "increments", layout: str = "new", gnss: bool = False, topic: str = "/imu") -> Path:
+def write_synthetic(
+    path, truth: SyntheticTruth, *, format: str | None = None, held: str = "increments", layout: str = "new", gnss: bool = False, topic: str = "/imu",
+    batch: str | None = None, raw: bool = False,
+) -> Path:  # fmt: skip
     """Write ``truth`` as a log of ``format``.
 
     Parameters
@@ -442,6 +623,13 @@ def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, h
         ULog and DataFlash: add GNSS fixes at ``truth.latitude`` (5 Hz).
     topic : str, keyword-only
         ROS: the IMU topic.
+    batch : str, optional, keyword-only
+        DataFlash: add ArduPilot batch-sampler messages (``ISBH``/``ISBD``, bursts of 64 raw
+        samples of IMU 0 every 256 samples, int16 × :data:`BATCH_MULTIPLIERS`), the gyro's and
+        the accelerometer's over the same samples (``"paired"``) or in turn as ArduPilot takes
+        them (``"alternating"``).
+    raw : bool, keyword-only
+        DataFlash: add ``GYR`` and ``ACC`` raw samples (float32, at the IMU's sample times).
 
     Returns
     -------
@@ -464,10 +652,12 @@ def write_synthetic(path, truth: SyntheticTruth, *, format: str | None = None, h
             format = "euroc" if p.name == "data.csv" else "csv"
     if format not in SYNTHETIC_FORMATS:
         raise ValueError(f"Expected `format` in {SYNTHETIC_FORMATS} (or a path whose suffix names one), got {format!r} for {p.name}")
+    if batch not in (None, "paired", "alternating"):
+        raise ValueError(f"Expected `batch` None, 'paired' or 'alternating', got {batch!r}")
     if format == "ulog":
         _write_ulog(p, truth, layout, gnss)
     elif format == "dataflash":
-        _write_dataflash(p, truth, held, gnss)
+        _write_dataflash(p, truth, held, gnss, batch=batch, raw=raw)
     elif format in ("rosbag1", "rosbag2"):
         _write_rosbag(p, truth, 1 if format == "rosbag1" else 2, topic)
     elif format == "euroc":

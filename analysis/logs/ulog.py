@@ -51,14 +51,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .framing import gather, walk_ulog
+from .framing import FIELD_TYPES, extract_ulog, gather, scan_ulog, walk_ulog
 from .inventory import GnssTrack, SensorFilter, StreamInfo
 from .streams import LogContents, StreamSamples, choose_topic
 
 __all__ = ["read_ulog", "PX4_FILTERS"]
 
 _HEADER = b"\x55\x4c\x6f\x67\x01\x12\x35"
-_CHUNK = 1 << 26  # 64 MiB of the file at a time
+_CHUNK = 1 << 24  # 16 MiB of the file at a time
 _NUMPY = {
     "int8_t": "i1", "uint8_t": "u1", "int16_t": "<i2", "uint16_t": "<u2", "int32_t": "<i4", "uint32_t": "<u4",
     "int64_t": "<i8", "uint64_t": "<u8", "float": "<f4", "double": "<f8", "bool": "i1", "char": "i1",
@@ -137,7 +137,7 @@ def _walk(path: Path, ranges, on_chunk, progress, desc):
 
     notes = []
     total = sum(b - a for a, b in ranges)
-    capacity = 1 << 20
+    capacity = 1 << 18  # records per call of the walk (their offsets, sizes and kinds: 4.5 MB)
     with open(path, "rb") as f, bar(desc=desc, total=total, enabled=progress, unit="B") as pbar:
         for lo, hi in ranges:
             pos = lo
@@ -234,7 +234,10 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
     start_us = int(u.start_timestamp)
     ranges = _data_ranges(p, size)
 
-    subs, counts, first, last = {}, {}, {}, {}
+    subs = {}
+    t_offset = np.full(1 << 16, -2, dtype=np.int64)  # per message id: offset of its timestamp, -1 without one, -2 not yet subscribed
+    min_size = np.zeros(1 << 16, dtype=np.int64)
+    tallies = np.zeros((3, 1 << 16), dtype=np.int64)  # records, first and last timestamp per message id
     state = {"dropouts": 0, "bad_size": 0}
     layouts = {}
 
@@ -252,29 +255,16 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
         drops = off[kd == ord("O")]
         if drops.size:
             state["dropouts"] += int(np.sum(buf[drops + 3].astype(np.int64) | (buf[drops + 4].astype(np.int64) << 8)))
-        d = kd == ord("D")
-        if not np.any(d):
-            return
-        o, s = off[d], sz[d]
-        ids = buf[o + 3].astype(np.int64) | (buf[o + 4].astype(np.int64) << 8)
-        for msg_id in np.unique(ids):
-            sel = ids == msg_id
-            name = subs.get(int(msg_id), (None, 0))[0]
-            dt, fields = layout(name) if name else (None, {})
-            if dt is None or "timestamp" not in dt.names:
-                counts[int(msg_id)] = counts.get(int(msg_id), 0) + int(np.count_nonzero(sel))
-                continue
-            oo = o[sel][s[sel] - 2 >= dt.itemsize]
-            state["bad_size"] += int(np.count_nonzero(sel)) - oo.size
-            if not oo.size:
-                continue
-            t_off = dt.fields["timestamp"][1]
-            ts = gather(buf, oo[[0, -1]] + 5 + t_off, 8).view("<u8").ravel()
-            counts[int(msg_id)] = counts.get(int(msg_id), 0) + oo.size
-            first.setdefault(int(msg_id), int(ts[0]))
-            last[int(msg_id)] = int(ts[1])
+        for msg_id, (name, _) in subs.items():  # the layout of each subscription, before its records are counted
+            if t_offset[msg_id] == -2:
+                dt_m = layout(name)[0]
+                t_offset[msg_id], min_size[msg_id] = (dt_m.fields["timestamp"][1], dt_m.itemsize + 2) if dt_m is not None and "timestamp" in dt_m.names else (-1, 2)
+        state["bad_size"] += scan_ulog(buf, off, sz, kd, t_offset, min_size, tallies)
 
     notes = _walk(p, ranges, scan, progress, f"scanning {p.name}")
+    counts = {int(i): int(tallies[0, i]) for i in np.flatnonzero(tallies[0])}
+    first = {i: int(tallies[1, i]) for i in counts if t_offset[i] >= 0}
+    last = {i: int(tallies[2, i]) for i in counts if t_offset[i] >= 0}
     if state["bad_size"]:
         notes.append(f"{state['bad_size']} data records shorter than their format were skipped")
     t_end = max(last.values(), default=start_us)
@@ -315,26 +305,20 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
     missing = [c for c in cols if c not in dt.names]
     if missing:
         raise ValueError(f"Expected the fields {missing} in {name} of {p.name}, got a format without them")
-    out = np.empty((chosen.samples, len(cols)), dtype=np.float64)
-    stamps = np.empty(chosen.samples, dtype=np.uint64)
+    N = chosen.samples
+    field_offsets = [dt.fields[c][1] for c in cols]
+    field_codes = [FIELD_TYPES.index(dt.fields[c][0].str) for c in cols]
+    table = np.empty((N, len(cols)))  # time, gyro (3), accel (3), gyro dt, accel dt: read into their rows by the compiled walk
     gnss_rows = {g[0]: [] for g in gnss_ids}
     filled = [0]
 
     def take(buf, off, sz, kd):
-        d = kd == ord("D")
-        if not np.any(d):
+        filled[0] = extract_ulog(buf, off, sz, kd, msg_id, dt.itemsize + 2, field_offsets, field_codes, table, filled[0])
+        if not gnss_ids:
             return
+        d = kd == ord("D")
         o, s = off[d], sz[d]
         ids = buf[o + 3].astype(np.int64) | (buf[o + 4].astype(np.int64) << 8)
-        sel = (ids == msg_id) & (s - 2 >= dt.itemsize)
-        if np.any(sel):
-            rec = gather(buf, o[sel] + 5, dt.itemsize).view(dt).ravel()
-            k = filled[0]
-            m = min(rec.size, chosen.samples - k)
-            stamps[k : k + m] = rec[cols[0]][:m]
-            for j, c in enumerate(cols[1:], start=1):
-                out[k : k + m, j] = rec[c][:m]
-            filled[0] = k + m
         for gid, gname, _ in gnss_ids:
             gdt = layout(gname)[0]
             gsel = (ids == gid) & (s - 2 >= gdt.itemsize)
@@ -343,24 +327,29 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
 
     notes += [n for n in _walk(p, ranges, take, progress, f"reading {chosen.topic}") if n not in notes]
     n = filled[0]
-    time = (stamps[:n].astype(np.int64) - start_us) * 1e-6
-    out = out[:n]
+    table = table[:n]
+    time = table[:, 0]
+    time -= start_us  # whole microseconds: exact in float64
+    time *= 1e-6
+    gyro, accel = table[:, 1:4], table[:, 4:7]
+    dtg, dta = table[:, 7], table[:, 8]
     integration_unit = ""
     if name == "sensor_combined":
         kind = fields["gyro_integral_dt"]
         scale = 1e-6 if kind != "float" else 1.0
         integration_unit = "us" if scale == 1e-6 else "s"
-        dtg, dta = out[:, 7] * scale, out[:, 8] * scale
         step = float(np.median(np.diff(time))) if n > 1 else 0.0
-        med = float(np.median(dtg)) if n else 0.0
+        med = float(np.median(dtg)) * scale if n else 0.0
         if step > 0 and med > 0 and not 0.2 < med / step < 5.0:
             other = 1e6 if scale == 1.0 else 1e-6
             if 0.2 < med * other / step < 5.0:  # the field's type and its values disagree: the values decide
                 notes.append(f"gyro_integral_dt is a {kind} but its values are in {'microseconds' if scale == 1.0 else 'seconds'} (median {med * other:.6g} s against {step:.6g} s between timestamps)")
-                dtg, dta, scale = dtg * other, dta * other, scale * other
+                scale *= other
                 integration_unit = "us" if integration_unit == "s" else "s"
-        gyro = out[:, 1:4] * dtg[:, None]
-        accel = out[:, 4:7] * dta[:, None]
+        dtg *= scale
+        dta *= scale
+        gyro *= dtg[:, None]  # the increments PX4 integrated, in place
+        accel *= dta[:, None]
         conversion = (
             f"gyro_rad × gyro_integral_dt and accelerometer_m_s2 × accelerometer_integral_dt: the increments PX4 integrated, "
             f"which sensor_combined stores divided by their interval (integral_dt in {'microseconds, uint32' if integration_unit == 'us' else 'seconds, float'})"
@@ -368,8 +357,8 @@ def read_ulog(path, *, topic: str | None = None, guard=None, progress: bool = Fa
         units = f"rad/s and m/s² times the integration interval [{integration_unit}] → rad and m/s"
         integration = dtg
     else:
-        gyro, accel = out[:, 1:4], out[:, 4:7]
-        integration = out[:, 7] * 1e-6
+        dtg *= 1e-6
+        integration = dtg
         integration_unit = "us"
         conversion = "delta_angle and delta_velocity as PX4 integrated them (vehicle_imu), with delta_angle_dt [us]"
         units = "rad and m/s (SI in the log)"
