@@ -41,31 +41,38 @@ Scrolling error under sculling, in closed form
 ----------------------------------------------
 Under a line of sculling, ``ω = Re(Â e^{iνt})``, ``f = Re(B̂ e^{iνt})`` (rate
 and specific-force amplitude vectors), the errors of the velocity and position
-algorithms rectify: exact minus algorithm (package docstring, "Errors"), the
-position error grows as
-
-    δR(t) = ½ e_v t² + e_r t + (bounded),
-
-where ``e_v`` is the velocity algorithm's rectification (sculling) error and
-``e_r`` the *scrolling error*.  Averaged over the phase of the steps, every
-second-order quantity is ``½ Re((Â × conj B̂) K)`` with a scalar kernel K of
-``x = νh``, so that, with the step increments ``p_i``, ``b_j`` over the sample
-intervals ``[(i − 1)h, ih]`` (indices ≤ 0 read the steps before),
+algorithms rectify.  Exact minus algorithm (package docstring, "Errors"), one
+step started from the exact state adds on average ``e_v H`` to the velocity
+error (the rectification, or sculling, error ``e_v``) and ``e_r H`` to the
+position error: ``e_r`` is the *scrolling error*, the rate at which the
+position algorithm alone loses position.  Averaged over the phase of the
+steps, every second-order quantity of a step is ``½ Re((Â × conj B̂) K)`` with
+a scalar kernel K of ``x = νh``, so that, with the step increments ``p_i``,
+``b_j`` over the sample intervals ``[(i − 1)h, ih]`` (indices ≤ 0 read the
+steps before),
 
     e_v = (h/(2N)) Re((Â × conj B̂) (K_v − K_v,alg)),
     e_r = (h²/2) Re((Â × conj B̂) Z(x)),
-    Z(x) = (K_r − Σ_ij e_ij k_ij)/N − ½ (K_v − K_v,alg),
+    Z(x) = [K_r − Σ_ij e_ij k_ij + conj σ(x)/(ix)]/N,
 
     k_ij = ∫_{i−1}^{i} e^{ixσ} dσ · conj ∫_{j−1}^{j} e^{ixτ} dτ,
     K_v = ∫₀ᴺ ∫₀^τ e^{ix(σ−τ)} dσ dτ,     K_r = ∫₀ᴺ (N − τ) ∫₀^τ e^{ix(σ−τ)} dσ dτ,
+    σ(x) = ∫₀ᴺ (N − u) e^{ixu} du − Σ_j s_j ∫_{j−1}^{j} e^{ixu} du,
     K_v,alg = Σ_{i<j} c_ij (k_ij − k_ji) + ½ Σ_{i,j=1}^{N} k_ij
 
 (``c_ij`` the pairwise coefficients of the coning algorithm, whose dual
 extension is the velocity algorithm, ``ΔV = J(φ) φ°``; ``½ P × B`` is the
-second-order part of J).  The term ``−½ e_v H`` inside e_r is the position the
-velocity error of each step loses because the position update uses the
-velocity at the start of the step.  Classical sculling (angle ``θ₀ sin(νt + φ_θ)``
-about ``e_r``, specific force ``A sin(νt + φ_a)`` along ``e_a``) has
+second-order part of J).  The last term of Z is the linear error of the
+position algorithm, ``h² Re(B̂ e^{iνt} σ)`` (zero for f polynomial of degree
+N − 1, but not for a sinusoid), turned into frame I by the vibration angle at
+the start of the step, ``Re(Â e^{iνt}/(iν))``: the two are correlated and
+their product rectifies.  The velocity algorithm has no such term, its linear
+part ``Σ b_j`` being exact.  Over a run the
+position error then grows as ``½ e_v t² + (e_r − ½ e_v H) t`` plus a term that
+depends on the phase at the start: the position update uses the velocity at
+the start of each step, which lags the velocity error by half a step.
+Classical sculling (angle ``θ₀ sin(νt + φ_θ)`` about ``e_r``, specific force
+``A sin(νt + φ_a)`` along ``e_a``) has
 ``Â × conj B̂ = i θ₀ ν A e^{−i(φ_a − φ_θ)} e_r × e_a``.
 
 References
@@ -207,26 +214,21 @@ def _conj_interval(a: int, b: int):
     return (sp.exp(-sp.I * X * b) - sp.exp(-sp.I * X * a)) / (-sp.I * X)
 
 
-def _pairwise(algorithm: Algorithm) -> dict:
-    return {(i, j): sp.Rational(c.numerator, c.denominator) for (i, j), c in algorithm.pairwise.items()}
-
-
 def _closed_form(algorithm: Algorithm) -> sp.Expr:
     """Z(x) built from the integrals of the exponentials (each kernel in closed form, no symbolic integration)."""
     n = algorithm.samples
     a = sp.I * X
     E = sp.exp(-a * n)
-    K_v = (n - (1 - E) / a) / a  # ∫₀ᴺ (1 − e^{−ixτ})/(ix) dτ
     K_r = (sp.Rational(n * n, 2) - (n / a - (1 - E) / a**2)) / a  # ∫₀ᴺ (N − τ)(1 − e^{−ixτ})/(ix) dτ
-    _, e = _exact_weights(n)
+    sw, e = _exact_weights(n)
 
     def k(i, j):
         return _interval(i - 1, i) * _conj_interval(j - 1, j)
 
     K_ralg = sum(e[i][j] * k(i + 1, j + 1) for i in range(n) for j in range(n))
-    K_valg = sum(c * (k(i, j) - k(j, i)) for (i, j), c in _pairwise(algorithm).items())
-    K_valg += sp.Rational(1, 2) * sum(k(i, j) for i in range(1, n + 1) for j in range(1, n + 1))
-    return (K_r - K_ralg) / n - sp.Rational(1, 2) * (K_v - K_valg)
+    b = -sp.I * X  # conj of the linear error kernel σ(x) for real x
+    sigma_c = -n / b + (sp.exp(b * n) - 1) / b**2 - sum(sw[j] * (sp.exp(b * (j + 1)) - sp.exp(b * j)) / b for j in range(n))
+    return (K_r - K_ralg) / n + sigma_c / (sp.I * X * n)
 
 
 def _pair_moment(k: int, i: int, j: int) -> Fraction:
@@ -242,22 +244,22 @@ def _taylor(algorithm: Algorithm, count: int) -> tuple:
     """Taylor coefficients ``z_k`` of Z(x), k = 0 … count − 1, as ``(re, im)`` Fractions.
 
     Each kernel is ``Σ_k (ix)^k/k! m_k`` with ``m_k`` the integral of ``(σ − τ)^k``
-    over its domain, exact rationals: ``K_v``: ``(−1)^k N^(k+2)/((k+1)(k+2))``,
-    ``K_r``: ``(−1)^k N^(k+3)/((k+1)(k+2)(k+3))``, ``k_ij``: the rectangle moments.
+    over its domain, exact rationals: ``K_r``: ``(−1)^k N^(k+3)/((k+1)(k+2)(k+3))``,
+    ``k_ij``: the rectangle moments.
     """
     n = algorithm.samples
-    _, e = _exact_weights(n)
+    sw, e = _exact_weights(n)
+    sw = [_fraction(x) for x in sw]
     e = [[_fraction(x) for x in row] for row in e]
-    pairs = {key: Fraction(c.numerator, c.denominator) for key, c in algorithm.pairwise.items()}
     out = []
     for k in range(count):
         sign = -1 if k % 2 else 1
         r = Fraction(sign * n ** (k + 3), (k + 1) * (k + 2) * (k + 3))
         r -= sum((e[i][j] * _pair_moment(k, i + 1, j + 1) for i in range(n) for j in range(n)), Fraction(0))
-        v = Fraction(sign * n ** (k + 2), (k + 1) * (k + 2))
-        v -= sum((c * (_pair_moment(k, i, j) - _pair_moment(k, j, i)) for (i, j), c in pairs.items()), Fraction(0))
-        v -= Fraction(1, 2) * sum((_pair_moment(k, i, j) for i in range(1, n + 1) for j in range(1, n + 1)), Fraction(0))
-        z = (r / n - v / 2) / math.factorial(k)
+        # the linear error of the step turned by the attitude at its start: (−1)^(k+1) i^k μ_(k+1)/(k+1)!
+        m = k + 1
+        mu = Fraction(n ** (m + 2), (m + 1) * (m + 2)) - sum((sw[j] * Fraction((j + 1) ** (m + 1) - j ** (m + 1), m + 1) for j in range(n)), Fraction(0))
+        z = (r / math.factorial(k) - sign * mu / math.factorial(m)) / n
         # times i^k: 1, i, −1, −i
         out.append({0: (z, Fraction(0)), 1: (Fraction(0), z), 2: (-z, Fraction(0)), 3: (Fraction(0), -z)}[k % 4])
     return tuple(out)
@@ -318,17 +320,12 @@ TAYLOR_TERMS = 60
 
 
 def scrolling_kernel(algorithm: Algorithm, *, terms: int = TAYLOR_TERMS) -> ScrollingKernel:
-    """``Z(x)`` of the position algorithm of ``algorithm.samples`` samples with the velocity algorithm of ``algorithm``.
-
-    Only the pairwise terms of the coning algorithm act at second order (the
-    nested and dot terms are of third order in the motion), cross-step terms
-    included.
+    """``Z(x)`` of the position algorithm of ``algorithm.samples`` samples.
 
     Parameters
     ----------
     algorithm : Algorithm
-        The coning algorithm; its dual extension is the velocity algorithm and
-        its N the position algorithm's.
+        The coning algorithm; its N is the position algorithm's.
     terms : int, keyword-only
         Taylor coefficients kept [count].
 
@@ -354,7 +351,7 @@ def scrolling_kernel(algorithm: Algorithm, *, terms: int = TAYLOR_TERMS) -> Scro
     >>> from strapdown.derivations.coning.registry import get
     >>> z = scrolling_kernel(get("one-sample"), terms=6)
     >>> z.leading
-    (1, Fraction(1, 24))
+    (1, Fraction(-1, 12))
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
