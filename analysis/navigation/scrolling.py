@@ -49,11 +49,11 @@ from ..coning.drift_theory import algorithm_key
 from ..coning.sculling_motion import ScullingMotion
 from ..coning.simulator import sample_increments, step_count
 from ..core import budget
+from ..core import quaternion as quat
 from ..core.quadrature import integrate as quadrature
 from ..core.validation import positive
 from ..vibration.drift import QUADRATURE_RTOL, coherent_groups
 from ..vibration.environment import Environment
-from ..core import quaternion as quat
 from .integration import step_increments
 
 __all__ = ["scrolling_function", "ScullingErrors", "sculling_errors", "simulated_scrolling", "environment_scrolling"]
