@@ -7,12 +7,15 @@ The navigation states are those of
 ``C̃_b^n = (I − [φ×]) C_b^n`` with n the local-level frame at the computed
 position,
 
-    φ'  = −ω_ie × φ + M δv − C δω,
+    φ'  = −ω_ie × φ + M δv + (∂ω_ie/∂L) δp_N/R − C δω,
     δv' = f^n × φ − 2ω_ie × δv + C δf,
     δp' = δv + C δr,
 
 ``M δv = (δv_E, −δv_N, −δv_E tan φ)/R`` (whose loop with ``f^n × φ`` is the
-Schuler loop, ``ω_s² = g/R``), C = ``C_b^n`` the attitude at rest (level,
+Schuler loop, ``ω_s² = g/R``), ``∂ω_ie/∂L = Ω (−sin φ, 0, −cos φ)`` the error of
+the Earth rate in the computed frame (added here to the model of the
+alignment toolkit, which omits it: over an hour it changes a bias response by
+about 1 %), C = ``C_b^n`` the attitude at rest (level,
 heading ψ), δω and δf the gyro and accelerometer errors in body axes, δr a
 position-rate error (the scrolling error).  The vertical channel is held (an
 external height, as in every free-inertial budget: unaided it diverges with
@@ -79,8 +82,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..alignment.earth import earth_rate_ned, normal_gravity
-from ..alignment.error_model import navigation_error_model
+from ..alignment.earth import EARTH_RATE, earth_rate_ned, normal_gravity
+from ..alignment.error_model import EARTH_RADIUS, navigation_error_model
 from ..core.validation import as_float, in_open_interval
 from .imu_file import ImuSpec, TriadErrors
 
@@ -213,6 +216,9 @@ def navigation_dynamics(site: Site) -> np.ndarray:
     """
     m = navigation_error_model(site.latitude, position=True, transport=True, biases="body", attitude=site.attitude)
     A = np.array(m.A[:9, :9])
+    # the Earth rate of the computed frame is that of the computed latitude: δω_ie = ∂ω_ie^n/∂L δp_N/R
+    lat = site.latitude
+    A[0:3, 6] += EARTH_RATE * np.array([-math.sin(lat), 0.0, -math.cos(lat)]) / EARTH_RADIUS
     for i in HELD:
         A[i, :] = 0.0
         A[:, i] = 0.0
