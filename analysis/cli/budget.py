@@ -166,7 +166,7 @@ def register(commands) -> None:
     )  # fmt: skip
     p.add_argument("--imu", required=True, metavar="FILE", help="TOML IMU file [path] (keys in the docs: [gyro] bias_deg_per_h, arw_deg_per_rt_h, ...; required)")
     p.add_argument("--environment", default=None, metavar="FILE", help="TOML vibration environment file [path]: adds the coning, sculling and scrolling lines (default: none)")
-    p.add_argument("--algorithm", default=None, metavar="NAME", help="coning algorithm of the environment lines [name] (`strapdown algorithms list` shows them; default: two-sample with an environment)")
+    p.add_argument("--algorithm", default=None, metavar="NAME", help="coning algorithm of the environment lines [name] (`strapdown algorithms list`; default: two-sample with an environment)")
     p.add_argument("--lat-deg", type=number, required=True, metavar="L", help="latitude [deg], in (-90, 90) (required)")
     p.add_argument("--heading-deg", type=number, default=0.0, metavar="H", help="heading of body x [deg] (default 0)")
     p.add_argument("--duration", "--duration-s", type=number, required=True, metavar="T", help="mission length [s], up to 30 days (required)")
