@@ -229,8 +229,8 @@ def test_a_bad_environment_file_gets_one_line_and_status_2(tmp_path):
 
 
 def test_an_environment_adds_the_algorithm_lines():
-    from strapdown.analysis.vibration.examples import QUALIFICATION
     from strapdown.analysis.vibration.environment import load_environment
+    from strapdown.analysis.vibration.examples import QUALIFICATION
 
     r = error_budget(example_imu("mems"), SITE, 600.0, environment=load_environment(QUALIFICATION), algorithm=get("two-sample"))
     names = {ln.name for ln in r.lines}

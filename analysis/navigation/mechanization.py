@@ -21,11 +21,14 @@ At rest with constant body rate and specific force the algorithms are exact,
 so an ideal run stays on the truth to round-off (and the gravity rule's
 ``O(H³ Ω² g)`` per step); the errors of a run are the sensor errors'.
 
-Sensor errors are drawn per step H (every term of :class:`~strapdown.analysis.alignment.sensor_models.SensorSpec`:
-white noise ``N √H``, each Gauss–Markov term and the rate random walk by the
-exact joint discretisation of level and integral over H, as
+Sensor errors are drawn per block of steps (every term of :class:`~strapdown.analysis.alignment.sensor_models.SensorSpec`:
+white noise ``N √T_b``, each Gauss–Markov term and the rate random walk by the
+exact joint discretisation of level and integral over the block T_b, as
 :func:`~strapdown.analysis.alignment.sensor_models.simulate_sensor_errors`
-draws them per sample) and shared evenly among the step's samples; the output
+draws them per sample) and shared evenly among the block's samples; the block
+(:data:`strapdown.analysis.navigation.monte_carlo.BLOCK_SECONDS`) is far
+shorter than the shortest correlation time and than the navigation errors'
+time constants, and the errors at the ends of every block are exact; the output
 quantisation acts on every sample (the quantised running sum).  Each trial has
 its own stream (``SeedSequence.spawn``), so a result does not depend on how the
 trials are grouped.
@@ -190,7 +193,7 @@ def _kernel():
             out[k] = e
 
     @numba.njit(cache=True)
-    def run(g, mode, steps, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
+    def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
             gconst, aconst, prate, gwhite, awhite, gphi, gc, gL, gx, aphi, ac, aL, ax,
             gq, aq, gres, ares, lam, v, r, R, Om, g0, record, out_lam, out_v, out_r, sums):  # fmt: skip
         H = N * h
@@ -219,9 +222,15 @@ def _kernel():
                 out_v[rec, k] = v[k]
                 out_r[rec, k] = r[k]
             rec += 1
+        egb = np.zeros(3)
+        eab = np.zeros(3)
         for step in range(steps):
-            draw_step(g, N, H, gwhite, gphi, gc, gL, gx, eg)
-            draw_step(g, N, H, awhite, aphi, ac, aL, ax, ea)
+            if step % block == 0:  # the errors of a block of steps, shared evenly among its steps
+                draw_step(g, N, H * block, gwhite, gphi, gc, gL, gx, egb)
+                draw_step(g, N, H * block, awhite, aphi, ac, aL, ax, eab)
+                for k in range(3):
+                    eg[k] = egb[k] / block
+                    ea[k] = eab[k] / block
             # shift the history
             for i in range(hist):
                 for k in range(3):
@@ -374,7 +383,7 @@ def _pairs(algorithm: Algorithm):
 
 
 def run_navigator(algorithm: Algorithm, frames: EarthFrames, attitude_bn, errors: NavigatorErrors, *, sample_interval: float, steps: int, record, rng,
-                  alignment_steps: int = 0, attitude_from_sums=None) -> tuple:  # fmt: skip
+                  alignment_steps: int = 0, attitude_from_sums=None, block: int = 1) -> tuple:  # fmt: skip
     """One trial: an optional alignment window, then navigation from t = 0; the computed state at ``record`` steps.
 
     Parameters
@@ -399,6 +408,9 @@ def run_navigator(algorithm: Algorithm, frames: EarthFrames, attitude_bn, errors
         Steps of the alignment window before t = 0 (0: none).
     attitude_from_sums : callable, optional
         ``f(sum_dtheta (3,), sum_dv (3,)) -> C̃_b^n``: the alignment method on the window's sums.
+    block : int
+        Steps per draw of the sensor errors; ``errors`` must hold the noise
+        terms of that block (:func:`noise_terms` of ``block`` steps).
 
     Returns
     -------
@@ -434,9 +446,9 @@ def run_navigator(algorithm: Algorithm, frames: EarthFrames, attitude_bn, errors
     r = frames.position.copy()
     if alignment_steps:
         sums = np.zeros(6)
-        run(rng, 0, int(alignment_steps), *args, lam.copy(), v.copy(), r.copy(), EARTH_RADIUS, Om, frames.gravity, np.zeros(0, np.int64), out_lam, out_v, out_r, sums)
+        run(rng, 0, int(alignment_steps), block, *args, lam.copy(), v.copy(), r.copy(), EARTH_RADIUS, Om, frames.gravity, np.zeros(0, np.int64), out_lam, out_v, out_r, sums)
         lam = _quaternion(C_ni @ attitude_from_sums(sums[:3], sums[3:]))
-    run(rng, 1, int(steps), *args, lam, v, r, EARTH_RADIUS, Om, frames.gravity, record, out_lam, out_v, out_r, np.zeros(6))
+    run(rng, 1, int(steps), block, *args, lam, v, r, EARTH_RADIUS, Om, frames.gravity, record, out_lam, out_v, out_r, np.zeros(6))
     return out_lam, out_v, out_r
 
 

@@ -49,7 +49,7 @@ from .imu_file import ImuSpec, TriadErrors
 from .initial_alignment import attitude_error
 from .mechanization import NavigatorErrors, earth_frames, noise_terms, run_navigator
 
-__all__ = ["SOURCE_FIELDS", "single_source", "MonteCarloErrors", "monte_carlo", "Agreement", "compare", "LEVEL", "DETERMINISTIC_RTOL", "SAMPLE"]
+__all__ = ["SOURCE_FIELDS", "single_source", "MonteCarloErrors", "monte_carlo", "Agreement", "compare", "LEVEL", "DETERMINISTIC_RTOL", "SAMPLE", "BLOCK_SECONDS"]
 
 #: Coverage of the interval of a random line's mean square (two-sided).
 LEVEL = 0.999
@@ -57,6 +57,9 @@ LEVEL = 0.999
 DETERMINISTIC_RTOL = 0.02
 #: Cost of one IMU sample of the compiled navigator [s] and its memory [bytes] (per trial, the records only).
 SAMPLE = budget.CostModel(seconds_per_unit=1e-6, bytes_per_unit=0.0, fixed_seconds=2.0, fixed_bytes=5e7)
+
+#: Longest block of steps over which the sensor errors are drawn at once [s] (the shortest correlation time of a data sheet's flicker band is about 1 s).
+BLOCK_SECONDS = 0.05
 
 #: Budget line → (triad, fields of :class:`~strapdown.analysis.navigation.imu_file.TriadErrors`).
 SOURCE_FIELDS = {
@@ -226,7 +229,8 @@ def monte_carlo(
     frames = earth_frames(site.latitude, site.gravity)
     C_bn = site.attitude
     w_b, f_b = site.body_rate, site.specific_force
-    gterms, aterms = noise_terms(imu.gyro.noise_spec(), H), noise_terms(imu.accel.noise_spec(), H)
+    block = max(1, int(BLOCK_SECONDS // H))
+    gterms, aterms = noise_terms(imu.gyro.noise_spec(), H * block), noise_terms(imu.accel.noise_spec(), H * block)
     extra = [np.zeros(3)] * 3 if residuals is None else [np.asarray(x, float).reshape(3) for x in residuals]
     seq = rng if isinstance(rng, np.random.SeedSequence) else np.random.SeedSequence(as_generator(rng).integers(2**63))
     from_sums = None
@@ -250,7 +254,7 @@ def monte_carlo(
             _constant(imu.gyro, w_b, g) + extra[0], _constant(imu.accel, f_b, g) + extra[1], extra[2],
             imu.gyro.random_walk, imu.accel.random_walk, gterms, aterms, imu.gyro.quantum, imu.accel.quantum,
         )  # fmt: skip
-        lam, v, r = run_navigator(algorithm, frames, C_bn, errs, sample_interval=h, steps=steps, record=record, rng=g, alignment_steps=a_steps, attitude_from_sums=from_sums)
+        lam, v, r = run_navigator(algorithm, frames, C_bn, errs, sample_interval=h, steps=steps, record=record, rng=g, alignment_steps=a_steps, attitude_from_sums=from_sums, block=block)
         for i, ti in enumerate(times_used):
             to_e = _rz(-Om * ti)
             r_e = to_e @ r[i]
