@@ -141,6 +141,8 @@ class TotalSeries:
         ``(T,)`` [m/s].
     position : ndarray
         ``(T,)`` [m].
+    name : str
+        ``"total"``.
     """
 
     times: np.ndarray
@@ -345,7 +347,7 @@ def error_budget(
     >>> t = 0.5 * math.pi / ws
     >>> r = error_budget(imu, site, t, report_times=[t])
     >>> north = r.line("accel bias").mean[-1, 6]
-    >>> round(north / (b / ws**2 * (1.0 - math.cos(ws * t))), 2)
+    >>> round(float(north / (b / ws**2 * (1.0 - math.cos(ws * t)))), 2)
     1.0
     """
     if not isinstance(imu, ImuSpec):

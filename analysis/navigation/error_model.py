@@ -211,7 +211,7 @@ def navigation_dynamics(site: Site) -> np.ndarray:
     The Schuler loop: ``∂φ_E'/∂δv_N = −1/R`` and ``∂δv_N'/∂φ_E = g``.
 
     >>> A = navigation_dynamics(Site(math.radians(45.0)))
-    >>> round(-A[1, 3] * A[3, 1] * 6371000.0 / 9.80619, 6)
+    >>> round(float(-A[1, 3] * A[3, 1] * 6371000.0 / Site(math.radians(45.0)).gravity), 9)
     1.0
     """
     m = navigation_error_model(site.latitude, position=True, transport=True, biases="body", attitude=site.attitude)

@@ -141,6 +141,7 @@ def analytic_gains(site: Site, time: float) -> AlignmentGains:
     --------
     The heading error of an east gyro bias b is ``−b/(Ω cos φ)``, so ``φ_D = b/(Ω cos φ)``:
 
+    >>> import math
     >>> g = analytic_gains(Site(math.radians(45.0)), 300.0)
     >>> round(float(g.gyro[2, 1]) * 7.292115e-5 * math.cos(math.radians(45.0)), 6)
     1.0

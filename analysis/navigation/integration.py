@@ -47,6 +47,7 @@ Public API
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -86,13 +87,26 @@ def jacobian_terms(phi):
     """
     phi = np.asarray(phi, dtype=float)
     t2 = np.einsum("...i,...i->...", phi, phi)
-    small = t2 < 1e-4
+    # below θ² = 0.1 the closed forms cancel (c loses ε·24/θ⁴): five terms of each series, Σ (−θ²)^k/(2k + m)!
+    small = t2 < SERIES_BELOW
     ts = np.where(small, 1.0, t2)
     t = np.sqrt(ts)
-    a = np.where(small, 0.5 - t2 / 24.0 + t2 * t2 / 720.0, (1.0 - np.cos(t)) / ts)
-    b = np.where(small, 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0, (t - np.sin(t)) / (ts * t))
-    c = np.where(small, 1.0 / 24.0 - t2 / 720.0 + t2 * t2 / 40320.0, (0.5 * ts + np.cos(t) - 1.0) / (ts * ts))
+    a = np.where(small, _series(t2, 2), (1.0 - np.cos(t)) / ts)
+    b = np.where(small, _series(t2, 3), (t - np.sin(t)) / (ts * t))
+    c = np.where(small, _series(t2, 4), (0.5 * ts + np.cos(t) - 1.0) / (ts * ts))
     return a, b, c
+
+
+#: θ² below which :func:`jacobian_terms` sums the series [rad²].
+SERIES_BELOW = 0.1
+
+
+def _series(t2, m: int):
+    """``Σ_{k<5} (−θ²)^k/(2k + m)!``."""
+    out = np.zeros_like(t2)
+    for k in reversed(range(5)):
+        out = 1.0 / math.factorial(2 * k + m) - t2 * out
+    return out
 
 
 @functools.cache
@@ -162,6 +176,7 @@ def step_increments(algorithm: Algorithm, p, b, sample_interval: float) -> StepI
     --------
     Constant rates: the position increment is exact to round-off.
 
+    >>> import math
     >>> from strapdown.derivations.coning.registry import get
     >>> w, f, h = np.array([0.3, -0.2, 0.5]), np.array([1.0, 2.0, -9.8]), 0.01
     >>> p, b = np.broadcast_to(w * h, (1, 2, 3)), np.broadcast_to(f * h, (1, 2, 3))

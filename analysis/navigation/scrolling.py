@@ -90,8 +90,8 @@ def scrolling_function(algorithm: Algorithm):
     --------
     >>> from strapdown.derivations.coning.registry import get
     >>> Z = scrolling_function(get("one-sample"))
-    >>> round(float(Z(np.array([1e-3])).imag[0]) / 1e-3, 6)        # Im Z ≈ x/24
-    0.041667
+    >>> round(float(Z(np.array([1e-3])).imag[0]) / 1e-3, 6)        # Im Z ≈ −x/12
+    -0.083333
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
