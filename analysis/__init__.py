@@ -42,8 +42,16 @@ subpackage         analysis (numerics)                         derivations (SymP
                    inertial and Kalman alignment, theory of
                    every error term, admissible rocking per
                    method
-``logs``           recorded IMU logs: reading, checks,        none
+``logs``           recorded IMU logs: reading, checks,         none
                    alignment and observability on a log
+``navigation``     navigation over the rotating Earth: the     the position (scrolling) algorithm
+                   integration of attitude, velocity and       as exact fractions and its
+                   position (coning, sculling, scrolling),     scrolling error in closed form
+                   its convergence and scrolling error, the
+                   compiled navigator, the error model with
+                   sensor and algorithm sources, alignment
+                   initial conditions, the error budget and
+                   its Monte Carlo
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

@@ -5,7 +5,7 @@ The navigation states are those of
 (position and transport terms on, biases in body axes), stated there once
 (Savage 2007, ch. 12; Groves 2013, sec. 14.2.4): estimate minus truth,
 ``C̃_b^n = (I − [φ×]) C_b^n`` with n the local-level frame at the computed
-position,
+position, ::
 
     φ'  = −ω_ie × φ + M δv + (∂ω_ie/∂L) δp_N/R − C δω,
     δv' = f^n × φ − 2ω_ie × δv + C δf,

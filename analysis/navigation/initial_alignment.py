@@ -2,7 +2,7 @@
 
 An alignment at rest over ``[−T, 0]`` estimates the attitude from the sensor
 outputs averaged over the window, so its attitude error is linear in the
-window means of the sensor errors to first order,
+window means of the sensor errors to first order, ::
 
     φ(0) = L_g δω̄ + L_a δf̄,
 
@@ -14,7 +14,7 @@ t = 0 are jointly Gaussian: the source model (:mod:`~strapdown.analysis.navigati
 is run over the window with the integrals ``z_g = ∫ δω``, ``z_a = ∫ δf``
 appended (exact discretisation, Van Loan), from the source's state at turn-on
 (at −T).  Then, with ``K = P_φx P_xx⁺`` the regression of φ(0) on the
-source's states,
+source's states, ::
 
     φ(0) = K x_s(0) + r,      r independent of x_s(0) and of the source's future noise:
 

@@ -15,7 +15,7 @@ of the step:
   position algorithm (:mod:`strapdown.derivations.navigation.position_algorithm`),
   with ``Γ₂(φ) = Σ [φ×]^k/(k+2)!``.
 
-Then, with ``Λ_k`` the attitude (body → frame I) after step k,
+Then, with ``Λ_k`` the attitude (body → frame I) after step k, ::
 
     Λ_k = Λ_{k−1} ∘ exp(φ_k/2),
     W_k = W_{k−1} + Λ_{k−1} ΔV_k Λ̄_{k−1},
@@ -67,7 +67,7 @@ def jacobian_terms(phi):
     """Coefficients of ``J(φ)`` and ``Γ₂(φ)`` on ``[φ×]`` and ``[φ×]²``, stable at small angles.
 
     ``J = I + a [φ×] + b [φ×]²``, ``Γ₂ = ½ I + b [φ×] + c [φ×]²`` with
-    ``a = (1 − cos θ)/θ²``, ``b = (θ − sin θ)/θ³``, ``c = (θ²/2 + cos θ − 1)/θ⁴``, θ = |φ|.
+    ``a = (1 − cos θ)/θ²``, ``b = (θ − sin θ)/θ³``, ``c = (θ²/2 + cos θ − 1)/θ⁴``, ``θ = |φ|``.
 
     Parameters
     ----------

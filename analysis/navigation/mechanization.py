@@ -9,7 +9,7 @@ as in the linear model.  The mechanization runs in the inertial frame I (the
 Earth frame at t = 0): per step of N samples the attitude, velocity and
 position increments of :mod:`~strapdown.analysis.navigation.integration` (the
 coning algorithm, its dual extension, the N-sample position algorithm), turned
-into I by the attitude at the start of the step, and gravitation
+into I by the attitude at the start of the step, and gravitation ::
 
     G(r) = −g₀ R² r/|r|³ − Ω² (x, y, 0)
 

@@ -6,7 +6,7 @@ position error (exact minus algorithm, package docstring "Errors"): ``e_v`` is
 the velocity algorithm's rectification (sculling) error, ``e_r`` the
 *scrolling* error of the position algorithm, both constant vectors to second
 order in the amplitudes (:mod:`strapdown.derivations.navigation.position_algorithm`
-derives them):
+derives them)::
 
     e_r = (h²/2) Re((Â × conj B̂) Z(ωh)),
 

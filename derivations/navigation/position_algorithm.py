@@ -5,12 +5,12 @@ Position over one step
 Over a step ``t ∈ [0, H]``, ``H = N h``, let ``α(t) = ∫₀ᵗ ω`` and
 ``υ(t) = ∫₀ᵗ f`` be the integrated body rate and specific force, resolved in
 the body axes at the start of the step (frame I of the step).  The apparent
-velocity and the position gained over the step are
+velocity and the position gained over the step are ::
 
     W(t) = ∫₀ᵗ C(τ) f(τ) dτ,        ΔR = ∫₀ᴴ W(t) dt = ∫₀ᴴ (H − τ) C(τ) f(τ) dτ,
 
 with C the rotation from the body at τ to the body at 0.  To second order in
-the motion, ``C ≈ I + [α×]``, so that
+the motion, ``C ≈ I + [α×]``, so that ::
 
     ΔR ≈ S + ∫₀ᴴ (H − τ) α(τ) × f(τ) dτ,       S = ∫₀ᴴ υ dt = ∫₀ᴴ (H − τ) f dτ.
 
@@ -19,7 +19,7 @@ For constant ω and f the sum over every order is ``ΔR = H² Σ_k [φ×]^k f /(
 ``Γ₂(φ) = Σ_k [φ×]^k/(k+2)!`` (its second-order part is ``⅓ φ × S``).  The
 algorithm keeps that exact rotation compensation and adds, from the N gyro
 increments ``p_i`` and N velocity increments ``b_j`` of the step, what the
-rates' variation within the step adds at second order:
+rates' variation within the step adds at second order::
 
     ΔR = 2 Γ₂(φ) S + h Σ_ij d_ij p_i × b_j,        S = h Σ_j s_j b_j,
 
@@ -27,7 +27,7 @@ where φ is the step's rotation vector (from the coning algorithm) and the
 exact fractions ``s_j``, ``d_ij`` make both parts exact when ω and f are
 polynomials of degree N − 1 in time (the model behind the N-sample coning
 algorithms): with the dual basis ``L_i(u)`` (degree N − 1, ``∫_{j−1}^{j} L_i du = δ_ij``)
-and ``A_i(u) = ∫₀ᵘ L_i``,
+and ``A_i(u) = ∫₀ᵘ L_i``, ::
 
     s_j = ∫₀ᴺ A_j du,     e_ij = ∫₀ᴺ (N − u) A_i(u) L_j(u) du,     d_ij = e_ij − s_j/3.
 
@@ -49,7 +49,7 @@ position algorithm alone loses position.  Averaged over the phase of the
 steps, every second-order quantity of a step is ``½ Re((Â × conj B̂) K)`` with
 a scalar kernel K of ``x = νh``, so that, with the step increments ``p_i``,
 ``b_j`` over the sample intervals ``[(i − 1)h, ih]`` (indices ≤ 0 read the
-steps before),
+steps before), ::
 
     e_v = (h/(2N)) Re((Â × conj B̂) (K_v − K_v,alg)),
     e_r = (h²/2) Re((Â × conj B̂) Z(x)),
