@@ -47,6 +47,14 @@ subpackage         analysis (numerics)                         derivations (SymP
                    alignment and observability on a log,
                    the vibration environment of a log,
                    algorithms replayed on it, static noise
+``navigation``     navigation over the rotating Earth: the     the position (scrolling) algorithm
+                   integration of attitude, velocity and       as exact fractions and its
+                   position (coning, sculling, scrolling),     scrolling error in closed form
+                   its convergence and scrolling error, the
+                   compiled navigator, the error model with
+                   sensor and algorithm sources, alignment
+                   initial conditions, the error budget and
+                   its Monte Carlo
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

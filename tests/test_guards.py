@@ -24,6 +24,7 @@ from strapdown.analysis.vibration.examples import QUALIFICATION
 from strapdown.derivations.coning.registry import get
 
 ALG = get("panov-4s-1")
+_EXAMPLE_IMU = __import__("pathlib").Path(__import__("strapdown.analysis.navigation", fromlist=["x"]).__file__).parent / "imus" / "tactical.toml"
 CONING = dict(eps=-1.0, nu=2 * np.pi * 10, nutation=np.radians(1.0))
 
 
@@ -256,6 +257,24 @@ HUGE = {
         lambda: _module("alignment.observability").observability_gramian(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
         "duration",
     ),
+    "navigation.error_budget points": (
+        lambda: _module("navigation.error_budget").error_budget(_module("navigation.imu_file").example_imu("tactical"), _module("navigation.error_model").Site(0.7), 3600.0, points=10**9),
+        "points",
+    ),
+    "navigation.monte_carlo n_trials": (
+        lambda: _module("navigation.monte_carlo").monte_carlo(
+            _module("navigation.imu_file").example_imu("tactical"), _module("navigation.error_model").Site(0.7), [3600.0], n_trials=10**9, algorithm=get("two-sample")
+        ),
+        "n_trials",
+    ),
+    "navigation.convergence_study duration": (
+        lambda: _module("navigation.convergence").convergence_study(get("two-sample"), _module("coning.precession").RegularPrecession(0.5, 6.0, 0.3, 1.0), 1e9, 0.01),
+        "duration",
+    ),
+    "navigation.simulated_scrolling duration": (
+        lambda: _module("navigation.scrolling").simulated_scrolling(get("two-sample"), _module("coning.sculling_motion").ScullingMotion(0.01, 1.0, 60.0), 0.01, 1e12),
+        "duration",
+    ),
     "integrators.coning_drift_rate steps": (
         lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
         "steps",
@@ -390,6 +409,8 @@ def _cli(*argv):
         (("stability", "--schuler", "--accel-m-s2", "20", "--accel-duration", "20", "--horizon", "3e9"), "--horizon"),
         (("derive", "local-error", "--algorithm", "savage-1+1", "--max-order", "20"), "--max-order"),
         (("multistage", "--duration", "1e9"), "--duration"),
+        (("budget", "--imu", str(_EXAMPLE_IMU), "--lat-deg", "45", "--duration", "3600", "--points", "1e9", "--quiet"), "--points"),
+        (("budget", "--imu", str(_EXAMPLE_IMU), "--lat-deg", "45", "--duration-s", "1e12", "--quiet"), "--duration"),
         # a gigahertz sample rate: the spectrum's response integral cannot converge; refused in seconds, not minutes and gigabytes
         (("environment-drift", "--algorithm", "two-sample", "--environment", str(QUALIFICATION), "--sample-interval", "1e-9", "--quiet"), "--sample-interval"),
     ],

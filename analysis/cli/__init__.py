@@ -252,6 +252,7 @@ COMMANDS = {
     "align": ("align", "self-alignment on a rocking base (analytic, inertial-frame or Kalman) by Monte Carlo, with its theory"),
     "azimuth": ("azimuth", "Monte Carlo of the gyrocompass azimuth error under rocking against bounds (14), (15)"),
     "azimuth-design": ("azimuth", "largest admissible rocking amplitude against rocking frequency for an azimuth budget (tilt channel)"),
+    "budget": ("budget", "error budget of an IMU at rest over its mission: attitude, velocity and horizontal position error per source, the total, the dominant source"),
     "derive coning-drift": ("derive_coning_drift", "coning drift of an algorithm in closed form: coefficient · α² ω (ωh)^m, the next term in α and where the leading term holds"),
     "derive local-error": ("derive_local_error", "local-error series of an algorithm, every weight through h^K (exact fractions, LaTeX)"),
     "derive lyapunov": ("lyapunov", "Lyapunov function and its derivative for the corrected stage (Plotnikov 1999, (3.2)-(3.4))"),
