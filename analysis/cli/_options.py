@@ -435,8 +435,9 @@ def run_summary(alg, result, params: dict | None = None) -> tuple[dict, str]:
     ----------
     alg : Algorithm
         The algorithm run.
-    result : strapdown.analysis.coning.simulator.SimulationResult
-        The run.
+    result : SimulationResult or LongRunResult
+        The run (:mod:`strapdown.analysis.coning.simulator`, :mod:`strapdown.analysis.coning.long_run`):
+        what both have, ``sample_interval``, ``step``, ``steps``, ``duration`` and ``drift_rate``, is read.
     params : dict, optional
         ``eps``, ``nu`` [rad/s] of the motion (from :func:`motion_parameters`).
 
@@ -455,7 +456,7 @@ def run_summary(alg, result, params: dict | None = None) -> tuple[dict, str]:
         "sample_interval": result.sample_interval,
         "step": result.step,
         "steps": result.steps,
-        "simulated_duration": float(result.time[-1]),
+        "simulated_duration": float(result.duration),
     }
     prev = f" + {alg.history} previous" if alg.history else ""
     line = f"{alg.name}: N = {alg.samples}{prev}, h = {result.sample_interval:g} s, H = {result.step:g} s, {result.steps} steps, t = {data['simulated_duration']:g} s"
