@@ -2,21 +2,31 @@
 
 The environment is a TOML file (``docs/environment-files.md``): coning and
 sculling lines, spectra, the gyro's and accelerometers' filters, decimation.
+
+Every option is checked before the vibration library is imported (it brings
+scipy's filters and the coning theory), so that a bad value is refused as fast
+as in any other command.
 """
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from ...derivations.coning.registry import get
 from ..core.units import DEG, RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import positive
-from ..vibration.drift import environment_drift
-from ..vibration.environment import load_environment
-from ..vibration.rate_design import DEFAULT_RATES, FREQUENCY_MARGIN, rate_design
-from ..vibration.tuning import drift_across_band, tune
 from . import Result
 from ._options import add_algorithm, algorithm_from, count, number
+
+#: The search grid of environment-rates (lowest and highest rate [Hz], number of rates) and its
+#: frequency margin: the library's defaults (``vibration.rate_design.DEFAULT_RATES``,
+#: ``FREQUENCY_MARGIN``), restated so that parsing does not import the library
+#: (``tests/test_environment_cli.py`` checks that they agree).
+DEFAULT_RATE_GRID = (50.0, 20000.0, 61)
+FREQUENCY_MARGIN = 0.05
+#: Samples and previous samples a tuned design may have (the library's MAX_SAMPLES).
+MAX_DESIGN_SAMPLES = 8
 
 #: Points of the band comparison of design-coning / design-sculling [count].
 BAND_POINTS = 41
@@ -27,6 +37,8 @@ def _vec(v) -> list:
 
 
 def _environment(args):
+    from ..vibration.environment import load_environment
+
     return load_environment(args.environment)
 
 
@@ -49,6 +61,8 @@ def drift_command(args) -> Result:
     h = _interval(args)
     alg = algorithm_from(args)
     env = _environment(args)
+    from ..vibration.drift import environment_drift
+
     d = environment_drift(alg, env, h)
     k = RAD_PER_S_TO_DEG_PER_H
     parts = []
@@ -99,7 +113,14 @@ def drift_command(args) -> Result:
 
 def _design(args, quantity: str) -> Result:
     h = _interval(args)
+    for flag, value, low in (("--samples", args.samples, 1), ("--previous", args.previous, 0)):
+        if not low <= value <= MAX_DESIGN_SAMPLES:
+            raise ValueError(f"Expected `{flag}` in {low}..{MAX_DESIGN_SAMPLES}, got {value}")
+    if args.samples + args.previous < 2:
+        raise ValueError(f"Expected --samples + --previous >= 2 (one lag sum at least), got {args.samples} and {args.previous}")
     env = _environment(args)
+    from ..vibration.tuning import CONDITION_LIMIT, drift_across_band, tune
+
     t = tune(env, args.samples, h, history=args.previous, quantity=quantity, name=args.name)
     k = RAD_PER_S_TO_DEG_PER_H
     scale = k if quantity == "coning" else 1.0
@@ -126,6 +147,8 @@ def _design(args, quantity: str) -> Result:
         "classical_algorithm": t.classical.name,
         "expression": expression,
         "algorithm_file": t.toml(),
+        "condition_number": t.condition_number,
+        "well_conditioned": t.well_conditioned,
     }
     text = [
         f"{t.algorithm.name}: {args.samples} samples, {args.previous} previous, h = {h:g} s, tuned for {quantity} in {env.name}",
@@ -134,6 +157,16 @@ def _design(args, quantity: str) -> Result:
         f"{quantity} error: tuned {float(t.drift @ axis) * scale:+.6g}, classical ({t.classical.name}) {float(t.classical_drift @ axis) * scale:+.6g} "
         + ("deg/h" if quantity == "coning" else "m/s²"),
     ]
+    digits = max(0.0, 16.0 - np.log10(max(t.condition_number, 1.0)))
+    text.append(f"condition number of the tuning system {t.condition_number:.3g}: the coefficients keep about {digits:.0f} of float64's 16 significant digits")
+    if not t.well_conditioned:
+        note = (
+            f"the tuning system is ill-conditioned (condition number {t.condition_number:.2g} > {CONDITION_LIMIT:.0e}): the coefficients "
+            f"(largest |c| = {max(abs(v) for v in t.coefficients.values()):.2g}) keep about {digits:.0f} significant digits and cancel each other; "
+            "fewer --samples or --previous give a better-conditioned algorithm"
+        )
+        text.append("warning: " + note)
+        warnings.warn(note, stacklevel=2)
     if expression:
         text.append(f"closed form (x = ωh, rho = sensed fraction of the coning): k = {expression}")
     if quantity == "coning":
@@ -204,9 +237,13 @@ def rates_command(args) -> Result:
     if hi <= lo:
         raise ValueError(f"Expected `--max-rate-hz` above `--min-rate-hz`, got {hi:g} and {lo:g}")
     budget = positive(args.budget_deg_per_h, "--budget-deg-per-h") / RAD_PER_S_TO_DEG_PER_H
+    from ...derivations.coning.registry import get
+
     algorithms = [get(n.strip()) for n in args.algorithms.split(",") if n.strip()]
     tuned = [(n, 0) for n in range(2, args.tuned_up_to + 1)]
     env = _environment(args)
+    from ..vibration.rate_design import rate_design
+
     design = rate_design(env, budget, algorithms=algorithms, tuned=tuned, rates=np.geomspace(lo, hi, args.rates), margin=args.margin)
     rows = []
     lines = [
@@ -261,9 +298,10 @@ def register(commands) -> None:
     p.add_argument("--algorithms", default="two-sample,optimal-3,ignagni-1996-5", metavar="NAMES",
                    help="comma-separated registry algorithms [name] (`strapdown algorithms list`) (default two-sample,optimal-3,ignagni-1996-5)")  # fmt: skip
     p.add_argument("--tuned-up-to", type=count, default=3, metavar="N", help="also tuned algorithms of 2 … N samples [count], 1 … 4 (default 3)")
-    p.add_argument("--min-rate-hz", type=number, default=DEFAULT_RATES[0], metavar="F", help=f"lowest sample rate searched [Hz] (default {DEFAULT_RATES[0]:g})")
-    p.add_argument("--max-rate-hz", type=number, default=DEFAULT_RATES[-1], metavar="F", help=f"highest sample rate searched [Hz] (default {DEFAULT_RATES[-1]:g})")
-    p.add_argument("--rates", type=count, default=len(DEFAULT_RATES), metavar="R", help=f"sample rates on the search grid [count] (default {len(DEFAULT_RATES)})")
+    lo, hi, rates = DEFAULT_RATE_GRID
+    p.add_argument("--min-rate-hz", type=number, default=lo, metavar="F", help=f"lowest sample rate searched [Hz] (default {lo:g})")
+    p.add_argument("--max-rate-hz", type=number, default=hi, metavar="F", help=f"highest sample rate searched [Hz] (default {hi:g})")
+    p.add_argument("--rates", type=count, default=rates, metavar="R", help=f"sample rates on the search grid [count] (default {rates})")
     p.add_argument("--margin", type=number, default=FREQUENCY_MARGIN, metavar="D",
                    help=f"relative frequency margin the budget must also hold at [dimensionless] (default {FREQUENCY_MARGIN:g})")  # fmt: skip
 

@@ -184,7 +184,7 @@ def register(commands) -> None:
         "identify",
         identify_command,
         "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check",
-        description=__doc__.split("\n\n")[1].replace("\n", " ").replace("``", ""),
+        description=__doc__.split("\n\n")[1].replace("\n", " "),
     )
     p.add_argument("--integrator", required=True, metavar="FILE.py:NAME", help="Python file and the name of the integrator defined in it [path] (see docs/integrators.md)")
     p.add_argument("--samples-per-step", type=count, required=True, metavar="N", help=f"samples N per output step, 1..{MAX_SAMPLES} [count]")

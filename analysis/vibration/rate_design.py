@@ -196,7 +196,7 @@ def _evaluate(makers, environments, h, quantity):
             cs = [sensor + p[0] for sensor, p in zip(sensors, parts)]
             Ms = [p[1:].T for p in parts]
             try:
-                k, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
+                k, _, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
             except ValueError:
                 out.append((math.nan, math.nan, None))
                 continue

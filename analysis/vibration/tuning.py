@@ -41,6 +41,7 @@ Public API
    lag_functions
    drift_across_band
    BandDrift
+   CONDITION_LIMIT
 """
 
 from __future__ import annotations
@@ -57,7 +58,11 @@ from ..core.validation import as_array, as_int, positive
 from .drift import environment_drift, response_integrals
 from .environment import Environment, coning_line
 
-__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
+__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES", "CONDITION_LIMIT"]
+
+#: Condition number above which a tuned design is called ill-conditioned: its coefficients keep
+#: fewer than half of float64's 16 significant digits (and are large and of alternating sign).
+CONDITION_LIMIT = 1e8
 
 #: What an algorithm is tuned for.
 QUANTITIES = ("coning", "sculling")
@@ -163,6 +168,10 @@ class TunedAlgorithm:
         Its drift or rectification error in the environment.
     sample_interval : float
         h [s] it was tuned at.
+    condition_number : float
+        2-norm condition number of the system solved for the lag sums (row-normalised):
+        the coefficients lose up to about ``log10(condition_number)`` of float64's
+        16 significant digits to round-off.
     """
 
     algorithm: Algorithm
@@ -175,6 +184,12 @@ class TunedAlgorithm:
     classical: Algorithm
     classical_drift: np.ndarray
     sample_interval: float
+    condition_number: float = 1.0
+
+    @property
+    def well_conditioned(self) -> bool:
+        """Whether the coefficients keep at least half of float64's digits (:data:`CONDITION_LIMIT`)."""
+        return bool(self.condition_number <= CONDITION_LIMIT)
 
     @property
     def coefficients(self) -> dict:
@@ -240,7 +255,9 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
     Returns
     -------
     tuple
-        ``(k, nulled, conditions, taylor_conditions)``.
+        ``(k, nulled, conditions, taylor_conditions, condition_number)``: the
+        last is the 2-norm condition number of the (row-normalised) system
+        solved, which bounds how many of float64's 16 digits ``k`` loses.
 
     Raises
     ------
@@ -264,8 +281,9 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
             norm = math.sqrt(sum(v * v for v in row))
             rows.append(np.array(row) / norm)
             rhs.append(value / norm)
-        return np.linalg.solve(np.array(rows), np.array(rhs)), True, r, L - r
-    return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0
+        system = np.array(rows)
+        return np.linalg.solve(system, np.array(rhs)), True, r, L - r, float(np.linalg.cond(system))
+    return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0, float(np.linalg.cond(A_env))
 
 
 def tune(environment: Environment, samples: int, sample_interval: float, *, history: int = 0, quantity: str = "coning", name: str | None = None) -> TunedAlgorithm:
@@ -319,7 +337,7 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
         raise ValueError(f"Expected `quantity` among {', '.join(QUANTITIES)}, got {quantity!r}")
     h = positive(sample_interval, "sample_interval")
     c, M = _environment_model(environment, N, K, h, quantity)
-    k, nulled, r, taylor = solve_lag_sums(c, M, N, K, quantity=quantity)
+    k, nulled, r, taylor, condition = solve_lag_sums(c, M, N, K, quantity=quantity)
     suffix = f"{N}" if K == 0 else f"{N}+{K}"
     terms = tuple(Term(Fraction(repr(float(v))), (N - lag, N)) for lag, v in enumerate(k, start=1) if v != 0.0)
     alg = Algorithm(name or f"tuned-{quantity}-{suffix}", N, terms, f"{N}-sample algorithm tuned to {environment.name} ({quantity}, h = {h:g} s)", "tuned by strapdown-analysis")
@@ -327,7 +345,7 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     d_c = environment_drift(classical, environment, h)
     lag_sums = tuple(float(Fraction(repr(float(v)))) for v in k)
     drift = c - M @ np.array(lag_sums)
-    return TunedAlgorithm(alg, quantity, lag_sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h)
+    return TunedAlgorithm(alg, quantity, lag_sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h, condition)
 
 
 def tuned_drift(environment: Environment, samples: int, sample_interval: float, lag_sums, *, history: int = 0, quantity: str = "coning") -> np.ndarray:
