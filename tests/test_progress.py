@@ -124,3 +124,19 @@ def test_expected_seconds_of_the_wrong_length_are_ignored():
             time.sleep(0.08)
     shown = _percentages(log.getvalue())
     assert shown and set(shown) <= {0, 50}, shown
+
+
+def test_the_progress_flag_does_what_its_help_says():
+    """Piped: plain lines by default, tqdm bars with --progress, nothing with --quiet; the help says exactly that."""
+    from strapdown.analysis.cli import build_parser
+    from strapdown.analysis.cli._options import PROGRESS_HELP
+
+    argv = ("azimuth", "--lat-deg", "60", "--sigma-xi-deg", "0.5", "--sigma-eta-deg", "0.5", "--samples", "3e6", "--json")
+    default, flagged, quiet = _cli(*argv, interval="0.05"), _cli(*argv, "--progress", interval="0.05"), _cli(*argv, "--quiet", interval="0.05")
+    assert default.returncode == flagged.returncode == quiet.returncode == 0
+    assert default.stderr and all(LINE.match(line) for line in default.stderr.splitlines()), default.stderr  # lines, although "default: off"
+    assert re.search(r"Monte Carlo: +\d+%\|", flagged.stderr), flagged.stderr  # a tqdm bar, not a plain line
+    assert quiet.stderr == ""
+    for command in ("azimuth", "align"):
+        text = " ".join(build_parser([command, "--help"])._subparsers._group_actions[0].choices[command].format_help().split())
+        assert " ".join(PROGRESS_HELP.split()) in text and "progress is shown anyway" in text

@@ -40,9 +40,18 @@ __all__ = [
     "floats",
     "unit_quaternion",
     "run_summary",
+    "PROGRESS_HELP",
 ]
 
 _COUNT = re.compile(r"[+-]?(\d+(_\d+)*|\d*\.?\d+([eE][+-]?\d+)?|\d+\.\d*([eE][+-]?\d+)?)")
+
+
+#: Help of ``--progress``, as the edge (:func:`strapdown.analysis.cli.main`) behaves: progress is shown by
+#: default (bars on a terminal, plain lines otherwise); the flag only turns the lines into bars.
+PROGRESS_HELP = (
+    "draw progress bars on stderr even when it is not a terminal (default: off; progress is shown anyway, "
+    "as bars on a terminal and as a plain line every few seconds in a log or pipe; --quiet shows none)"
+)
 
 
 def count(text: str) -> int:

@@ -13,7 +13,7 @@ from . import Result, UsageError
 from ._executors import add_executor
 from ._executors import executor as executor_from
 from ._executors import workers as local_workers
-from ._options import add_limits, check_work, count, limits_from
+from ._options import PROGRESS_HELP, add_limits, check_work, count, limits_from
 
 __all__ = ["register"]
 
@@ -327,7 +327,7 @@ def register(commands) -> None:
     p.add_argument("--assumed-damping", type=float, default=None, help="kalman only: rocking damping ratio the filter assumes [dimensionless] (default: the true one)")
     p.add_argument("--assumed-amplitude-deg", default=None, help="kalman only: rocking amplitude the filter assumes [deg], one value or yaw,beta,gamma (default: the true one)")
     p.add_argument("--lever-arm-known", action="store_true", help="kalman only: compensate the lever-arm velocity with the known lever arm (default off)")
-    p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+    p.add_argument("--progress", action="store_true", help=PROGRESS_HELP)
     add_limits(p)
     for option, models in _ROCKING_OPTIONS.items():
         commands.only_with(p, option, "--rocking", models)

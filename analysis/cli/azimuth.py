@@ -14,7 +14,7 @@ from . import Result, UsageError
 from ._executors import add_executor
 from ._executors import executor as executor_from
 from ._executors import workers as local_workers
-from ._options import add_limits, check_work, count, limits_from
+from ._options import PROGRESS_HELP, add_limits, check_work, count, limits_from
 
 __all__ = ["register", "check_rocking_domain"]
 
@@ -190,7 +190,7 @@ def register(commands) -> None:
     p.add_argument("--samples", type=count, default=1_000_000, help="rocking samples N [count] (default 1e6)")
     p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
     add_executor(p)
-    p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+    p.add_argument("--progress", action="store_true", help=PROGRESS_HELP)
     add_limits(p)
     commands.only_with(p, "--period", "--rocking", ("sine", "narrowband"))
     commands.only_with(p, "--damping", "--rocking", ("narrowband",))
