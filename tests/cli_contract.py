@@ -18,6 +18,7 @@ would fail it).
 from __future__ import annotations
 
 import contextlib
+import functools
 import io
 import json
 import math
@@ -181,7 +182,17 @@ def warm_up(invocations) -> None:
 
 # --------------------------------------------------------------------------- the argparse tree
 def leaf_parsers():
-    """``{"derive local-error": parser, ...}`` for every command of ``strapdown``."""
+    """``{"derive local-error": parser, ...}`` for every command of ``strapdown``.
+
+    The tree is built once per process (building it imports every command and
+    takes a fraction of a second; the fuzz table asks for it hundreds of times
+    while it is collected).
+    """
+    return dict(_leaf_parsers())
+
+
+@functools.lru_cache(maxsize=1)
+def _leaf_parsers():
     out = {}
     stack = [((), build_parser())]
     while stack:
