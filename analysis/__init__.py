@@ -9,8 +9,8 @@ Installed as ``strapdown.analysis``, beside the symbolic side
 subpackage         analysis (numerics)                         derivations (SymPy)
 =================  ==========================================  ===================================
 ``core``           quaternions, dual numbers, validation,      reproducible SymPy runs
-                   units, Monte Carlo, filterpy adapter,       (``derivations.reproducible``),
-                   cache of generated code                     user TOML files read defensively
+                   units, Monte Carlo, verdicts, filterpy      (``derivations.reproducible``),
+                   adapter, cache of generated code            user TOML files read defensively
                                                                (``derivations.toml_files``)
 ``coning``         algorithm evaluation (real and dual),       algorithms as data (cross-step
                    regular precession and classical sculling,  indices), the registry of published
@@ -28,7 +28,8 @@ subpackage         analysis (numerics)                         derivations (SymP
                    mean coning drift and sculling
                    rectification in closed form, DOP853 and
                    Monte Carlo checks, tuned algorithms,
-                   sample rate for a drift budget
+                   sample rate for a drift budget, linear
+                   vibration profiles through an IMU mount
 ``multistage``     corrected attitude stages (compiled),       Lyapunov function, Schuler
                    truth over the rotating Earth, decay rates  linearisation, composition, tilt
                    python-control loops, gain design, sensor   quaternion, published data
@@ -42,8 +43,10 @@ subpackage         analysis (numerics)                         derivations (SymP
                    inertial and Kalman alignment, theory of
                    every error term, admissible rocking per
                    method
-``logs``           recorded IMU logs: reading, checks,        none
-                   alignment and observability on a log
+``logs``           recorded IMU logs: reading, checks,         none
+                   alignment and observability on a log,
+                   the vibration environment of a log,
+                   algorithms replayed on it, static noise
 ``cli``            the ``strapdown`` command line
 ``report``         report sections (formatting only)
 =================  ==========================================  ===================================

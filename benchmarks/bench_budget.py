@@ -147,6 +147,15 @@ def guard_rows():
         seconds, peak = measure(lambda n=n: simulate_sensor_errors(spec, n_trials=n, n_samples=100_000, dt=0.01, rng=1))
         est = budget.sensor_errors(3 * n * 100_000, terms, what="")
         rows.append((f"sensor errors, {terms} terms (trials of 1e5 samples)", n, seconds, est.seconds, peak, est.memory))
+    from strapdown.analysis.alignment.fine import FilterTuning
+    from strapdown.analysis.alignment.observability import GRAMIAN_STEP, observability, stationary_problem
+
+    for duration in (300.0, 3000.0):
+        problem = stationary_problem(math.radians(45.0), tuning=FilterTuning(epoch=0.1), duration=duration)
+        seconds, peak = measure(lambda problem=problem: observability(problem))
+        epochs = duration / 0.1
+        est = budget.observability(epochs, epochs, duration / GRAMIAN_STEP, states=12, measurements=3, what="")
+        rows.append(("observability, stationary (filter epochs of 0.1 s)", int(epochs), seconds, est.seconds, peak, est.memory))
     integrator = algorithm_integrator(alg)
     for steps in (100_000, 400_000):
         seconds, peak = measure(lambda steps=steps: coning_drift_rate(integrator, 2, RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=steps))

@@ -5,6 +5,12 @@
   Butterworth-2 analog and digital filters per axis, decimation by 4: wall
   time of one call, best of ``--repeats`` (target < 1 s), and of the first
   call in the process (which loads the algorithm's compiled D from the cache);
+* large tables (a spectrum of 2,000 and of 20,000 rows, coherent coning part,
+  Butterworth-2 analog and digital filters, decimation by 4): ``environment_drift``
+  on the first call (which computes the spectrum's product-integration weights
+  once) and the best later call, and one ``rate_design`` with the CLI's default
+  grid and margin (61 rates, three environments, five algorithms) beside its
+  estimate (``rate_design_estimate``);
 * the Monte Carlo (``monte_carlo_drift``), gyro (sensor) samples per second
   on one core — per second of the process's CPU time (what the core gave it,
   the figure that does not move with the load of a shared machine) and per
@@ -29,6 +35,7 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from strapdown.analysis.core.units import RAD_PER_S_TO_DEG_PER_H  # noqa: E402
 from strapdown.analysis.vibration.drift import environment_drift  # noqa: E402
 from strapdown.analysis.vibration.environment import Environment, Spectrum, coning_line, load_environment  # noqa: E402
 from strapdown.analysis.vibration.examples import QUALIFICATION  # noqa: E402
@@ -64,6 +71,43 @@ def closed_form(repeats: int) -> list:
         environment_drift(alg, env, 1e-3)
         best = min(best, time.perf_counter() - t0)
     return [("closed-form drift, 200-point spectrum, first call in the process [s]", f"{first:.3f}", "< 1"), ("closed-form drift, 200-point spectrum, best call [s]", f"{best:.4f}", "< 1")]
+
+
+def large_table(rows: int) -> Environment:
+    """One spectrum of ``rows`` table frequencies (10 Hz–2 kHz), the filters of :func:`spectrum_environment`."""
+    f = np.geomspace(10.0, 2000.0, rows)
+    s = 1e-4 * (f / 100.0) ** -0.5 * (1 + 0.3 * np.sin(f / 37.0))
+    g = np.zeros((rows, 6, 6), dtype=complex)
+    g[:, 0, 0] = g[:, 1, 1] = s
+    g[:, 0, 1] = -0.5j * s
+    g[:, 1, 0] = np.conj(g[:, 0, 1])
+    base = spectrum_environment(2)
+    return Environment((), (Spectrum(f, g, f"{rows}-row spectrum"),), base.gyro, base.accelerometer, "large table")
+
+
+def large_tables(quick: bool, repeats: int) -> list:
+    from strapdown.analysis.vibration.rate_design import rate_design, rate_design_estimate
+
+    rows = []
+    alg = get("two-sample")
+    for n in (2000,) if quick else (2000, 20000):
+        env = large_table(n)
+        t0 = time.perf_counter()
+        environment_drift(alg, env, 1e-3)
+        first = time.perf_counter() - t0
+        best = math.inf
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            environment_drift(alg, env, 1e-3)
+            best = min(best, time.perf_counter() - t0)
+        rows.append((f"closed-form drift, {n}-row spectrum, first call (weights) [s]; best later call [s]", f"{first:.3f}; {best:.4f}", "—"))
+        env = large_table(n)  # fresh objects: the design pays for the weights again
+        algorithms = [get(a) for a in ("two-sample", "optimal-3", "ignagni-1996-5")]
+        estimate = rate_design_estimate(env, 61, makers=5)
+        t0 = time.perf_counter()
+        rate_design(env, 0.05 / RAD_PER_S_TO_DEG_PER_H, algorithms=algorithms)
+        rows.append((f"rate design (environment-rates defaults), {n}-row spectrum [s]; its estimate [s]", f"{time.perf_counter() - t0:.2f}; {estimate.seconds:.1f}", "within the estimate"))
+    return rows
 
 
 def monte_carlo(quick: bool, repeats: int) -> list:
@@ -102,7 +146,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5, help="repeats of each measurement (best is kept, the median shown beside)")
     args = parser.parse_args()
     load = os.getloadavg()
-    rows = closed_form(args.repeats) + monte_carlo(args.quick, args.repeats)
+    rows = closed_form(args.repeats) + large_tables(args.quick, args.repeats) + monte_carlo(args.quick, args.repeats)
     print("| measurement | value | target |")
     print("|---|---:|---|")
     for name, value, target in rows:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import stat
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -22,6 +23,10 @@ from hypothesis import strategies as st
 ROOT = Path(__file__).resolve().parents[1]
 #: The environment file of the environment commands' baselines.
 ENVIRONMENT = str(ROOT / "analysis" / "vibration" / "environments" / "coning-10hz.toml")
+
+#: The example log of the docs, and a directory for the files the log commands write.
+EXAMPLE_LOG = str(ROOT / "docs" / "examples" / "rocking-imu-log.npz")
+LOG_OUT = tempfile.mkdtemp(prefix="strapdown-fuzz-")
 
 #: A valid, fast invocation of every command (the fuzz mutates one option at a time).
 BASELINES = {
@@ -38,6 +43,12 @@ BASELINES = {
     "design-sculling": None,  # needs an environment with sculling: its errors are fuzzed through design-coning's options
     "environment-drift": ["--algorithm", "two-sample", "--environment", ENVIRONMENT, "--sample-interval", "1e-3"],
     "environment-rates": ["--environment", ENVIRONMENT, "--budget-deg-per-h", "25", "--rates", "5", "--tuned-up-to", "2"],
+    "log allan": [EXAMPLE_LOG],
+    "log inspect": [EXAMPLE_LOG],
+    "log coning": [EXAMPLE_LOG, "--algorithm", "two-sample", "--prediction", "none"],
+    "log environment": [EXAMPLE_LOG, "--out", os.path.join(LOG_OUT, "environment.toml")],
+    "mount-environment": ["--profile", str(ROOT / "analysis" / "vibration" / "environments" / "airframe-profile.toml"),
+                          "--mount", str(ROOT / "analysis" / "vibration" / "environments" / "isolated-imu-mount.toml"), "--tolerance", "0.01"],
     "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
     "drift": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"],
     "multistage": ["--duration", "200", "--step", "0.1"],

@@ -80,9 +80,19 @@ def test_bad_integrators_one_line_exit_2(tmp_path):
     assert "one row per sample" in _refused(["identify", "--integrator", f"{bad}:wrong_shape", "--samples-per-step", "2"], "wrong_shape")
     assert "NaN" in _refused(["identify", "--integrator", f"{bad}:nan", "--samples-per-step", "2"], "nan")
     assert "raised RuntimeError: sensor offline" in _refused(["identify", "--integrator", f"{bad}:raises", "--samples-per-step", "2"], "raises")
-    assert "not deterministic" in _refused(["identify", "--integrator", f"{bad}:drifting", "--samples-per-step", "2", "--max-previous", "1"], "drifting")
+    drifting = _json(["identify", "--integrator", f"{bad}:drifting", "--samples-per-step", "2", "--max-previous", "1", "--skip-verification"])
+    assert drifting["assumptions"]["time_invariance"]["holds"] is False and drifting["trusted"] is False  # reported, not refused
     assert "the file defines" in _refused(["identify", "--integrator", f"{bad}:nothing", "--samples-per-step", "2"], "--integrator")
     _refused(["identify", "--integrator", f"{tmp_path / 'missing.py'}:f", "--samples-per-step", "2"], "--integrator")
+
+
+def test_the_assumption_verdicts_are_in_the_json():
+    data = _json(BASE + ["--skip-verification"])
+    verdicts = data["assumptions"]
+    assert set(verdicts) == {"time_invariance", "memory", "isotropy", "linearity", "precision", "drift_order"}
+    assert all(v["holds"] is True and v["summary"] for v in verdicts.values())
+    assert verdicts["memory"]["needed"] == 0 and verdicts["linearity"]["probe_amplitude"] == 0.02 and data["trusted"] is True
+    assert verdicts["precision"]["measured_relative_noise"] < 1e-13
 
 
 def test_bad_options_one_line_exit_2():
@@ -92,3 +102,5 @@ def test_bad_options_one_line_exit_2():
     _refused(BASE + ["--write-algorithm", "x.txt"], "--write-algorithm")
     _refused(BASE + ["--skip-verification", "--omega-h-rad", "1"], "--omega-h-rad", "--skip-verification")
     _refused(BASE + ["--time-limit", "0.001"], "--time-limit")
+    _refused(BASE + ["--probe-amplitude-rad", "1"], "--probe-amplitude-rad")
+    _refused(BASE + ["--max-previous-limit", "65"], "--max-previous-limit")

@@ -63,10 +63,24 @@ def _sweep_case():
     return SweepCase(latitude=math.radians(45.0), sigma=math.radians(1.0))
 
 
+def _lines():
+    from strapdown.analysis.vibration.environment import Environment, VibrationLine
+
+    return Environment((VibrationLine(60.0, [0.1, 0, 0, 0, 0, 0]), VibrationLine(140.0, [0, 0.1j, 0, 0, 0, 0])))
+
+
 def _environment():
     from strapdown.analysis.vibration.environment import load_environment
 
     return load_environment(QUALIFICATION)
+
+
+def _mount():
+    from strapdown.analysis.vibration.examples import AIRFRAME_PROFILE, ISOLATED_MOUNT
+    from strapdown.analysis.vibration.mount import load_mount
+    from strapdown.analysis.vibration.profile import load_profile
+
+    return load_mount(ISOLATED_MOUNT), load_profile(AIRFRAME_PROFILE)
 
 
 def _aided_inputs():
@@ -102,6 +116,13 @@ def _bound_case():
     from strapdown.analysis.gyrocompass.studies import BoundCase
 
     return BoundCase("white", "normal", math.radians(45.0), 0.0, 0.0, math.radians(1.0))
+
+
+def _log_segment():
+    from strapdown.analysis.logs.imu_log import ImuLog
+
+    n = 10_000
+    return ImuLog(1e-3 * np.arange(1, n + 1), np.zeros((n, 3)), np.zeros((n, 3)))
 
 
 # (call, the argument its message must name); each call would allocate gigabytes or run for hours.
@@ -175,10 +196,26 @@ HUGE = {
         "sample_interval",
     ),
     "vibration draw_components count": (lambda: _module("vibration.monte_carlo").draw_components(_environment(), 10**11, np.random.default_rng(1)), "count"),
+    "vibration simulate_mount duration": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1e9, sample_interval=1e-3, rng=1), "duration"),
+    "vibration simulate_mount sample_interval": (lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-12, rng=1), "sample_interval"),
+    "vibration simulate_mount realisations": (
+        lambda: _module("vibration.mount_simulation").simulate_mount(*_mount(), duration=1.0, sample_interval=1e-3, realisations=10**9, rng=1),
+        "realisations",
+    ),
+    "vibration mount_environment max_points": (lambda: _module("vibration.mount_response").mount_environment(*_mount(), max_points=10**12), "max_points"),
     "filtered_coning_check periods": (
         lambda: _module("vibration.simulation").filtered_coning_check(get("two-sample"), _environment().gyro, 1e-3, freq_hz=10.0, half_angle=0.01, periods=10**9),
         "periods",
     ),
+    "vibration line_drift_check periods": (
+        lambda: _module("vibration.simulation").line_drift_check(get("two-sample"), _lines(), 1 / 400, periods=10**9),
+        "periods",
+    ),
+    "vibration noise_monte_carlo realisations": (
+        lambda: _module("vibration.noise").noise_monte_carlo(get("two-sample"), _lines(), 1e-3, _module("vibration.noise").SensorNoise(1e-3), realisations=10**9, steps=100),
+        "realisations",
+    ),
+    "vibration rate_design rates": (lambda: _module("vibration.rate_design").rate_design(_environment(), 1e-6, rates=np.geomspace(100.0, 1e4, 10**6)), "rates"),
     "trajectory.position_solution duration": (lambda: _module("alignment.trajectory").position_solution(_module("alignment.trajectory").Manoeuvre(), 1e9), "duration"),
     "trajectory.trajectory_state times": (lambda: _module("alignment.trajectory").trajectory_state(_module("alignment.trajectory").Manoeuvre(), [0.0, 1e9]), "times"),
     "trajectory.trajectory_increments duration": (lambda: _module("alignment.trajectory").trajectory_increments(_module("alignment.trajectory").Manoeuvre(), 100.0, 1e9), "duration"),
@@ -205,9 +242,34 @@ HUGE = {
         lambda: _module("alignment.comparison").compare_methods(_imu_scenario(), _module("alignment.imu").SensorErrors(), n_trials=10**9, rng=1, methods=("analytic",)),
         "n_trials",
     ),
+    "logs.replay segments": (lambda: _module("logs.replay").replay([_log_segment()] * 10**6, [get("two-sample")]), "segments"),
+    "logs.estimate_environment segments": (lambda: _module("logs.environment_estimate").estimate_environment([_log_segment()] * 10**6), "segments"),
+    "logs.welch_cross_spectra stretches": (lambda: _module("logs.cross_spectra").welch_cross_spectra([np.zeros((10_000, 6))] * 10**6, 1e-3, 1000), "stretches"),
+    "observability.observability duration": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
+    "observability.observability duration of a million seconds": (
+        lambda: _module("alignment.observability").observability(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e6)),
+        "duration",
+    ),
+    "observability.observability_gramian duration": (
+        lambda: _module("alignment.observability").observability_gramian(_module("alignment.observability").stationary_problem(math.radians(45.0), duration=1e12)),
+        "duration",
+    ),
     "integrators.coning_drift_rate steps": (
         lambda: _module("coning.integrators.verification").coning_drift_rate(_integrator(), 2, _module("coning.precession").RegularPrecession(-1.0, 60.0, 0.01), 1e-3, steps=10**12),
         "steps",
+    ),
+    "integrators.identify max_previous": (
+        lambda: _module("coning.integrators.identification").identify(_integrator(), 64, max_previous=64, limits=budget.Limits(seconds=60.0)),
+        "max_previous",
+    ),
+    "integrators.identify_record max_previous": (
+        lambda: _module("coning.integrators.records").identify_record(
+            _module("coning.integrators.records").Record(np.zeros((200_000, 3)), np.zeros((3125, 3)), np.arange(63, 200_000, 64)), 64, max_previous=64, limits=budget.Limits(memory=1e8)
+        ),
+        "max_previous",
     ),
     "integrators.sculling_rate periods": (
         lambda: _module("coning.integrators.verification").sculling_rate(
@@ -216,6 +278,19 @@ HUGE = {
         "periods",
     ),
 }
+
+
+def _small_log():
+    """A small synthetic log on disk (read under tiny limits: the reader refuses it by its sample count)."""
+    import tempfile
+    from pathlib import Path
+
+    from strapdown.analysis.logs.synthetic import still_truth, write_synthetic
+
+    return write_synthetic(Path(tempfile.mkdtemp()) / "still.ulg", still_truth(duration=5.0, rate=100.0))
+
+
+HUGE["logs.read_imu_log path"] = (lambda: _module("logs.reader").read_imu_log(_small_log(), limits=budget.Limits(seconds=300.0, memory=1e6)), "path")
 
 
 def _run(call):

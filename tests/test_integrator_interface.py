@@ -123,15 +123,19 @@ def test_inputs_are_copies():
     np.testing.assert_array_equal(g, GYRO)
 
 
-def test_non_determinism_is_refused_by_identification():
+def test_non_determinism_is_reported_by_the_time_invariance_verdict():
+    """State kept between calls is not refused: the time-invariance verdict says no (and yes on a clean integrator)."""
+    from strapdown.analysis.coning.integrators.assessment import assess
+
     state = {"calls": 0}
 
     def drifting(g, n):
         state["calls"] += 1
         return g.reshape(-1, n, 3).sum(axis=1) * (1 + 1e-9 * state["calls"])
 
-    with pytest.raises(IntegratorError, match="not deterministic"):
-        identify(Integrator(drifting, name="drifting"), 2, max_previous=1)
+    a = assess(Integrator(drifting, name="drifting"), 2, max_previous=1, max_previous_limit=4, verify=False)
+    assert not a.assumptions.time_invariance.holds and not a.assumptions.trusted
+    assert "NO" in a.assumptions.time_invariance.summary()
 
     class Leaky:  # a stateful object that does not clear its state on reset
         def __init__(self):
@@ -146,8 +150,31 @@ def test_non_determinism_is_refused_by_identification():
         def output(self):
             return self.total.copy()
 
-    with pytest.raises(IntegratorError, match="not deterministic"):
-        identify(stateful(Leaky()), 1, max_previous=1)
+    a = assess(stateful(Leaky()), 1, max_previous=1, max_previous_limit=4, verify=False)
+    assert not a.assumptions.time_invariance.holds and a.assumptions.time_invariance.calls > 10
+    clean = assess(recursion(), 2, max_previous=1, max_previous_limit=4, verify=False)
+    assert clean.assumptions.time_invariance.holds and clean.assumptions.trusted
+
+
+def test_rate_integrators_take_mean_rates():
+    h = 0.01
+    integ = Integrator(lambda w, n: h * w.reshape(-1, n, 3).sum(axis=1), input="rate", sample_interval=h, name="rates")
+    np.testing.assert_allclose(step_increments(integ, GYRO, 4).rotation, GYRO.reshape(-1, 4, 3).sum(axis=1), rtol=1e-15)
+    with pytest.raises(ValueError, match="`sample_interval`"):
+        Integrator(lambda w, n: w, input="rate")
+    with pytest.raises(ValueError, match="`input`"):
+        Integrator(lambda w, n: w, input="angle")
+    with pytest.raises(ValueError, match="no `sample_interval`"):
+        Integrator(lambda w, n: w, sample_interval=0.01)
+
+
+def test_the_loader_puts_the_files_directory_on_the_path_and_refuses_sys_exit(tmp_path):
+    (tmp_path / "helper_coefficient_mod.py").write_text("C = 0.5\n")
+    (tmp_path / "uses_helper.py").write_text("import helper_coefficient_mod\ndef f(g, n):\n    return g.reshape(-1, n, 3).sum(axis=1) * helper_coefficient_mod.C\n")
+    assert load_integrator(f"{tmp_path / 'uses_helper.py'}:f").name == "f"
+    (tmp_path / "quits.py").write_text("import sys\nsys.exit(3)\n")
+    with pytest.raises(ValueError, match=r"called sys.exit\(3\)"):
+        load_integrator(f"{tmp_path / 'quits.py'}:f")
 
 
 # --------------------------------------------------------------------------- adapters

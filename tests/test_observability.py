@@ -123,7 +123,7 @@ def test_degree_of_observability_is_the_floor_over_the_prior_for_the_azimuth():
     floor = tuning.gyro_bias / (EARTH_RATE * math.cos(lat))
     expected = floor * tuning.prior_heading / math.hypot(floor, tuning.prior_heading) / tuning.prior_heading
     assert r.posterior_ratio[2] == pytest.approx(expected, rel=0.02)
-    assert r.gramian_singular_values[-3:].max() < 1e-8 < r.gramian_singular_values[-4]
+    assert r.gramian_eigenvalues[-3:].max() < 1e-8 < r.gramian_eigenvalues[-4]
 
 
 def test_rocking_about_the_lever_arm_is_unobservable():
@@ -160,3 +160,59 @@ def test_words_for_the_states():
     assert state_labels(["phi_E", "dv_N", "eps_x", "acc_D", "gamma_r'"]) == ("east tilt", "north velocity", "gyro bias x", "down accelerometer bias", "rocking rate γ")
     m = navigation_error_model(0.3, velocity=[10.0, 0.0, 0.0], transport=True, position=True)
     assert m.names[6:9] == ("dp_N", "dp_E", "dp_D") and m.H.shape == (6, 15)
+
+
+def test_gramian_eigenvalues_are_information_in_units_of_the_prior():
+    """``gramian_eigenvalues`` are eigenvalues of W (prior units): W by quadrature apart from the package, and
+    with no process noise the filter's posterior in prior units is ``(I + W)⁻¹`` (filterpy, discrete epochs)."""
+    from scipy.integrate import quad_vec
+    from scipy.linalg import expm
+
+    lat = math.radians(45.0)
+    tuning = FilterTuning(epoch=0.1, gyro_noise=0.0, accel_noise=0.0, gyro_bias=math.radians(0.05) / 3600, accel_bias=5e-4)
+    p = stationary_problem(lat, tuning=tuning, duration=240.0)
+    r = observability(p)
+    m = p.models[0]
+    S = np.sqrt(np.diag(p.P0))
+    A = m.A * S[None, :] / S[:, None]
+    H = m.H * S[None, :]
+    Ninv = np.linalg.inv(p.R * p.epoch)
+    W, _ = quad_vec(lambda t: (lambda Phi: Phi.T @ H.T @ Ninv @ H @ Phi)(expm(A * t)), 0.0, p.duration, epsrel=1e-10)
+    np.testing.assert_allclose(observability_gramian(p), W, rtol=1e-6, atol=1e-9 * np.abs(W).max())
+    np.testing.assert_allclose(r.gramian_eigenvalues, np.linalg.eigvalsh(W)[::-1], rtol=1e-6, atol=1e-9 * np.abs(W).max())
+    # eigenvalues, not singular values: those of the three unobservable pairs are zero to rounding, of either sign
+    assert np.all(r.gramian_eigenvalues[:-3] > 0.0) and np.abs(r.gramian_eigenvalues[-3:]).max() < 1e-8 * r.gramian_eigenvalues[0]
+    posterior = np.linalg.inv(np.eye(12) + W)
+    np.testing.assert_allclose(r.posterior_ratio, np.sqrt(np.diag(posterior)), rtol=0.02)
+
+
+def test_rank_is_not_degree_turning_about_the_vertical():
+    """Turning the block about the vertical makes every state observable in rank, yet within 300 s the filter
+    learns nothing of the z-gyro bias (the vertical axis is never turned): its degree stays 1."""
+    lat = math.radians(45.0)
+    tuning = FilterTuning(gyro_bias=math.radians(0.01) / 3600, accel_bias=1e-4, epoch=1.0)
+    r = observability(multi_position_problem(lat, [BodyRotation(300.0 * k / 4, "z", math.radians(90.0)) for k in (1, 2, 3)], 300.0, tuning=tuning))
+    assert r.rank == r.dim
+    assert r.posterior_ratio[r.names.index("eps_z")] > 0.99
+
+
+def test_an_epoch_longer_than_the_horizon_is_refused():
+    with pytest.raises(ValueError, match="`epoch` at most the horizon `duration`"):
+        observability(stationary_problem(math.radians(45.0), tuning=FilterTuning(epoch=1000.0), duration=10.0))
+
+
+@pytest.mark.parametrize(
+    "argv, option",
+    [
+        (["--epoch", "1000", "--duration", "10"], "--epoch"),
+        (["--lat-deg", "90"], "--lat-deg"),
+        (["--lat-deg", "90", "--model", "multi-position", "--rotation-angles-deg", "90"], "--lat-deg"),
+    ],
+)
+def test_cli_refuses_by_the_option_at_fault(argv, option, capsys):
+    from strapdown.analysis import cli
+
+    assert cli.main(["observability", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and option in err and "Traceback" not in err
+    assert "--rotation-angles-deg" not in err.split("error:")[1].split("Expected")[0]

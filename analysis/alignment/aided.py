@@ -51,8 +51,9 @@ from scipy.spatial.transform import Rotation
 from ..core import budget, kalman, montecarlo
 from ..core import quaternion as quat
 from ..core.validation import as_int, nonnegative, positive
+from ..core.verdicts import Verdict
 from ..gyrocompass.rocking import as_generator
-from .comparison import TrialSummary, summarise
+from .comparison import TrialSummary, floor_reached, summarise
 from .earth import EARTH_RATE, normal_gravity
 from .error_model import navigation_error_model
 from .preintegration import preintegrate
@@ -580,6 +581,9 @@ class AidedMonteCarlo:
         The trials' aided floors [rad].
     residual : TrialSummary
         Error minus floor [rad].
+    floor_reached : Verdict
+        Whether the aided floor is reached
+        (:func:`strapdown.analysis.alignment.comparison.floor_reached`).
     heading_sigma : float
         The filter's final azimuth standard deviation [rad].
     check_times : ndarray
@@ -587,7 +591,8 @@ class AidedMonteCarlo:
     nees, nis : ndarray
         Mean NEES and NIS at the checks.
     nees_band, nis_band : tuple
-        95 % bands.
+        Their bands, each at ``1 − 0.05/(2K)`` for K checks, so that a
+        consistent filter has all 2K means inside at 95 % together (Bonferroni).
     """
 
     manoeuvre: Manoeuvre
@@ -595,6 +600,7 @@ class AidedMonteCarlo:
     error: TrialSummary
     floor: TrialSummary
     residual: TrialSummary
+    floor_reached: Verdict
     heading_sigma: float
     check_times: np.ndarray
     nees: np.ndarray
@@ -653,8 +659,8 @@ def aided_monte_carlo(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, 
     k = len(checks)
     e, f = rows[:, 0], rows[:, 1]
     return AidedMonteCarlo(
-        inputs.manoeuvre, n, summarise(e), summarise(f), summarise(e - f), float(seq.heading_sigma[-1]), seq.update_times[list(checks)],
-        rows[:, 2 : 2 + k].mean(axis=0), rows[:, 2 + k : 2 + 2 * k].mean(axis=0), kalman.chi2_band(15, n), kalman.chi2_band(6, n),
+        inputs.manoeuvre, n, summarise(e), summarise(f), summarise(e - f), floor_reached(e, f, what="the aided floor"), float(seq.heading_sigma[-1]), seq.update_times[list(checks)],
+        rows[:, 2 : 2 + k].mean(axis=0), rows[:, 2 + k : 2 + 2 * k].mean(axis=0), kalman.chi2_band(15, n, 1.0 - 0.05 / (2 * k)), kalman.chi2_band(6, n, 1.0 - 0.05 / (2 * k)),
     )  # fmt: skip
 
 

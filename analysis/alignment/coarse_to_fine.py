@@ -259,7 +259,7 @@ class CoarseToFineResult:
     fine: FineAlignmentResult
 
 
-def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel, *, rng=None, score: bool = True, velocity_noise: float | None = None) -> CoarseToFineResult:
+def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel, *, rng=None, score: bool = True, velocity_noise: float | None = None, draws=None) -> CoarseToFineResult:
     """Coarse alignment on the first T_c seconds, then the fine filter from its result and covariance.
 
     Parameters
@@ -277,6 +277,9 @@ def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel,
         Score the filter (NEES, NIS) at every epoch.
     velocity_noise : float, optional, keyword-only
         True noise of the zero-velocity reference [m/s] (default the tuning's).
+    draws : FilterDraws, optional, keyword-only
+        The fine filter's random numbers, instead of ``rng`` (zeros for a recorded log: no
+        synthetic noise on recorded data).
 
     Returns
     -------
@@ -297,7 +300,7 @@ def coarse_to_fine(record: ImuRecord, tuning: FilterTuning, coarse: CoarseModel,
     if k % model.samples_per_epoch:
         raise ValueError(f"Expected `coarse.duration` a whole number of filter epochs ({model.epoch:g} s), got {coarse.duration:g}")
     model = replace(model, P0=coarse_prior(coarse, model.P0, tuning))
-    fine = fine_alignment(tail, tuning, rng=rng, model=model, score=score, initial_attitude=C_coarse, velocity_noise=velocity_noise)
+    fine = fine_alignment(tail, tuning, rng=rng, model=model, score=score, initial_attitude=C_coarse, velocity_noise=velocity_noise, draws=draws)
     known = ~np.isnan(C_true).any(axis=(1, 2))  # a recorded log may not carry the truth
     err = np.full((record.n_trials, 3), np.nan)
     if known.any():

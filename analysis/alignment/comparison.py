@@ -21,16 +21,18 @@ trial: the azimuth error ``−ε_E/(Ω cos φ) + tan φ ∇_E/g`` of the trial's
 biases at the stable attitude (:func:`trial_floors`, the gains of
 :func:`strapdown.analysis.alignment.theory.analytic_gain_values`), which no
 measurement at rest can remove (:mod:`~strapdown.analysis.alignment.observability`).  The comparison reports
-each method's azimuth error, its residual over the floor (whose mean is zero
-when the floor is reached) and, for the two filters, the NEES and NIS against
-their χ² bands.  Trials run in blocks through
+each method's azimuth error, its residual over the floor, whether it has
+reached the floor (:func:`floor_reached`: the residual's rms at most
+:data:`FLOOR_MARGIN` times the floor's, a one-sided test on the same trials
+that says "yes", "no" or "not resolved") and, for the two filters, the NEES
+and NIS against their χ² bands.  Trials run in blocks through
 :func:`strapdown.analysis.core.montecarlo.collect`, so the rows are
 bit-identical for any chunking or executor.
 
 Public API
 ----------
-METHODS, TrialSummary, summarise, trial_floors, MethodRow, MethodComparison,
-ComparisonKernel, compare_methods
+METHODS, FLOOR_MARGIN, TrialSummary, summarise, trial_floors, floor_reached, MethodRow,
+MethodComparison, ComparisonKernel, compare_methods
 """
 
 from __future__ import annotations
@@ -41,7 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import budget, kalman, montecarlo
-from ..core.validation import as_int
+from ..core.validation import as_array, as_int, positive
+from ..core.verdicts import Verdict, equivalence, mean_within, rms_equivalence
 from .analytic import analytic_alignment
 from .coarse_to_fine import CoarseModel, coarse_model, coarse_to_fine, split_record
 from .compass_loop import CompassLoopDesign, compass_loop_alignment
@@ -51,10 +54,13 @@ from .inertial import inertial_alignment
 from .theory import analytic_gain_values
 from .tilt_attitude import attitude_matrix
 
-__all__ = ["METHODS", "TrialSummary", "summarise", "trial_floors", "MethodRow", "MethodComparison", "ComparisonKernel", "compare_methods"]
+__all__ = ["METHODS", "FLOOR_MARGIN", "TrialSummary", "summarise", "trial_floors", "floor_reached", "MethodRow", "MethodComparison", "ComparisonKernel", "compare_methods"]
 
 METHODS = ("analytic", "inertial", "kalman", "coarse-to-fine", "compass")
 _FILTERS = ("kalman", "coarse-to-fine")
+#: A method has reached its trials' floor when the rms of its error above the floor is at most this
+#: multiple of the floor's rms: the floor then makes at least half of the mean-square error.
+FLOOR_MARGIN = 1.0
 
 
 @dataclass(frozen=True)
@@ -75,6 +81,9 @@ class TrialSummary:
         ``√`` of the 95 % interval of the mean square.
     std : float
         Sample standard deviation.
+    ms_std_error : float
+        Standard error of the mean square (from the per-trial squares), for
+        verdicts on the rms (:func:`strapdown.analysis.core.verdicts.mean_square_within`).
     """
 
     n: int
@@ -83,6 +92,49 @@ class TrialSummary:
     rms: float
     rms_ci: tuple
     std: float
+    ms_std_error: float = math.nan
+
+    def rms_agrees(self, reference: float, relative_margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the rms within ``relative_margin`` of ``reference``? (TOST on the mean square, :func:`~strapdown.analysis.core.verdicts.rms_equivalence`.)
+
+        Parameters
+        ----------
+        reference : float
+            The rms it should equal [its units].
+        relative_margin : float
+            The margin as a fraction of ``reference``, in (0, 1).
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        text = f"rms within ±{relative_margin:.0%} of {what} (TOST, {level:.0%})"
+        return rms_equivalence(self.rms**2, self.ms_std_error, self.n, reference=reference, relative_margin=relative_margin, criterion=text, level=level)
+
+    def mean_agrees(self, reference: float, margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the mean within ``±margin`` of ``reference``? (TOST, :func:`~strapdown.analysis.core.verdicts.equivalence`.)
+
+        Parameters
+        ----------
+        reference : float
+            The value it should equal [its units].
+        margin : float
+            The equivalence margin, > 0 [its units].
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        text = f"mean within ±{margin:.3g} of {what} (TOST, {level:.0%})"
+        return equivalence(self.mean, self.std / math.sqrt(self.n), self.n, reference=reference, margin=margin, criterion=text, level=level)
 
 
 def summarise(values) -> TrialSummary:
@@ -110,7 +162,7 @@ def summarise(values) -> TrialSummary:
     mse, se_mse = float(sq.mean()), float(sq.std(ddof=1)) / math.sqrt(n)
     z = montecarlo.Z95
     lo, hi = max(mse - z * se_mse, 0.0), mse + z * se_mse
-    return TrialSummary(n, m, (m - z * s / math.sqrt(n), m + z * s / math.sqrt(n)), math.sqrt(mse), (math.sqrt(lo), math.sqrt(hi)), s)
+    return TrialSummary(n, m, (m - z * s / math.sqrt(n), m + z * s / math.sqrt(n)), math.sqrt(mse), (math.sqrt(lo), math.sqrt(hi)), s, se_mse)
 
 
 def trial_floors(scenario: Scenario, gyro_bias, accel_bias) -> np.ndarray:
@@ -132,6 +184,60 @@ def trial_floors(scenario: Scenario, gyro_bias, accel_bias) -> np.ndarray:
     """
     G = analytic_gain_values(scenario, "levelled")
     return np.asarray(gyro_bias, dtype=float) @ G.G_omega + np.asarray(accel_bias, dtype=float) @ G.G_accel
+
+
+def floor_reached(error, floor, *, margin: float = FLOOR_MARGIN, level: float = 0.95, what: str = "the floor") -> Verdict:
+    """Has a method reached its trials' floor? The rms of its residual over the floor against ``margin`` × the floor's rms.
+
+    A residual whose *mean* is zero proves nothing: a method that has not
+    begun to align has a residual of mean zero and an rms of its prior.  The
+    floor is reached when what the method leaves above it is small against
+    the floor itself, ``rms(e − f) ≤ κ·rms(f)``.  Both sides come from the
+    same trials, so the test is on the per-trial differences
+    ``d = (e − f)² − κ² f²`` (whose mean is ``rms(e − f)² − κ² rms(f)²``):
+    "yes" when the interval of their mean lies below 0, "no" when it lies
+    above, else "not resolved" with the trials needed
+    (:func:`strapdown.analysis.core.verdicts.mean_within`).
+
+    Parameters
+    ----------
+    error : array_like
+        ``(n,)`` the method's azimuth error per trial [rad].
+    floor : array_like
+        ``(n,)`` the trial's floor [rad].
+    margin : float, keyword-only
+        κ > 0, the largest residual rms as a multiple of the floor rms
+        (default :data:`FLOOR_MARGIN`).
+    level : float, keyword-only
+        Confidence of the two-sided interval (each one-sided test at (1 − level)/2).
+    what : str, keyword-only
+        The floor's name in the criterion.
+
+    Returns
+    -------
+    Verdict
+        Its ``estimate`` and ``interval`` are the mean of ``d`` [rad²].
+
+    Raises
+    ------
+    ValueError
+        For arrays of different sizes or fewer than 2 trials.
+
+    >>> import numpy as np
+    >>> f = np.linspace(-1.0, 1.0, 50)
+    >>> floor_reached(f + 0.1 * np.cos(np.arange(50)), f).outcome
+    'yes'
+    >>> floor_reached(f + 3.0 * np.cos(np.arange(50)), f).outcome
+    'no'
+    """
+    e = as_array(error, "error").ravel()
+    f = as_array(floor, "floor").ravel()
+    if e.size != f.size:
+        raise ValueError(f"Expected `error` and `floor` of the same trials, got {e.size} and {f.size} values")
+    k = positive(margin, "margin")
+    d = (e - f) ** 2 - k * k * f * f
+    text = f"{what} reached: rms of the error above it at most {k:g} × its rms (one-sided, {level:.0%} interval of the paired mean square)"
+    return mean_within(d, high=0.0, criterion=text, margin=k, level=level)
 
 
 @dataclass(frozen=True)
@@ -222,11 +328,14 @@ class MethodRow:
     error : TrialSummary
         Its azimuth error [rad].
     residual : TrialSummary
-        Its azimuth error minus the trial's floor [rad] (mean zero: the floor is reached).
+        Its azimuth error minus the trial's floor [rad].
+    floor_reached : Verdict or None
+        Whether the floor is reached (:func:`floor_reached`).
     nees, nis : ndarray or None
         Filters: mean NEES and NIS over trials at the check times.
     nees_band, nis_band : tuple or None
-        Their 95 % bands.
+        Their bands, each at ``1 − 0.05/(2K)`` for K check epochs, so that a
+        consistent filter has all 2K means inside at 95 % together (Bonferroni).
     dim : int or None
         Filters: state dimension.
     """
@@ -234,6 +343,7 @@ class MethodRow:
     method: str
     error: TrialSummary
     residual: TrialSummary
+    floor_reached: Verdict | None = None
     nees: np.ndarray | None = None
     nis: np.ndarray | None = None
     nees_band: tuple | None = None
@@ -242,7 +352,7 @@ class MethodRow:
 
     @property
     def consistent(self) -> bool | None:
-        """Filters: every mean NEES and NIS inside its band (None for the other methods)."""
+        """Filters: every mean NEES and NIS inside its band, a test at 95 % for the whole family of checks (None for the other methods)."""
         if self.nees is None:
             return None
         inside = lambda x, b: bool(np.all((x >= b[0]) & (x <= b[1])))  # noqa: E731
@@ -384,12 +494,14 @@ def compare_methods(
     floor = rows[:, 0]
     out = []
     k = len(checks)
+    band_level = 1.0 - 0.05 / (2 * k)  # Bonferroni: all 2k checks of a consistent filter inside at 95 % together
     j = 1 + len(methods)
     for i, m in enumerate(methods):
         e = rows[:, 1 + i]
         extra = {}
         if m in _FILTERS:
-            extra = dict(nees=rows[:, j : j + k].mean(axis=0), nis=rows[:, j + k : j + 2 * k].mean(axis=0), nees_band=kalman.chi2_band(model.dim, n), nis_band=kalman.chi2_band(3, n), dim=model.dim)
+            extra = dict(nees=rows[:, j : j + k].mean(axis=0), nis=rows[:, j + k : j + 2 * k].mean(axis=0), dim=model.dim)
+            extra.update(nees_band=kalman.chi2_band(model.dim, n, band_level), nis_band=kalman.chi2_band(3, n, band_level))
             j += 2 * k
-        out.append(MethodRow(m, summarise(e), summarise(e - floor), **extra))
+        out.append(MethodRow(m, summarise(e), summarise(e - floor), floor_reached(e, floor), **extra))
     return MethodComparison(scenario, errors, n, summarise(floor), tuple(out), model.epoch * (np.asarray(checks) + 1), coarse)

@@ -218,7 +218,9 @@ def alignment_error_model(scenario, tuning) -> ErrorModel:
     """The continuous model of the fine-alignment filter (:func:`strapdown.analysis.alignment.fine.filter_model`).
 
     Twelve states (attitude, velocity, NED biases) and, for a ``"shaping"``
-    disturbance, the angle and rate of each rocking axis it models; the
+    or ``"matched"`` disturbance, the angle and rate of each rocking axis it models
+    (as a shaping filter driven by white noise; the filter of a ``"matched"``
+    one replaces their transition over an epoch by the rocking's own); the
     velocity is measured (the zero velocity of the rocking centre), and sees the
     rocking rates through the lever arm unless the filter compensates it.
 
@@ -243,7 +245,7 @@ def alignment_error_model(scenario, tuning) -> ErrorModel:
     g = normal_gravity(scenario.latitude)
     fn = -gravity_ned(scenario.latitude)
     dist = tuning.disturbance
-    axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.kind == "shaping" else ()
+    axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.kind in ("shaping", "matched") else ()
     n = 12 + 2 * len(axes)
     A = np.zeros((n, n))
     A[0:3, 0:3] = -skew(W)

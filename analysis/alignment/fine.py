@@ -73,12 +73,15 @@ __all__ = [
     "lever_velocity_sigma",
     "lever_matrix",
     "assumed_disturbance",
+    "matched_rocking_block",
     "DISTURBANCE_KINDS",
     "MIN_DAMPING",
     "TRUTHS",
 ]
 
-DISTURBANCE_KINDS = ("none", "white", "shaping")
+DISTURBANCE_KINDS = ("none", "white", "shaping", "matched")
+#: The kinds whose rocking angles and rates are states of the filter.
+_STATE_KINDS = ("shaping", "matched")
 #: Smallest damping of the assumed shaping filter: a sinusoid is modelled as a lightly damped
 #: oscillator, so that the filter keeps following the harmonics a rocking block adds to it.
 MIN_DAMPING = 0.02
@@ -92,20 +95,28 @@ class Disturbance:
     ----------
     kind : str
         ``"none"`` (ignored), ``"white"`` (the lever-arm velocity added to the
-        measurement noise) or ``"shaping"`` (the rocking angles and rates of a
-        second-order shaping filter per axis, six more states).
+        measurement noise), ``"shaping"`` (the rocking angles and rates of a
+        second-order shaping filter driven by white noise per axis, six more
+        states) or ``"matched"`` (the same six states, their transition and
+        noise over one epoch matched to the spectrum of ``motion``: the
+        second-order Gauss–Markov model whose one-epoch autocovariance is the
+        rocking's own, see :func:`matched_rocking_block`).
     sigma : array_like
         Standard deviation of the rocking angle per axis (yaw, β, γ) [rad].
     period : float
         Natural period of the shaping filter [s].
     damping : float
         Damping ratio of the shaping filter, in [0, 1) (0: a sinusoid of random phase).
+    motion : rocking model, optional
+        ``"matched"`` only: the rocking whose spectrum the states match (a model of
+        :mod:`strapdown.analysis.alignment.base_motion` with ``covariance``).
     """
 
     kind: str = "none"
     sigma: np.ndarray = field(default_factory=lambda: np.zeros(3))
     period: float = 8.0
     damping: float = 0.1
+    motion: object = None
 
     def __post_init__(self):
         if self.kind not in DISTURBANCE_KINDS:
@@ -120,6 +131,13 @@ class Disturbance:
         if not 0.0 <= d < 1.0:
             raise ValueError(f"Expected `damping` in [0, 1), got {d:g}")
         object.__setattr__(self, "damping", d)
+        if self.kind == "matched" and not callable(getattr(self.motion, "covariance", None)):
+            raise TypeError(f"Expected `motion` a rocking model (with its spectrum) for kind 'matched', got {type(self.motion).__name__}")
+
+    @property
+    def has_states(self) -> bool:
+        """Whether the rocking angles and rates are states of the filter (``"shaping"``, ``"matched"``)."""
+        return self.kind in _STATE_KINDS
 
 
 @dataclass(frozen=True)
@@ -209,7 +227,7 @@ class FineAlignmentModel:
 
     @property
     def has_rocking_states(self) -> bool:
-        """Whether the rocking angles and rates are states (``"shaping"``)."""
+        """Whether the rocking angles and rates are states (``"shaping"``, ``"matched"``)."""
         return bool(self.rocking_axes)
 
 
@@ -233,7 +251,7 @@ def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel
     model = alignment_error_model(scenario, tuning)
     A, Qc, H, names = model.A, model.Qc, model.H, model.names
     dist = tuning.disturbance
-    axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.kind == "shaping" else ()
+    axes = tuple(int(a) for a in np.flatnonzero(dist.sigma > 0)) if dist.has_states else ()
     n = A.shape[0]
     P0 = np.zeros((n, n))
     P0[0:3, 0:3] = np.diag([tuning.prior_tilt**2, tuning.prior_tilt**2, tuning.prior_heading**2])
@@ -248,20 +266,113 @@ def filter_model(scenario: Scenario, tuning: FilterTuning) -> FineAlignmentModel
         Pv = L @ np.diag(w * w * s2) @ L.T  # the lever-arm velocity of the assumed rocking
         R = R + np.diag(np.diag(Pv))
         P0[3:6, 3:6] += Pv
-    elif axes:
+    F, Q = kalman.discretise(A, Qc, dt)
+    if axes:
+        blocks = matched_rocking_block(dist.motion, dt, period=dist.period, damping=dist.damping) if dist.kind == "matched" else None
+        rate_var = np.empty(len(axes))
         for k, i in enumerate(axes):
             a, b = 12 + 2 * k, 13 + 2 * k
-            P0[a, a], P0[b, b] = s2[i], (w * w) * s2[i]
+            if blocks is None:
+                P0[a, a], P0[b, b] = s2[i], (w * w) * s2[i]
+            else:  # the rocking's own covariance and one-epoch prediction (the shaping block is decoupled in A)
+                Fm, Qm, R0 = (x[i] for x in blocks)
+                P0[a : b + 1, a : b + 1] = R0
+                F[a : b + 1, a : b + 1], Q[a : b + 1, a : b + 1] = Fm, Qm
+            rate_var[k] = P0[b, b]
         rates = slice(13, n, 2)
         if not tuning.lever_arm_known:
             La = L[:, list(axes)]
             # v_INS(0) = 0, so δv(0) = −L θ_r'(0)
-            Pr = np.diag(w * w * s2[list(axes)])
+            Pr = np.diag(rate_var)
             P0[3:6, 3:6] += La @ Pr @ La.T
             P0[3:6, rates] = -La @ Pr
             P0[rates, 3:6] = -(La @ Pr).T
-    F, Q = kalman.discretise(A, Qc, dt)
     return FineAlignmentModel(F, Q, H, R, P0, dt, M, names, axes)
+
+
+def matched_rocking_block(motion, epoch: float, *, period: float, damping: float) -> tuple:
+    """The second-order Gauss–Markov model of a rocking over one epoch, matched to its spectrum (per axis).
+
+    The state of an axis is ``x = (θ, θ')``.  From the rocking's spectral
+    density G, its covariance at lag τ is
+    ``C(τ) = E[x(t+τ) x(t)ᵀ] = ∫ G(ω) Re[h(ω) e^{iωτ} h(ω)*ᵀ] dω`` with
+    ``h = (1, iω)``.  The discrete model ``x_{k+1} = F x_k + q_k`` takes
+
+    * the rate row of ``F`` from the rocking itself: the best linear
+      prediction of ``θ'`` one epoch ahead from ``(θ, θ')`` now, the second row
+      of ``C(T) C(0)⁻¹`` (the Yule–Walker equations);
+    * the angle row from the shaping filter ``θ'' + 2ζω0 θ' + ω0² θ = w`` of
+      the given period and damping (``e^{AT}``), which integrates the rate;
+    * ``Q = C(0) − F C(0) Fᵀ``, so that the model keeps the rocking's own
+      variances of angle and rate, and the prior ``C(0)``.
+
+    A shaping filter driven by white noise has the narrow-band spectrum
+    *without* its cut-off: it predicts the rate worse than the band-limited
+    rocking allows, so its Q is too large and its NIS falls below the band.
+    The full Yule–Walker model (both rows) predicts each epoch right but not
+    several: the pair ``(θ, θ')`` is not Markov for a band-limited rocking, and
+    with the angle row of ``C(T) C(0)⁻¹`` the filter grows overconfident in the
+    angle (NEES above its band); the oscillator's angle row keeps the angle's
+    propagation over many epochs (``tests/test_alignment_methods.py``).
+
+    Parameters
+    ----------
+    motion : rocking model
+        A model of :mod:`strapdown.analysis.alignment.base_motion` (its ``covariance``).
+    epoch : float
+        T [s].
+    period : float, keyword-only
+        Natural period ``2π/ω0`` of the shaping filter [s].
+    damping : float, keyword-only
+        Its damping ratio ζ.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(F, Q, C0)``, each ``(3, 2, 2)`` (per axis yaw, β, γ).  An axis
+        without rocking has ``F = Q = C0 = 0``.
+
+    Raises
+    ------
+    ValueError
+        For an epoch or period that is not positive.
+
+    References
+    ----------
+    Brockwell, P. J., Davis, R. A., *Time Series: Theory and Methods*, 2nd ed.,
+    Springer, 1991, sec. 11.4 (Yule–Walker equations of a multivariate AR(1)).
+
+    >>> from strapdown.analysis.alignment.base_motion import NarrowbandMotion
+    >>> F, Q, C0 = matched_rocking_block(NarrowbandMotion(0.01, 8.0, 0.1), 0.5, period=8.0, damping=0.1)
+    >>> bool(np.all(np.linalg.eigvalsh(Q[1]) > 0)), bool(abs(C0[1, 0, 0] - 0.01**2 / 2) < 1e-9)
+    (True, True)
+    """
+    from scipy.linalg import expm
+
+    T = positive(epoch, "epoch")
+    w0 = 2.0 * math.pi / positive(period, "period")
+    z = as_float(damping, "damping")
+    h = (lambda w: np.ones_like(w, dtype=complex), lambda w: 1j * w)
+
+    def cov(lag):
+        out = np.empty((3, 2, 2))
+        for j in range(2):
+            for k in range(2):
+                out[:, j, k] = motion.covariance(lambda w, j=j: h[j](w) * np.exp(1j * w * lag), h[k])
+        return out
+
+    C0, C1 = cov(0.0), cov(T)
+    C0 = 0.5 * (C0 + np.swapaxes(C0, 1, 2))
+    angle_row = expm(np.array([[0.0, 1.0], [-w0 * w0, -2.0 * z * w0]]) * T)[0]
+    F = np.zeros((3, 2, 2))
+    Q = np.zeros((3, 2, 2))
+    for i in range(3):
+        if C0[i, 0, 0] > 0.0:
+            F[i, 0] = angle_row
+            F[i, 1] = (C1[i] @ np.linalg.inv(C0[i]))[1]
+            Qi = C0[i] - F[i] @ C0[i] @ F[i].T
+            Q[i] = 0.5 * (Qi + Qi.T)
+    return F, Q, C0
 
 
 def lever_matrix(scenario: Scenario) -> np.ndarray:
@@ -314,9 +425,10 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     scenario : Scenario
         Stable attitude, lever arm and sampling.
     kind : str
-        ``"white"`` or ``"shaping"`` (``"none"`` when the lever arm is zero).  The
-        shaping filter takes the rocking's period and damping (at least
-        :data:`MIN_DAMPING`; 0.7 for white rocking).
+        ``"white"``, ``"shaping"`` or ``"matched"`` (``"none"`` when the lever arm
+        is zero).  The shaping filter takes the rocking's period and damping (at
+        least :data:`MIN_DAMPING`; 0.7 for white rocking); the matched states
+        take the one-epoch covariances of ``motion`` itself (:func:`matched_rocking_block`).
 
     Returns
     -------
@@ -329,7 +441,7 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     # the period whose oscillator has the rate variance of the rocking
     period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
     damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))
-    return Disturbance(kind, sigma, period, max(damping, MIN_DAMPING))
+    return Disturbance(kind, sigma, period, max(damping, MIN_DAMPING), motion if kind == "matched" else None)
 
 
 @dataclass(frozen=True)

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..core import budget, kalman, montecarlo
 from ..core.validation import as_int
+from ..core.verdicts import Verdict, all_of, in_band
 from ..gyrocompass.rocking import as_generator
 from .analytic import analytic_alignment
 from .fine import FilterDraws, FilterTuning, draw_epoch_record, draw_filter, filter_model, fine_alignment, simulate_epoch_record
@@ -310,6 +311,34 @@ class AlignmentMonteCarlo:
     theory: AnalyticTheory | None = None
     kalman: KalmanConsistency | None = None
     kalman_theory: KalmanTheory | None = None
+
+    def consistency(self, level: float = 0.95) -> Verdict | None:
+        """Kalman: is the filter consistent? Every mean NEES and NIS at the K check epochs inside its χ² band.
+
+        The bands are taken at ``1 − (1 − level)/(2K)`` each (Bonferroni), so
+        that a consistent filter has all 2K means inside with probability at
+        least ``level``: the verdict is a test at that level of the whole
+        family of checks, not of each one.
+
+        Parameters
+        ----------
+        level : float
+            Family confidence.
+
+        Returns
+        -------
+        Verdict or None
+            ``"yes"`` or ``"no"``; None for the other methods.
+        """
+        k = self.kalman
+        if k is None:
+            return None
+        n, K = self.result.n_trials, k.nees.size
+        each = 1.0 - (1.0 - level) / (2 * K)
+        text = f"every mean NEES and NIS at {K} epochs inside its χ² band of {n} trials ({level:.0%} for the family, Bonferroni)"
+        nees = in_band(k.nees, kalman.chi2_band(k.dim, n, each), n=n, criterion=text, level=level)
+        nis = in_band(k.nis, kalman.chi2_band(k.meas_dim, n, each), n=n, criterion=text, level=level)
+        return all_of([nees, nis], criterion=text)
 
 
 def _per_block(method: str, n_trials: int, trials_per_block) -> int:

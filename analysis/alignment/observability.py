@@ -58,7 +58,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import expm
 
-from ..core import kalman
+from ..core import budget, kalman
 from ..core.validation import as_array, as_float, positive
 from .error_model import ErrorModel, alignment_error_model, navigation_error_model, state_labels
 from .fine import FilterTuning, assumed_disturbance
@@ -218,10 +218,16 @@ class ObservabilityResult:
         A basis of the unobservable subspace.
     posterior_ratio : ndarray
         ``(n,)`` standard deviation of each state after the horizon over its prior [1].
-    gramian_singular_values : ndarray
+    gramian_eigenvalues : ndarray
         ``(n,)`` eigenvalues of the observability Gramian over the horizon
-        (:func:`observability_gramian`): the information the measurements add
-        along each direction, in units of the prior's [1], largest first.
+        (:func:`observability_gramian`, states in units of their prior
+        standard deviations): the information the measurements add along each
+        eigenvector, in units of the prior's information [1], largest first.
+        The Gramian is symmetric positive semi-definite, so they are its
+        singular values too in exact arithmetic; those of unobservable
+        directions are zero to rounding and may come out slightly negative.
+        With no process noise, the posterior covariance in the same units is
+        ``(I + W)⁻¹``.
     duration : float
         Horizon [s].
     latitude : float
@@ -234,7 +240,7 @@ class ObservabilityResult:
     rank: int
     unobservable: tuple
     posterior_ratio: np.ndarray
-    gramian_singular_values: np.ndarray
+    gramian_eigenvalues: np.ndarray
     duration: float
     latitude: float
 
@@ -242,6 +248,25 @@ class ObservabilityResult:
     def dim(self) -> int:
         """State dimension."""
         return len(self.names)
+
+    def little_learned(self, threshold: float = 0.9) -> tuple:
+        """The states (names) of which the filter has learned little within the horizon: ``posterior_ratio ≥ threshold``.
+
+        Rank and degree differ: a state outside every unobservable direction
+        is observable *given time*, and may still be almost unlearned after
+        the horizon.
+
+        Parameters
+        ----------
+        threshold : float
+            Standard deviation over the prior at or above which a state counts as little learned [1].
+
+        Returns
+        -------
+        tuple of str
+        """
+        t = as_float(threshold, "threshold")
+        return tuple(n for n, x in zip(self.names, self.posterior_ratio) if np.isfinite(x) and x >= t)
 
     @property
     def pairs(self) -> tuple:
@@ -366,13 +391,29 @@ def multi_position_problem(latitude, rotations, duration: float, *, attitude=(0.
     return ObservabilityProblem("multi-position", tuple(models), tuple(np.diff(edges)), P0, tuning.measurement_noise**2 * np.eye(3), tuning.epoch, as_float(latitude, "latitude"))
 
 
-def observability_gramian(problem: ObservabilityProblem) -> np.ndarray:
+def _check_work(problem: ObservabilityProblem, limits, *, covariance: bool) -> None:
+    """Refuse a horizon whose covariance run or Gramian exceeds ``limits``, and an epoch longer than the horizon."""
+    T, epoch = problem.duration, problem.epoch
+    if epoch > T:
+        raise ValueError(f"Expected the filter's `epoch` at most the horizon `duration` = {T:g} s, got {epoch:g} s (no measurement would fall inside)")
+    steps = [max(1.0, round(d / epoch)) for d in problem.durations]
+    gram = sum(max(1.0, math.ceil(d / GRAMIAN_STEP)) for d in problem.durations)
+    n, m = problem.P0.shape[0], problem.R.shape[0]
+    what = f"`duration` = {T:.3g} s of {problem.kind} observability ({sum(steps):.3g} epochs of {epoch:g} s (`epoch`), {n} states)"
+    est = budget.observability(sum(steps) if covariance else 0.0, max(steps) if covariance else 0.0, gram, states=n, measurements=m, what=what)
+    budget.check(est, limits)
+
+
+def observability_gramian(problem: ObservabilityProblem, *, limits: budget.Limits | None = None) -> np.ndarray:
     """``W = ∫ Φᵀ Hᵀ N⁻¹ H Φ dt`` over the horizon, states in units of their prior standard deviations.
 
     Parameters
     ----------
     problem : ObservabilityProblem
         The model, prior and measurement noise.
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s); a horizon
+        beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
 
     Returns
     -------
@@ -380,11 +421,22 @@ def observability_gramian(problem: ObservabilityProblem) -> np.ndarray:
         ``(n, n)`` symmetric; its eigenvalues are the information the
         measurements add along their eigenvectors, in units of the prior's.
 
+    Raises
+    ------
+    ValueError
+        For an epoch longer than the horizon, or a horizon beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration``).
+
     References
     ----------
     Goshen-Meskin & Bar-Itzhack (1992) (piecewise-constant systems); Van Loan (1978)
     (each sub-interval, :func:`strapdown.analysis.core.kalman.discretise`).
     """
+    _check_work(problem, limits, covariance=False)
+    return _gramian(problem)
+
+
+def _gramian(problem: ObservabilityProblem) -> np.ndarray:
     S = _prior_scales(problem)
     Ninv = np.linalg.inv(problem.R * problem.epoch)  # measurement noise density [unit² s]
     n = len(S)
@@ -555,8 +607,14 @@ def _rref_directions(Z: np.ndarray, names) -> list:
     return list(zip(pivots, B[: len(pivots)]))
 
 
-def observability(problem: ObservabilityProblem) -> ObservabilityResult:
+def observability(problem: ObservabilityProblem, *, limits: budget.Limits | None = None) -> ObservabilityResult:
     """Rank, unobservable directions and degree of observability of a problem.
+
+    The rank (and the unobservable directions) says which states the
+    measurements can tell apart *at all*, given any time; the degree of
+    observability (:attr:`ObservabilityResult.posterior_ratio`) says how much
+    the filter has learned about each *within the horizon*.  A state can be
+    observable in rank and still unlearned after the horizon (ratio near 1).
 
     Parameters
     ----------
@@ -564,6 +622,10 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
         From :func:`stationary_problem`, :func:`rocking_problem`,
         :func:`multi_position_problem` or a recorded log
         (:func:`strapdown.analysis.logs.alignment.recorded_problem`).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time of the covariance run over the
+        horizon (default 2 GB, 300 s); a horizon beyond them raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded` before anything is allocated.
 
     Returns
     -------
@@ -573,6 +635,9 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
     ------
     TypeError
         If ``problem`` is not an ObservabilityProblem.
+    ValueError
+        For an ``epoch`` longer than the horizon, or a horizon beyond ``limits``
+        (:class:`~strapdown.analysis.core.budget.BudgetExceeded`, naming ``duration``).
 
     References
     ----------
@@ -589,6 +654,7 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
     """
     if not isinstance(problem, ObservabilityProblem):
         raise TypeError(f"Expected `problem` to be an ObservabilityProblem, got {type(problem).__name__}")
+    _check_work(problem, limits, covariance=True)
     names = problem.names
     labels = state_labels(names)
     n = len(names)
@@ -605,7 +671,7 @@ def observability(problem: ObservabilityProblem) -> ObservabilityResult:
         text = f"{labels[col]} ↔ {' and '.join(lead)}" if others else f"{labels[col]} (alone)"
         directions.append(UnobservableDirection(names[col], {names[i]: float(comp[i]) for i in range(n) if row[i] != 0.0}, partners, text))
     return ObservabilityResult(
-        problem.kind, names, labels, n - M.shape[1], tuple(directions), _posterior_ratio(problem), np.linalg.eigvalsh(observability_gramian(problem))[::-1].copy(),
+        problem.kind, names, labels, n - M.shape[1], tuple(directions), _posterior_ratio(problem), np.linalg.eigvalsh(_gramian(problem))[::-1].copy(),
         problem.duration, problem.latitude,
     )
 

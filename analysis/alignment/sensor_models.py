@@ -154,6 +154,36 @@ class SensorSpec:
         """
         return sum(self.allan_terms(tau).values())
 
+    def datasheet_allan_variance(self, tau) -> np.ndarray:
+        """The data sheet's Allan variance: ``N²/τ + (0.664 B)² + K²τ/3`` at every τ (IEEE Std 952-1997, annex C) [unit²].
+
+        The curve a data sheet's three numbers mean, with the flat flicker floor
+        at every averaging time.  The simulated sensor has it only inside the
+        band of its Gauss–Markov sum (:meth:`allan_variance` is the model's own
+        curve, which falls below this one towards the band's ends).
+
+        Parameters
+        ----------
+        tau : array_like
+            Averaging times [s].
+
+        Returns
+        -------
+        ndarray
+
+        References
+        ----------
+        IEEE Std 952-1997, *IEEE Standard Specification Format Guide and Test
+        Procedure for Single-Axis Interferometric Fiber Optic Gyros*, annex C
+        (Allan variance: angle random walk, bias instability, rate random walk).
+
+        >>> s = SensorSpec(bias_instability=1.0)
+        >>> bool(abs(float(s.datasheet_allan_variance(1e6)) - FLICKER_FLOOR**2) < 1e-15)
+        True
+        """
+        t = np.asarray(tau, dtype=float)
+        return self.random_walk**2 / t + (FLICKER_FLOOR * self.bias_instability) ** 2 + self.rate_random_walk**2 * t / 3.0
+
     def allan_terms(self, tau) -> dict:
         """The Allan variance of each term at τ: ``"random walk"``, ``"flicker"`` (the Gauss–Markov sum), ``"rate random walk"``.
 

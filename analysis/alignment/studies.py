@@ -27,6 +27,7 @@ from .monte_carlo import AlignmentMonteCarlo, AlignmentOptions, alignment_draws,
 from .theory import analytic_theory
 
 __all__ = [
+    "THEORY_MARGIN",
     "NAVIGATION_GRADE",
     "DESIGN_SCENARIO",
     "kalman_options",
@@ -45,6 +46,11 @@ __all__ = [
     "CoverageRow",
     "coverage_study",
 ]
+
+#: A theory (or a budget a check should meet) agrees with its Monte Carlo when the true mean or rms is
+#: within this fraction of it, by TOST (:mod:`strapdown.analysis.core.verdicts`); a first-order theory
+#: neglects terms far below 10 % in the report's cases.
+THEORY_MARGIN = 0.1
 
 #: A navigation-grade sensor set: 0.005 deg/h turn-on gyro bias, 0.002 deg/√h ARW,
 #: 1e-4 m/s² accelerometer bias, 0.006 m/s/√h VRW.

@@ -233,7 +233,12 @@ class Commands:
 
     def _group(self, group: str):
         if group not in self._groups:
-            helps = {"algorithms": "the registry of algorithms: list it, show one", "derive": "regenerate a symbolic derivation", "reproduce": "reproduce published tables"}
+            helps = {
+                "algorithms": "the registry of algorithms: list it, show one",
+                "derive": "regenerate a symbolic derivation",
+                "log": "recorded IMU logs: inspect one, its vibration environment, algorithms replayed on it, the noise of a static stretch",
+                "reproduce": "reproduce published tables",
+            }
             parser = self.root.add_parser(group, description=helps.get(group, group))
             self._groups[group] = parser.add_subparsers(dest=f"{group}_command", metavar="SUBCOMMAND", parser_class=_Parser, required=True)
         return self._groups[group]
@@ -257,6 +262,10 @@ COMMANDS = {
     "drift": ("drift", "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)"),
     "environment-drift": ("environment", "mean coning drift and sculling rectification of an algorithm in a vibration environment (closed form)"),
     "environment-rates": ("environment", "lowest sample rate and load of each algorithm, classical and tuned, for a drift budget in an environment"),
+    "log allan": ("log_analysis", "Allan deviation of a static log: ARW, bias instability and RRW with intervals, written as a sensor file"),
+    "log coning": ("log_analysis", "replay coning algorithms on a log: mean correction rate of each, their exact drift differences, the closed form beside"),
+    "log environment": ("log_analysis", "vibration environment of a log: lines and cross-spectra with intervals, written as an environment file"),
+    "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
@@ -413,7 +422,7 @@ def _write_stdout(text: str) -> None:
 
 
 # --------------------------------------------------------------------------- errors
-_TICKED = re.compile(r"`([A-Za-z_][\w-]*)`")
+_TICKED = re.compile(r"`(-{0,2}[A-Za-z_][\w-]*)`")  # a Python name, or an option the message names itself
 
 
 def _option_strings(parser) -> dict:
@@ -492,8 +501,8 @@ def _blame(message: str, args, argv=()) -> str:
         choices = {a.dest for a in getattr(parser, "_actions", ()) if a.choices is not None}
         for dest, option in options.items():
             value = getattr(args, dest, None)
-            if dest in choices or not isinstance(value, str) or len(value) < 2:
-                continue
+            if dest in choices or not isinstance(value, str) or len(value) < 2 or (argv and not _typed(option, argv)):
+                continue  # a default the user did not type is never blamed
             if any(w.strip(":,;()") == value for w in words) or f"{value!r}" in message:
                 flag = option
                 break

@@ -522,3 +522,31 @@ def sculling_parameters(args) -> dict:
         "rotation_axis": axes.index(v["rotation_axis"]),
         "accel_axis": axes.index(v["accel_axis"]),
     }
+
+
+def write_text_atomic(path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically: a temporary file in the same directory, then renamed over it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    text : str
+        Its content (UTF-8, ``\\n`` line ends).
+    """
+    import os
+    import tempfile
+    from pathlib import Path
+
+    path = Path(path)
+    if path.is_dir():
+        raise IsADirectoryError(21, "Is a directory", str(path))
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent if str(path.parent) else ".")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -31,6 +31,7 @@ _METHOD_OPTIONS = {
     "--assumed-damping": ("kalman",),
     "--assumed-amplitude-deg": ("kalman",),
     "--lever-arm-known": ("kalman",),
+    "--imu": ("kalman",),
 }
 
 def _check_work(args, samples: int, trials: int, workers: int) -> None:
@@ -189,6 +190,9 @@ def _align(args) -> Result:
     from ..core.units import deg
     from ..core.validation import as_int
 
+    for flag, value in (("--topic", args.topic), ("--segment", args.segment), ("--imu", args.imu)):
+        if value is not None and args.log is None:
+            raise UsageError(f"{flag} applies to a recorded log (--log)")
     if args.log is not None:  # one alignment of a recorded log, no Monte Carlo
         from ._recorded import align_recorded
 
@@ -250,6 +254,7 @@ def _align(args) -> Result:
             theory_kalman_sigma_deg=deg(kt.sigma),
             nees={"times": k.times.tolist(), "mean": k.nees.tolist(), "band": list(k.nees_band), "dof": k.dim},
             nis={"times": k.times.tolist(), "mean": k.nis.tolist(), "band": list(k.nis_band), "dof": k.meas_dim, "mean_all_epochs": k.nis_all},
+            consistency=mc.consistency().as_dict(),
         )
     text = [
         f"{args.method} alignment, {r.n_trials} trials, T = {data['duration']:g} s: azimuth error mean {data['azimuth_error_mean_deg']:.6g} deg "
@@ -261,6 +266,7 @@ def _align(args) -> Result:
         text.append(f"theory: mean {data['theory_mean_deg']:.6g} deg, rms {data['theory_rms_deg']:.6g} deg (rocking {data['theory_rocking_rms_deg']:.6g} deg)")
     if mc.kalman is not None:
         text.append(f"NEES at the end {k.nees[-1]:.3g} (95 % band {k.nees_band[0]:.3g} .. {k.nees_band[1]:.3g}), NIS {k.nis[-1]:.3g} ({k.nis_band[0]:.3g} .. {k.nis_band[1]:.3g})")
+        text.append(f"consistent (every mean NEES and NIS in its band, 95 % for the family): {mc.consistency()}")
     return Result(data, "\n".join(text))
 
 
@@ -280,7 +286,19 @@ def register(commands) -> None:
         help="alignment method: analytic (formula (2) on averaged outputs), inertial (inertial frame) or kalman (fine alignment) (required)",
     )
     p.add_argument("--lat-deg", type=float, required=True, help="latitude φ [deg], |φ| < 90 (required)")
-    p.add_argument("--log", default=None, help="recorded IMU log, .npz or .csv (docs/recorded-logs.md): align it once instead of a Monte Carlo [path] (default: none)")
+    p.add_argument(
+        "--log",
+        default=None,
+        help="recorded IMU log: .ulg, .bin, .bag, ROS 2 bag, EuRoC imu0/data.csv, .npz or .csv (docs/recorded-logs.md): align it once, no Monte Carlo [path] (default: none)",
+    )
+    p.add_argument("--topic", default=None, help="with --log: the stream to read [name] (default: the stream of highest rate that covers the log)")
+    p.add_argument("--segment", default=None, metavar="START:END", help="with --log: the stretch to read, seconds from the log's start [s] (default: the whole log)")
+    p.add_argument(
+        "--imu",
+        default=None,
+        help="kalman with --log: sensor specification TOML, [gyro] arw_deg_per_rt_h, bias_instability_deg_per_h, [accel] vrw_m_s_per_rt_h, bias_instability_ug "
+        "(a data sheet, or the output of log allan) [path] (default: none; then --arw-deg-per-rt-h and --vrw-m-s-per-rt-h are required)",
+    )
     p.add_argument("--heading-deg", type=float, default=0.0, help="stable heading ψ0 [deg] (default 0: body x north, y east, z down)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="stable tilt β0 about the body x axis [deg], |β0| < 90 (default 0)")
     p.add_argument("--gamma0-deg", type=float, default=0.0, help="stable tilt γ0 of the body x axis [deg], |γ0| < 90 (default 0)")
@@ -319,9 +337,10 @@ def register(commands) -> None:
     p.add_argument("--velocity-noise-m-s", type=float, default=None, help="kalman only: noise of the zero-velocity reference [m/s] (default 0.001)")
     p.add_argument(
         "--disturbance",
-        choices=["auto", "none", "white", "shaping"],
+        choices=["auto", "none", "white", "shaping", "matched"],
         default=None,
-        help="kalman only: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white or shaping (default auto)",
+        help="kalman only: how the filter models the lever-arm motion: auto (shaping when there is rocking and a lever arm), none, white, shaping "
+        "(rocking states driven by white noise) or matched (rocking states matched to the rocking's spectrum) (default auto)",
     )
     p.add_argument("--assumed-period", type=float, default=None, help="kalman only: rocking period the filter assumes [s] (default: the true one)")
     p.add_argument("--assumed-damping", type=float, default=None, help="kalman only: rocking damping ratio the filter assumes [dimensionless] (default: the true one)")

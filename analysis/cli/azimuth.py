@@ -85,6 +85,7 @@ def _azimuth(args) -> Result:
     with executor_from(args) as executor:
         mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress, limits=limits_from(args))
     r, th = mc.result, mc.theory
+    v14, v15 = (_in_samples(r.bound_holds(b, what=f"bound ({k})"), r) for k, b in ((14, mc.bound14), (15, mc.bound15)))
     data = {
         "rocking": args.rocking,
         "seed": seed,
@@ -102,13 +103,16 @@ def _azimuth(args) -> Result:
         "quantile_intervals_deg": {f"{level:g}": [deg(x) if math.isfinite(x) else None for x in ci] for level, ci in r.quantile_intervals.items()},
         "bound14_holds": r.covers(mc.bound14),
         "bound15_holds": r.covers(mc.bound15),
+        # the same tests as verdicts: criterion, interval and, when not resolved, the trials a decision needs
+        "bound14_verdict": v14.as_dict(scale=deg(1.0)),
+        "bound15_verdict": v15.as_dict(scale=deg(1.0)),
         "samples": r.n_samples,
         "trials": r.n_trials,
     }
     text = (
         f"rms azimuth error {data['rms_error_deg']:.6g} deg (95 % CI {data['rms_ci_deg'][0]:.6g} .. {data['rms_ci_deg'][1]:.6g}), "
-        f"mean {data['mean_error_deg']:.3g} deg; bound (14) {data['bound14_deg']:.6g} deg [{data['bound14_holds']}], "
-        f"bound (15) {data['bound15_deg']:.6g} deg [{data['bound15_holds']}]; second-order theory {data['theory_rms_second_order_deg']:.6g} deg "
+        f"mean {data['mean_error_deg']:.3g} deg; bound (14) {data['bound14_deg']:.6g} deg [holds: {v14}], "
+        f"bound (15) {data['bound15_deg']:.6g} deg [holds: {v15}]; second-order theory {data['theory_rms_second_order_deg']:.6g} deg "
         f"({data['samples']} samples)"
     )
     return Result(data, text)
@@ -168,6 +172,15 @@ def _design(args) -> Result:
     rows = [f"{'f [Hz]':>10} {'a_max rms [deg]':>16} {'first order':>12} {f'{level:.0%} of |err|':>14}"]
     rows += [f"{f:10.4g} {a:16.5g} {a1:12.5g} {ap:14.5g}" for f, a, a1, ap in zip(data["frequency_hz"], data["amplitude_deg"], data["amplitude_first_order_deg"], data["amplitude_percentile_deg"])]
     return Result(data, "\n".join(rows))
+
+
+def _in_samples(verdict, result):
+    """A verdict counted in rocking samples (a trial of the Monte Carlo is a block of ``n_samples / n_trials`` of them)."""
+    from dataclasses import replace
+
+    per = result.n_samples // max(result.n_trials, 1)
+    more = None if verdict.more_trials is None else verdict.more_trials * per
+    return replace(verdict, n=result.n_samples, more_trials=more, trial="samples")
 
 
 def register(commands) -> None:

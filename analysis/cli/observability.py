@@ -19,8 +19,10 @@ MODELS = ("stationary", "rocking", "multi-position")
 _ROCKING_OPTIONS = ("--rocking", "--amplitude-deg", "--period", "--damping", "--lever-arm")
 _POSITION_OPTIONS = ("--rotation-times", "--rotation-axes", "--rotation-angles-deg")
 
-#: One filterpy predict-update cycle of an 18-state model, rounded up, and the start-up (imports, model).
-_FILTER_STEP = budget.CostModel(seconds_per_unit=1e-4, bytes_per_unit=3e3, fixed_seconds=1.5, fixed_bytes=2e8)
+#: Degree of observability at or above which a state is reported as little learned within the horizon.
+LITTLE_LEARNED = 0.9
+#: States of the largest model (the rocking model), for the estimate made before the model is built.
+_MOST_STATES = 18
 
 
 def _tuning(args):
@@ -84,15 +86,21 @@ def _problem(args):
     attitude = np.array([rad(args.heading_deg), rad(b0), rad(g0)])
     duration = positive(args.duration, "--duration")
     tuning = _tuning(args)
+    if tuning.epoch > duration:
+        raise UsageError(f"Expected --epoch at most --duration = {duration:g} s (at least one measurement inside the horizon), got {args.epoch:g} s")
     steps = duration / tuning.epoch
-    check_work(args, _FILTER_STEP.estimate(steps, what=f"{steps:.3g} filter epochs (--duration / --epoch)"))
+    gramian = duration / 5.0  # sub-intervals of the Gramian (observability.GRAMIAN_STEP), without importing it
+    check_work(args, budget.observability(steps, steps, gramian, states=_MOST_STATES, measurements=3, what=f"{steps:.3g} filter epochs (--duration / --epoch)"))
+    for flag, value in (("--topic", args.topic), ("--segment", args.segment)):
+        if value is not None and args.log is None:
+            raise UsageError(f"{flag} applies to a recorded log (--log)")
     if args.log is not None:
         if args.model != "stationary":
             raise UsageError(f"--model {args.model} does not apply to a recorded log (--log): its positions come from its motion")
         from ..logs.alignment import recorded_problem
-        from ..logs.native import read_log
+        from ._logs import load_log
 
-        log = read_log(args.log)
+        log = load_log(args).longest  # the positions are tracked through one gap-free segment
         return recorded_problem(log, lat, tuning=tuning), log
     if args.model == "stationary":
         return obs.stationary_problem(lat, attitude=attitude, tuning=tuning, duration=duration), None
@@ -120,9 +128,10 @@ def _problem(args):
 def _observability(args) -> Result:
     from ..alignment.observability import observability
     from ..core.units import deg
+    from ._options import limits_from
 
     problem, log = _problem(args)
-    r = observability(problem)
+    r = observability(problem, limits=limits_from(args))
     directions = [
         {"state": d.state, "label": r.labels[r.names.index(d.state)], "partners": list(d.partners), "components": d.components, "text": d.text} for d in r.unobservable
     ]
@@ -138,21 +147,26 @@ def _observability(args) -> Result:
         "unobservable": directions,
         "pairs": [list(p) for p in r.pairs],
         "posterior_ratio": {n: float(x) for n, x in zip(r.names, r.posterior_ratio)},
-        "gramian_singular_values": [float(x) for x in r.gramian_singular_values],
+        "little_learned": list(r.little_learned(LITTLE_LEARNED)),
+        "little_learned_threshold": LITTLE_LEARNED,
+        "gramian_eigenvalues": [float(x) for x in r.gramian_eigenvalues],
     }
     if log is not None:
         data["log"] = str(args.log)
-    lines = [f"{r.kind} model, φ = {data['lat_deg']:g}°, {r.dim} states, {len(problem.durations)} segment(s) over {r.duration:g} s: rank {r.rank}"]
+    lines = [f"{r.kind} model, φ = {data['lat_deg']:g}°, {r.dim} states, {len(problem.durations)} segment(s) over {r.duration:g} s: rank {r.rank} of {r.dim}"]
     if r.unobservable:
-        lines.append("unobservable directions (per unit of the first state):")
+        lines.append("rank: unobservable directions, whatever the time (per unit of the first state):")
         for d in r.unobservable:
             parts = ", ".join(f"{k} {v:.4g}" for k, v in d.components.items() if k != d.state)
             lines.append(f"  {d.text}: {parts}")
     else:
-        lines.append("every state is observable")
-    lines.append(f"standard deviation after {r.duration:g} s over the prior:")
+        lines.append("rank: every state is observable, given time")
+    lines.append(f"degree of observability: standard deviation after {r.duration:g} s over the prior (1: nothing learned):")
     for label, x in zip(r.labels, r.posterior_ratio):
         lines.append(f"  {label:<28} {x:.3g}")
+    little = [r.labels[r.names.index(n)] for n in r.little_learned(LITTLE_LEARNED)]
+    if little:
+        lines.append(f"learned little within {r.duration:g} s (ratio ≥ {LITTLE_LEARNED:g}): {', '.join(little)}")
     return Result(data, "\n".join(lines))
 
 
@@ -171,7 +185,11 @@ def register(commands) -> None:
         default="stationary",
         help="stationary (twelve states at rest), rocking (with rocking states seen through the lever arm) or multi-position (default stationary)",
     )
-    p.add_argument("--log", default=None, help="recorded IMU log, .npz or .csv (docs/recorded-logs.md): the positions of its motion instead of --model [path] (default: none)")
+    p.add_argument(
+        "--log", default=None, help="recorded IMU log, any format of docs/recorded-logs.md: the positions of its motion (the Earth's rate taken out) instead of --model [path] (default: none)"
+    )
+    p.add_argument("--topic", default=None, help="with --log: the stream to read [name] (default: the stream of highest rate that covers the log)")
+    p.add_argument("--segment", default=None, metavar="START:END", help="with --log: the stretch to read, seconds from the log's start [s] (default: the whole log)")
     p.add_argument("--lat-deg", type=float, default=45.0, help="latitude φ [deg], |φ| < 90 (default 45)")
     p.add_argument("--heading-deg", type=float, default=0.0, help="initial heading ψ0 [deg] (default 0)")
     p.add_argument("--beta0-deg", type=float, default=0.0, help="initial tilt β0 [deg], |β0| < 90 (default 0)")

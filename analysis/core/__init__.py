@@ -1,4 +1,4 @@
-"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, quadrature, quantiles, Kalman adapter.
+"""Shared numerical core: quaternions, dual numbers, validation, units, Monte Carlo, verdicts, quadrature, quantiles, Kalman adapter.
 
 Modules
 -------
@@ -12,6 +12,9 @@ units
     Every unit factor (degrees, deg/h, ...) used at the edges of the package.
 montecarlo
     Chunked, reproducible Monte Carlo of a scalar error (``SeedSequence.spawn``).
+verdicts
+    "yes", "no" or "not resolved: N more trials needed": every verdict a test
+    (TOST or one-sided) against a named margin, with its interval.
 quadrature
     Integrals of smooth or oscillatory vector functions (composite Gauss–Legendre, halved to a tolerance).
 quantiles

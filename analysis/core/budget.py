@@ -62,6 +62,8 @@ __all__ = [
     "VIBRATION_DRAW",
     "VIBRATION_PAIR_BYTES",
     "FILTERED_CONING_SAMPLE",
+    "SPECTRUM_SEGMENT",
+    "RESPONSE_EVALUATION",
     "TRAJECTORY_STEP",
     "TRAJECTORY_SAMPLE",
     "AIDED_FIX",
@@ -69,6 +71,9 @@ __all__ = [
     "AIDED_EPOCH_SECONDS",
     "SENSOR_ERROR_ELEMENT",
     "INTEGRATOR_SAMPLE",
+    "OBSERVABILITY_EPOCH",
+    "GRAMIAN_STEP_SECONDS",
+    "LOG_SAMPLE",
     "coning_simulation",
     "coning_batch",
     "coning_long_run",
@@ -79,9 +84,11 @@ __all__ = [
     "series_derivation",
     "monte_carlo",
     "multistage",
+    "observability",
     "autocorrelation_sums",
     "vibration_monte_carlo",
     "sensor_errors",
+    "recorded_log",
 ]
 
 #: Default time limit [s]: five minutes, far above every documented command.
@@ -353,6 +360,12 @@ VIBRATION_SAMPLE = CostModel(seconds_per_unit=3e-8, bytes_per_unit=0.0, fixed_se
 VIBRATION_DRAW = CostModel(seconds_per_unit=5e-5, bytes_per_unit=3e3)
 #: Memory per antithetic pair of the vibration Monte Carlo: its spawned stream and its result row [bytes].
 VIBRATION_PAIR_BYTES = 1e3
+#: Product-integration weights of a vibration spectrum, per table segment (eight interpolated spectra, their
+#: Legendre moments), computed once per spectrum; chunked, so the working set does not grow with the table.
+SPECTRUM_SEGMENT = CostModel(seconds_per_unit=3e-5, bytes_per_unit=600.0, fixed_seconds=0.05, fixed_bytes=2e7)
+#: One node of a vibration response integral, per algorithm response function integrated at it (the sensors'
+#: responses, the function, the drift columns).
+RESPONSE_EVALUATION = CostModel(seconds_per_unit=3e-6, bytes_per_unit=0.0, fixed_seconds=0.0, fixed_bytes=2e7)
 #: DOP853 reference of a coning line seen through filtered gyros (rtol 1e-13), per sensor sample
 #: (at least 16 integration steps per coning period): the integration to every sample and the states kept.
 FILTERED_CONING_SAMPLE = CostModel(seconds_per_unit=3e-3, bytes_per_unit=1e3, fixed_seconds=0.5)
@@ -377,6 +390,46 @@ SENSOR_ERROR_ELEMENT = CostModel(seconds_per_unit=1e-7, bytes_per_unit=100.0)
 #: An integrator on exact coning increments, per sample (the library's algorithms; a slow black box
 #: takes longer): the increments, the step rotations, their prefix product and the errors (260 B per sample).
 INTEGRATOR_SAMPLE = CostModel(seconds_per_unit=1.5e-6, bytes_per_unit=400.0)
+#: Reading and checking a recorded IMU log, per sample of the stream read: the columns read
+#: (float64), the increments and the checks' one-second windows; the fixed part is the chunk
+#: of the file walked at a time (64 MiB), its record offsets and the records gathered from it.
+LOG_SAMPLE = CostModel(seconds_per_unit=1.5e-6, bytes_per_unit=220.0, fixed_seconds=1.0, fixed_bytes=2.5e8)
+
+
+#: Observability of an alignment model, per filter epoch of its covariance run (filterpy's predict and
+#: update, a Python loop per epoch; 1.4e-4 to 2.2e-4 s measured on a shared machine, 12 and 18 states);
+#: the fixed cost is the staircase reduction and the imports.  The memory per epoch is the gain, prior,
+#: posterior and innovation covariances kept per epoch of a segment, ``8 (2n² + nm + m²)`` bytes
+#: (2.7 kB for twelve states, measured), see :func:`observability`.
+OBSERVABILITY_EPOCH = CostModel(seconds_per_unit=2.5e-4, bytes_per_unit=0.0, fixed_seconds=1.0, fixed_bytes=1.5e8)
+#: One sub-interval of the observability Gramian (a Van Loan exponential and a matrix exponential) [s].
+GRAMIAN_STEP_SECONDS = 2e-4
+
+
+def observability(epochs, segment_epochs, gramian_steps, *, states: int, measurements: int, what: str) -> Estimate:
+    """Estimate of the degree of observability of an alignment model over its horizon.
+
+    Parameters
+    ----------
+    epochs : float
+        Filter epochs over the whole horizon [count].
+    segment_epochs : float
+        Epochs of the longest segment (its covariances are kept at once) [count].
+    gramian_steps : float
+        Sub-intervals of the Gramian's sum [count].
+    states, measurements : int, keyword-only
+        n and m of the model [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    n, m = int(states), int(measurements)
+    per_epoch = 8.0 * (2 * n * n + n * m + m * m)
+    base = OBSERVABILITY_EPOCH.estimate(epochs, what=what, seconds_factor=max(1.0, n / 12.0), extra_bytes=per_epoch * float(segment_epochs))
+    return Estimate(base.seconds + GRAMIAN_STEP_SECONDS * float(gramian_steps), base.memory, what)
 
 
 def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, chunk_steps: int, what: str) -> Estimate:
@@ -601,6 +654,23 @@ def sensor_errors(elements, terms, *, what: str) -> Estimate:
     Estimate
     """
     return SENSOR_ERROR_ELEMENT.estimate(elements, what=what, seconds_factor=max(float(terms), 1.0))
+
+
+def recorded_log(samples, *, what: str) -> Estimate:
+    """Estimate of reading and checking ``samples`` samples of a recorded IMU log.
+
+    Parameters
+    ----------
+    samples : float
+        Samples of the stream read [count].
+    what : str, keyword-only
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    return LOG_SAMPLE.estimate(samples, what=what)
 
 
 def arrays(elements, *, what: str, copies: float = 1.0) -> Estimate:

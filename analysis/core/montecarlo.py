@@ -27,8 +27,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from . import verdicts
 from .quantiles import sample_quantiles
 from .validation import as_array, as_int, positive
+from .verdicts import Verdict
 
 __all__ = ["MonteCarloResult", "run", "summarise", "block_output", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
 
@@ -94,8 +96,72 @@ class MonteCarloResult:
     aux_std_error: tuple = ()
     quantile_intervals: dict = field(default_factory=dict)
 
+    def mean_agrees(self, reference: float, margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the mean error within ``±margin`` of ``reference``? TOST from the per-trial means (:func:`.verdicts.equivalence`).
+
+        Parameters
+        ----------
+        reference : float
+            The value it should equal (a theory) [error units].
+        margin : float
+            The equivalence margin, > 0 [error units].
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        se = (self.mean_ci[1] - self.mean_ci[0]) / (2.0 * Z95)
+        text = f"mean within ±{margin:.3g} of {what} (TOST, {level:.0%})"
+        return verdicts.equivalence(self.mean, se, self.n_trials, reference=reference, margin=margin, criterion=text, level=level)
+
+    def rms_agrees(self, reference: float, relative_margin: float, *, what: str = "the reference", level: float = 0.95) -> Verdict:
+        """Is the rms within ``relative_margin`` of ``reference``? TOST on the mean square (:func:`.verdicts.rms_equivalence`).
+
+        Parameters
+        ----------
+        reference : float
+            The rms it should equal (a theory, a budget) [error units].
+        relative_margin : float
+            The margin as a fraction of ``reference``, in (0, 1).
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+        """
+        text = f"rms within ±{relative_margin:.0%} of {what} (TOST, {level:.0%})"
+        return verdicts.rms_equivalence(self.mse, self.mse_std_error, self.n_trials, reference=reference, relative_margin=relative_margin, criterion=text, level=level)
+
+    def bound_holds(self, bound: float, *, what: str = "the bound", level: float = 0.95) -> Verdict:
+        """Does the rms stay at or below ``bound``? One-sided test on the mean square (:func:`.verdicts.mean_square_within`).
+
+        Parameters
+        ----------
+        bound : float
+            A claimed upper bound of the rms, > 0 [error units].
+        what : str, keyword-only
+            The bound's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval (the test is one-sided at (1 − level)/2).
+
+        Returns
+        -------
+        Verdict
+            ``"yes"`` as :meth:`covers` says ``"holds"``, ``"no"`` as it says
+            ``"fails"``, else ``"not resolved"`` with the trials needed.
+        """
+        text = f"rms at most {what} (one-sided, {level:.0%} interval)"
+        return verdicts.mean_square_within(self.mse, self.mse_std_error, self.n_trials, high=bound, criterion=text, margin=bound, level=level)
+
     def covers(self, bound: float) -> str:
-        """Classify ``bound`` against the rms.
+        """Classify ``bound`` against the rms (the words of :meth:`bound_holds`).
 
         Parameters
         ----------

@@ -26,12 +26,15 @@ __all__ = [
     "PPM",
     "DEG_PER_RT_H_TO_RAD_PER_RT_S",
     "M_S_PER_RT_H_TO_M_S_PER_RT_S",
+    "DEG_PER_H_PER_RT_H_TO_RAD_PER_S_PER_RT_S",
+    "MICRO_G",
     "deg",
     "rad",
     "deg_per_h",
     "rad_per_s",
     "deg_per_sqrt_h",
     "micro_g_per_sqrt_hz",
+    "milli_g",
 ]
 
 SECONDS_PER_HOUR = 3600.0
@@ -55,6 +58,10 @@ PPM = 1e-6
 DEG_PER_RT_H_TO_RAD_PER_RT_S = DEG / math.sqrt(SECONDS_PER_HOUR)
 #: Factor from m/s/√h (velocity random walk) to m/s/√s.
 M_S_PER_RT_H_TO_M_S_PER_RT_S = 1.0 / math.sqrt(SECONDS_PER_HOUR)
+#: Factor from deg/h/√h (rate random walk) to rad/s/√s.
+DEG_PER_H_PER_RT_H_TO_RAD_PER_S_PER_RT_S = DEG_PER_H_TO_RAD_PER_S / math.sqrt(SECONDS_PER_HOUR)
+#: One micro-g [m/s²] (g the standard gravity).
+MICRO_G = STANDARD_GRAVITY * 1e-6
 
 
 def _quantity(x):
@@ -195,3 +202,27 @@ def micro_g_per_sqrt_hz(x):
         If ``x`` is not a number, an array of numbers or a dual number.
     """
     return _quantity(x) / STANDARD_GRAVITY * 1e6
+
+
+def milli_g(x):
+    """Acceleration m/s² → mg (thousandths of the standard gravity).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Value(s) [m/s²].
+
+    Returns
+    -------
+    float or ndarray
+        The same value(s) [mg].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
+
+    >>> round(milli_g(2e-3), 4)
+    0.2039
+    """
+    return _quantity(x) / STANDARD_GRAVITY * 1e3

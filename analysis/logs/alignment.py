@@ -29,7 +29,7 @@ from scipy.spatial.transform import Rotation
 from ..alignment.analytic import analytic_alignment
 from ..alignment.coarse_to_fine import coarse_model, coarse_to_fine, split_record
 from ..alignment.compass_loop import CompassLoopDesign, compass_loop_alignment
-from ..alignment.fine import FilterTuning
+from ..alignment.fine import FilterDraws, FilterTuning
 from ..alignment.imu import ImuRecord, Scenario, SensorErrors
 from ..alignment.inertial import inertial_alignment
 from ..alignment.observability import ObservabilityProblem, stationary_problem
@@ -38,10 +38,15 @@ from ..alignment.tilt_attitude import attitude_matrix
 from ..core.validation import positive
 from .imu_log import ImuLog
 
-__all__ = ["log_record", "LogAlignment", "align_log", "recorded_problem", "LOG_METHODS"]
+__all__ = ["log_record", "LogAlignment", "align_log", "recorded_problem", "LOG_METHODS", "CALIBRATION_SEED"]
 
 #: Methods :func:`align_log` runs.
 LOG_METHODS = ("analytic", "inertial", "kalman", "compass")
+
+#: Seed of the simulated trials that calibrate the coarse stage's covariance (``kalman``): a
+#: property of the filter's model, not of the data, fixed so that an alignment of a recorded
+#: log is a function of the log and the options alone.
+CALIBRATION_SEED = 20240613
 
 
 def log_record(log: ImuLog, latitude: float, *, truth_stride: int | None = None) -> ImuRecord:
@@ -120,7 +125,7 @@ def align_log(
     coarse_duration: float = 60.0,
     compass: CompassLoopDesign | None = None,
     calibration_trials: int = 64,
-    rng=0,
+    rng=None,
 ) -> LogAlignment:
     """Align a recorded log once with ``method``.
 
@@ -147,7 +152,9 @@ def align_log(
     calibration_trials : int, keyword-only
         Simulated trials calibrating the coarse covariance (``kalman``).
     rng : Generator | SeedSequence | int | None, keyword-only
-        Stream of the calibration and of the filter's velocity prior.
+        Stream of that calibration (default :data:`CALIBRATION_SEED`).  Nothing random is
+        added to the recorded data: the filter starts from zero velocity and its
+        zero-velocity measurements are the log's, without synthetic noise.
 
     Returns
     -------
@@ -164,7 +171,7 @@ def align_log(
     if method not in LOG_METHODS:
         raise ValueError(f"Expected `method` in {LOG_METHODS}, got {method!r}")
     tuning = FilterTuning() if tuning is None else tuning
-    g = as_generator(rng)
+    g = as_generator(CALIBRATION_SEED if rng is None else rng)
     T = log.n_samples * log.dt
     sigma = None
     if method == "analytic":
@@ -185,7 +192,9 @@ def align_log(
             sc = replace(rec.scenario, heading=float(coarse.heading[0]), beta0=float(coarse.beta[0]), gamma0=float(coarse.gamma[0]))
             noise = SensorErrors(gyro_noise=tuning.gyro_noise, accel_noise=tuning.accel_noise)
             cm = coarse_model(sc, noise, coarse_duration=k * log.dt, n_trials=calibration_trials, rng=g)
-            res = coarse_to_fine(replace(rec, scenario=sc), tuning, cm, rng=g, score=False)
+            tail_epochs = (log.n_samples - k) // M
+            still = FilterDraws(np.zeros((1, 3)), np.zeros((1, tail_epochs, 3)), np.zeros((1, 3)))  # no synthetic noise on recorded data
+            res = coarse_to_fine(replace(rec, scenario=sc), tuning, cm, score=False, draws=still)
             est, sigma = res.fine.estimate, float(res.fine.heading_sigma[-1])
         else:
             _, tail = split_record(rec, k)
@@ -200,12 +209,17 @@ def align_log(
 def recorded_problem(log: ImuLog, latitude: float, *, tuning: FilterTuning | None = None, threshold: float = math.radians(5.0), window: float = 20.0) -> ObservabilityProblem:
     """The observability problem of a log's motion: a position wherever the block stays, turned between them.
 
-    The attitude is integrated from the gyros (in the frame of the first
-    sample, the Earth's turn over the log neglected) and averaged over windows
-    of ``window`` seconds, which removes the rocking; a new position starts at
-    the first window whose mean attitude has turned by more than ``threshold``
-    from the first window of the current position.  The start attitude is
-    levelled and headed by the analytic alignment of the first position.
+    The attitude is integrated from the gyros in the frame of the first
+    sample, and the Earth's turn is taken out of it: the gyros measure the turn
+    relative to inertial space, which at rest is the Earth's rate (15°/h, 7.5°
+    in half an hour: more than ``threshold``), so the turn relative to the Earth
+    is the inertial one followed back by the Earth's rotation about its axis,
+    ``R_E(t) = exp(−[ω_ie^b0] t) R_I(t)``, with ``ω_ie^b0 = C_n^b ω_ie^n`` from the
+    analytic alignment of the first ``window`` seconds.  The attitude is averaged
+    over windows of ``window`` seconds, which removes the rocking; a new position
+    starts at the first window whose mean attitude has turned by more than
+    ``threshold`` from the first window of the current position.  The start
+    attitude is levelled and headed by the analytic alignment of the first position.
 
     Parameters
     ----------
@@ -225,13 +239,20 @@ def recorded_problem(log: ImuLog, latitude: float, *, tuning: FilterTuning | Non
     ObservabilityProblem
         ``kind`` ``"recorded"``: the stationary problem for one position, a multi-position one otherwise.
     """
+    from ..alignment.earth import earth_rate_ned
     from ..alignment.error_model import navigation_error_model
 
     tuning = FilterTuning() if tuning is None else tuning
     M = max(1, int(round(min(1.0, positive(window, "window") / 10.0) / log.dt)))  # attitude samples: ten per window at least
     ep = preintegrate(log.dtheta[None], log.dv[None], log.dt, M)
-    Q = chain_rotations(np.array([[1.0, 0.0, 0.0, 0.0]]), ep.rotation)[0]  # body in its start frame, at the epoch boundaries
-    R = Rotation.from_quat(Q, scalar_first=True)
+    Q = chain_rotations(np.array([[1.0, 0.0, 0.0, 0.0]]), ep.rotation)[0]  # body in its inertial start frame, at the epoch boundaries
+    first_window = max(2, min(log.n_samples, int(round(window / log.dt))))
+    lead = log_record(replace(log, time=log.time[:first_window], dtheta=log.dtheta[:first_window], dv=log.dv[:first_window]), latitude)
+    a0 = analytic_alignment(lead)
+    C0 = attitude_matrix([float(a0.heading[0]), float(a0.beta[0]), float(a0.gamma[0])])  # body to NED at the start
+    w_earth = C0.T @ earth_rate_ned(latitude)  # the Earth's rate in the start body axes [rad/s]
+    t_epochs = np.arange(Q.shape[0]) * ep.epoch
+    R = Rotation.from_rotvec(-t_epochs[:, None] * w_earth[None, :]) * Rotation.from_quat(Q, scalar_first=True)  # body relative to the Earth
     per = max(1, int(round(window / ep.epoch)))
     n_windows = max(1, ep.n_epochs // per)
     means = [R[w * per : (w + 1) * per + 1].mean() for w in range(n_windows)]

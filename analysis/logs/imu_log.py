@@ -58,7 +58,7 @@ class ImuLog:
             a = as_array(getattr(self, name), name)
             if a.shape != (t.size, 3):
                 raise ValueError(f"Expected `{name}` with shape ({t.size}, 3), got shape {a.shape}")
-            object.__setattr__(self, name, a.astype(float))
+            object.__setattr__(self, name, a)  # as_array gives float64 (a view where the input already is: no copy of a large log)
         unknown = [k for k in self.metadata if k not in METADATA]
         if unknown:
             raise ValueError(f"Expected metadata among {METADATA}, got {unknown}")

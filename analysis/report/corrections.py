@@ -3,8 +3,9 @@
 An earlier version of a page is kept verbatim (``earlier/<page>-<version>.md``,
 package data); :func:`changed_cells` compares the tables of that version with
 the page being written, table by table (matched by the heading above them and
-their column names) and row by row (matched by their first cell and its
-occurrence), and :func:`corrections_lines` lists what changed.  Formatting only:
+their columns, or their first column and place under that heading, so that
+several tables under one heading are never compared with each other) and row
+by row (matched by their first cell and its occurrence), and :func:`corrections_lines` lists what changed.  Formatting only:
 the numbers are those the two versions printed.
 
 Public API
@@ -68,9 +69,9 @@ def _cells(line: str) -> list:
     return [c.strip() for c in line.strip().strip("|").split("|")]
 
 
-def _tables(text: str) -> dict:
-    """``{(heading, columns): {row key: {column: cell}}}`` of the Markdown tables of a page."""
-    out = {}
+def _tables(text: str) -> list:
+    """``[(heading, columns, {row key: {column: cell}})]``: the Markdown tables of a page, in order."""
+    out = []
     heading = ""
     lines = text.splitlines()
     i = 0
@@ -88,18 +89,50 @@ def _tables(text: str) -> dict:
                 seen[name] = seen.get(name, 0) + 1
                 rows[name if seen[name] == 1 else f"{name} #{seen[name]}"] = dict(zip(columns, cells))
                 i += 1
-            out[(heading, columns)] = rows
+            out.append((heading, columns, rows))
             continue
         i += 1
     return out
 
 
+def _match(earlier: list, now: list) -> list:
+    """Pairs ``(earlier table, current table)``: the same heading, then the same columns, else the same first column and place.
+
+    Several tables may sit under one heading, often with the same first
+    column.  A table is matched to the table of the same heading and the
+    same columns when there is exactly one such; otherwise (a column added
+    or renamed) to the table of the same heading and first column at the same
+    place among those (the k-th such table of each version).  No table is
+    matched twice; a table with no partner is new, or gone, and not compared.
+    """
+    pairs, used = [], set()
+    for k, (heading, columns, rows) in enumerate(earlier):
+        same = [j for j, (h, c, _) in enumerate(now) if h == heading and c == columns and j not in used]
+        twins = [e for e, (h, c, _) in enumerate(earlier) if h == heading and c == columns]
+        if len(same) == 1 and len(twins) == 1:
+            j = same[0]
+        else:
+            mine = [e for e, (h, c, _) in enumerate(earlier) if h == heading and c[0] == columns[0]]
+            theirs = [j for j, (h, c, _) in enumerate(now) if h == heading and c[0] == columns[0]]
+            place = mine.index(k)
+            if place >= len(theirs) or theirs[place] in used:
+                continue
+            j = theirs[place]
+        used.add(j)
+        pairs.append(((heading, columns, rows), now[j]))
+    return pairs
+
+
 def changed_cells(earlier: str, now: str) -> list:
     """The cells of the earlier version's tables whose values differ now.
 
-    A table is matched by its heading and first column name, a column by its
-    name, a row by its first cell; columns and rows that exist in one version
-    only are not compared (they are new, or gone).
+    A table is matched to a table under the same heading: the one with the
+    same columns, or, where a column was added or renamed, the one with the
+    same first column at the same place under that heading (several tables
+    under one heading are told apart, never compared with each other); a
+    column is matched by its name, a row by its first cell (and occurrence).
+    Columns, rows and tables that exist in one version only are not compared
+    (they are new, or gone).
 
     Parameters
     ----------
@@ -118,12 +151,8 @@ def changed_cells(earlier: str, now: str) -> list:
     >>> changed_cells(a, b)
     [ChangedCell(heading='T', row='1', column='y', earlier='0.5', now='0.52')]
     """
-    new = {(h, cols[0]): rows for (h, cols), rows in _tables(now).items()}
     out = []
-    for (heading, columns), rows in _tables(earlier).items():
-        current = new.get((heading, columns[0]))
-        if current is None:
-            continue
+    for (heading, columns, rows), (_, _, current) in _match(_tables(earlier), _tables(now)):
         for key, cells in rows.items():
             row = current.get(key)
             if row is None:

@@ -63,6 +63,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -295,6 +296,34 @@ class Spectrum:
         """``(f_min, f_max)`` [Hz]."""
         return float(self.frequency[0]), float(self.frequency[-1])
 
+    @cached_property
+    def _tables(self) -> tuple:
+        """Log frequencies, auto-spectra (K, 6) and coherences (K, 6, 6) of the table, computed once."""
+        auto = np.real(np.diagonal(self.density, axis1=1, axis2=2)).copy()
+        root = np.sqrt(auto)
+        denom = root[:, :, None] * root[:, None, :]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            coherence = np.where(denom > 0, self.density / np.where(denom > 0, denom, 1.0), 0.0)
+        with np.errstate(divide="ignore"):
+            log_auto = np.log(np.where(auto > 0, auto, 1.0))
+        return np.log(self.frequency), auto, log_auto, coherence
+
+    def _interpolation(self, flat: np.ndarray) -> tuple:
+        """Table interval, weight t in log f, inside-mask and interpolated auto-spectra (n, 6) of the frequencies ``flat``."""
+        table = self.frequency
+        logf, auto, log_auto, _ = self._tables
+        inside = (flat >= table[0]) & (flat <= table[-1])
+        idx = np.clip(np.searchsorted(table, flat, side="right") - 1, 0, table.size - 2)
+        lf = np.log(np.where(inside, flat, table[0]))
+        lo, hi = logf[idx], logf[idx + 1]
+        t = ((lf - lo) / (hi - lo))[:, None]
+        a0, a1 = auto[idx], auto[idx + 1]
+        both = (a0 > 0) & (a1 > 0)
+        loglog = np.exp(log_auto[idx] * (1 - t) + log_auto[idx + 1] * t)
+        psd = np.where(both, loglog, a0 * (1 - t) + a1 * t)
+        psd[~inside] = 0.0
+        return idx, t, inside, psd
+
     def at(self, freq) -> np.ndarray:
         """``G(f)`` interpolated (module docstring), zero outside the table; shape ``f.shape + (6, 6)``.
 
@@ -308,23 +337,8 @@ class Spectrum:
         ndarray of complex
         """
         f = np.asarray(freq, dtype=float)
-        flat = f.ravel()
-        table = self.frequency
-        inside = (flat >= table[0]) & (flat <= table[-1])
-        idx = np.clip(np.searchsorted(table, flat, side="right") - 1, 0, table.size - 2)
-        lf = np.log(np.where(inside, flat, table[0]))
-        lo, hi = np.log(table[idx]), np.log(table[idx + 1])
-        t = ((lf - lo) / (hi - lo))[:, None]
-        auto = np.real(np.diagonal(self.density, axis1=1, axis2=2))  # (K, 6)
-        a0, a1 = auto[idx], auto[idx + 1]
-        both = (a0 > 0) & (a1 > 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            loglog = np.exp(np.log(np.where(both, a0, 1.0)) * (1 - t) + np.log(np.where(both, a1, 1.0)) * t)
-        psd = np.where(both, loglog, a0 * (1 - t) + a1 * t)
-        root = np.sqrt(auto)
-        denom = root[:, :, None] * root[:, None, :]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            coherence = np.where(denom > 0, self.density / np.where(denom > 0, denom, 1.0), 0.0)
+        idx, t, inside, psd = self._interpolation(f.ravel())
+        coherence = self._tables[3]
         gamma = coherence[idx] * (1 - t)[:, :, None] + coherence[idx + 1] * t[:, :, None]
         r = np.sqrt(psd)
         out = gamma * r[:, :, None] * r[:, None, :]
@@ -332,6 +346,29 @@ class Spectrum:
         out[:, idx6, idx6] = psd
         out[~inside] = 0.0
         return out.reshape(f.shape + (6, 6))
+
+    def entries(self, freq, rows, cols) -> np.ndarray:
+        """The entries ``G_ab(f)`` for ``a, b`` in ``zip(rows, cols)`` only, as :meth:`at` interpolates them.
+
+        Parameters
+        ----------
+        freq : array_like
+            Frequencies [Hz].
+        rows, cols : sequence of int
+            Channel indices a, b (0 … 5, the order of :data:`CHANNELS`).
+
+        Returns
+        -------
+        ndarray of complex, shape ``f.shape + (len(rows),)``
+        """
+        f = np.asarray(freq, dtype=float)
+        a, b = np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)
+        idx, t, inside, psd = self._interpolation(f.ravel())
+        coherence = self._tables[3][:, a, b]
+        gamma = coherence[idx] * (1 - t) + coherence[idx + 1] * t
+        out = np.where(a == b, psd[:, a], gamma * np.sqrt(psd[:, a] * psd[:, b]))
+        out[~inside] = 0.0
+        return out.reshape(f.shape + (a.size,))
 
     def trace_density(self, freq, *, weights=None) -> np.ndarray:
         """``Σ_c w_c G_cc(f)``, the weighted sum of the auto-spectra.
@@ -428,6 +465,43 @@ class Environment:
         if accelerometer is not None and gyro is None:
             gyro = Sensor(self.gyro.axes, accelerometer.decimation)
         return Environment(self.lines, self.spectra, gyro, accelerometer, self.name, self.description)
+
+    @property
+    def has_motion(self) -> bool:
+        """Some line or spectrum has a nonzero amplitude or density."""
+        return any(np.any(ln.amplitude != 0) for ln in self.lines) or any(np.any(sp.density != 0) for sp in self.spectra)
+
+    def rotation_amplitude(self) -> float:
+        """Bound on the rotation-vector amplitude θ of the vibration [rad]: Σ |A|/ω over the lines plus 3σ of the spectra's angle.
+
+        The spectra's angle variance ``∫ Σ_c G_cc(f)/ω² df`` (rate channels) is
+        taken by the trapezoidal rule in ln f on the table.
+
+        Returns
+        -------
+        float
+        """
+        lines = sum(float(np.linalg.norm(ln.amplitude[:3])) / ln.omega for ln in self.lines)
+        var = 0.0
+        for sp in self.spectra:
+            f = sp.frequency
+            g = np.real(np.trace(sp.density[:, :3, :3], axis1=1, axis2=2)) / (2.0 * math.pi * f) ** 2 * f
+            var += float(np.trapezoid(g, np.log(f)))
+        return lines + 3.0 * math.sqrt(var)
+
+    def rate_amplitude(self) -> float:
+        """Bound on the body-rate amplitude Ω [rad/s]: Σ |A| over the lines plus 3σ of the spectra's rate.
+
+        Returns
+        -------
+        float
+        """
+        lines = sum(float(np.linalg.norm(ln.amplitude[:3])) for ln in self.lines)
+        var = 0.0
+        for sp in self.spectra:
+            f = sp.frequency
+            var += float(np.trapezoid(np.real(np.trace(sp.density[:, :3, :3], axis1=1, axis2=2)) * f, np.log(f)))
+        return lines + 3.0 * math.sqrt(var)
 
     @property
     def frequency_range(self) -> tuple:

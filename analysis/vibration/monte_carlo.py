@@ -59,7 +59,7 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -69,15 +69,19 @@ from scipy.stats import norm
 from ...derivations.coning.algorithms import Algorithm
 from ..coning.kernels import available, compiled_module, increment_source
 from ..core import budget
-from ..core.validation import as_int, positive
+from ..core.validation import as_float, as_int, positive
+from ..core.verdicts import Verdict, equivalence
 from . import _kernel as template
 from .environment import Environment, Spectrum
 
-__all__ = ["MonteCarloDrift", "monte_carlo_drift", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
+__all__ = ["CLOSED_FORM_MARGIN", "MonteCarloDrift", "monte_carlo_drift", "draw_components", "sensor_matrices", "BAND_COMPONENTS", "QUADRATURE_POINTS", "REANCHOR"]
 
 #: Random sinusoids per spectrum and realisation [count]: enough that the drift of a realisation,
 #: a quadratic form of Gaussian amplitudes, is nearly Gaussian, so that the normal interval is honest.
 BAND_COMPONENTS = 16
+#: The closed form agrees with the Monte Carlo when the true mean is within this fraction of it (TOST,
+#: :meth:`MonteCarloDrift.agrees`); the closed form leaves out terms of relative order α², far below it.
+CLOSED_FORM_MARGIN = 0.1
 #: Gauss–Legendre nodes per sensor sample [count] (exact for polynomials of degree 5; the test
 #: suite checks the drift against twice as many).
 QUADRATURE_POINTS = 3
@@ -368,6 +372,43 @@ class MonteCarloDrift:
         a = a / np.linalg.norm(a)
         v = self.pairs[:, 3:] @ a if sculling else self.pairs[:, :3] @ a
         return float(v.mean()), float(v.std(ddof=1) / math.sqrt(v.size))
+
+    def agrees(self, axis, reference: float, relative_margin: float, *, sculling: bool = False, what: str = "the closed form", level: float = 0.95) -> Verdict:
+        """Does the mean component along ``axis`` agree with ``reference`` within ``±relative_margin·|reference|``? (TOST over the pairs.)
+
+        Parameters
+        ----------
+        axis : array_like of three
+            Direction.
+        reference : float
+            The value it should equal (a closed form), non-zero [rad/s or m/s²].
+        relative_margin : float
+            The margin as a fraction of ``|reference|``, > 0.
+        sculling : bool, keyword-only
+            The rectification instead of the drift.
+        what : str, keyword-only
+            The reference's name in the criterion.
+        level : float, keyword-only
+            Confidence of the two-sided interval.
+
+        Returns
+        -------
+        Verdict
+            Its trials are the antithetic pairs.
+
+        Raises
+        ------
+        ValueError
+            For a zero reference or a margin that is not positive.
+        """
+        ref = as_float(reference, "reference")
+        if ref == 0.0:
+            raise ValueError("Expected a non-zero `reference` (the margin is relative to it), got 0")
+        m, se = self.along(axis, sculling=sculling)
+        margin = positive(relative_margin, "relative_margin") * abs(ref)
+        text = f"mean within ±{relative_margin:.0%} of {what} (TOST over {self.pairs.shape[0]} antithetic pairs, {level:.0%})"
+        v = equivalence(m, se, self.pairs.shape[0], reference=ref, margin=margin, criterion=text, level=level)
+        return replace(v, trial="pairs")
 
     def interval(self, axis, *, level: float = 0.95, sculling: bool = False) -> tuple:
         """Two-sided confidence interval of the component along ``axis`` (normal, by the pair standard error).

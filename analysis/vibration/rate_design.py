@@ -35,6 +35,7 @@ Public API
    RateRow
    RateDesign
    rate_design
+   rate_design_estimate
    scaled_frequency
 """
 
@@ -48,14 +49,17 @@ from typing import NamedTuple
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm, Term
+from ...derivations.coning.drift import lag_sums, optimal_coning_algorithm
 from ..coning.computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
 from ..coning.drift_theory import coning_drift_function
+from ..core.budget import RESPONSE_EVALUATION, SPECTRUM_SEGMENT, Estimate, Limits, check
 from ..core.validation import as_array, nonnegative, positive
-from .drift import response_integrals
+from .aliasing import alias_response
+from .drift import quadrature_evaluations, response_integrals, segment_count
 from .environment import Environment, Spectrum, VibrationLine
-from .tuning import lag_functions, solve_lag_sums
+from .tuning import NothingToTune, lag_functions, solve_lag_sums
 
-__all__ = ["RateRow", "RateDesign", "rate_design", "scaled_frequency", "DEFAULT_RATES", "FREQUENCY_MARGIN"]
+__all__ = ["RateRow", "RateDesign", "rate_design", "rate_design_estimate", "scaled_frequency", "DEFAULT_RATES", "FREQUENCY_MARGIN"]
 
 #: Grid of algorithm sample rates searched by default [Hz].
 DEFAULT_RATES = tuple(float(v) for v in np.geomspace(50.0, 20000.0, 61))
@@ -117,6 +121,10 @@ class RateRow:
         Operations per step, increment algorithm plus quaternion update [addition-equivalents].
     load : float or None
         Operations per second [1/s].
+    note : str
+        Why there is no admissible rate when the cause is not the budget (the
+        sensors not defined there, an evaluation that failed), or a remark on
+        the rate found.
     """
 
     algorithm: str
@@ -127,6 +135,7 @@ class RateRow:
     sensor_drift: float | None
     cost: float | None
     load: float | None
+    note: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,11 +150,14 @@ class RateDesign:
         Sample-rate grid [Hz].
     rows : tuple of RateRow
     curves : ndarray (A, R)
-        Worst drift magnitude of each row's algorithm on the grid [rad/s] (NaN: not defined there).
+        Worst drift magnitude of each row's algorithm on the grid [rad/s] (NaN where the
+        sensors are not defined or the evaluation failed, with the reason in the rows and notes).
     sensor : ndarray (R,)
         Sensor part (nominal) on the grid [rad/s].
     margin : float
         Frequency margin [-].
+    notes : tuple of str
+        Rates left out of the grid and why.
     """
 
     budget: float
@@ -154,6 +166,7 @@ class RateDesign:
     curves: np.ndarray
     sensor: np.ndarray
     margin: float
+    notes: tuple = ()
 
 
 class _Maker(NamedTuple):
@@ -165,13 +178,64 @@ class _Maker(NamedTuple):
     algorithm: Algorithm | None
 
 
-def _evaluate(makers, environments, h, quantity):
-    """Worst |drift| over the environments, nominal sensor part and algorithm, for each maker at h.
+class _Point(NamedTuple):
+    """One maker at one rate: worst |drift| over the environments, nominal sensor part, the algorithm, or why not."""
+
+    drift: float
+    sensor: float
+    algorithm: Algorithm | None
+    reason: str = ""
+
+
+def _sensor_reason(environment: Environment, h: float) -> str:
+    """Why the sensors are not defined at the algorithm interval ``h`` ("" if they are): a digital cut-off above the sensor Nyquist frequency."""
+    for name, sensor in (("gyro", environment.gyro), ("accelerometer", environment.accelerometer)):
+        hs = sensor.sensor_interval(h)
+        for axis, ch in zip("xyz", sensor.axes):
+            if ch.digital.kind == "butterworth" and ch.digital.cutoff_hz >= 0.5 / hs:
+                return f"the {name} {axis} digital cut-off {ch.digital.cutoff_hz:g} Hz lies above the sensor Nyquist frequency {0.5 / hs:g} Hz"
+    return ""
+
+
+def _maker_point(m: _Maker, sl: slice, results, aliases, sensors, col: int, h: float, quantity: str) -> _Point:
+    """One maker evaluated from the shared integrals; a ValueError names the maker and the rate."""
+    parts = [r.algorithm[sl, :, col].sum(axis=1) for r in results]  # (functions of the maker, 3) per environment
+    if m.algorithm is not None:
+        coef = np.array([float(c) for c in m.algorithm.pairwise.values()])
+        drifts = [sensor + p[0] + a.base[col] + (a.per_pair[col] @ coef if coef.size else 0.0) for sensor, p, a in zip(sensors, parts, aliases[m.name])]
+        alg = m.algorithm
+    else:
+        cs = [sensor + p[0] + a.base[col] for sensor, p, a in zip(sensors, parts, aliases[m.name])]
+        Ms = [p[1:].T - a.per_pair[col] for p, a in zip(parts, aliases[m.name])]
+        try:
+            k, _, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
+        except NothingToTune:  # no coning at all: the classical form, whose lag sums the Taylor conditions alone fix
+            k = np.array([float(v) for v in lag_sums(optimal_coning_algorithm(m.samples, history=m.history))])
+        if not np.all(np.isfinite(k)):
+            raise ValueError(f"the lag sums of {m.name} at {1.0 / h:.6g} Hz are not finite")
+        k = np.array([float(Fraction(repr(float(v)))) for v in k])
+        drifts = [c - M @ k for c, M in zip(cs, Ms)]
+        terms = tuple(Term(Fraction(repr(float(v))), (m.samples - lag, m.samples)) for lag, v in enumerate(k, start=1) if v != 0.0)
+        alg = Algorithm(m.name, m.samples, terms, f"tuned at h = {h:g} s", "tuned by strapdown-analysis")
+    worst = max(float(np.linalg.norm(d)) for d in drifts)
+    if not math.isfinite(worst):
+        raise ValueError(f"the drift of {m.name} at {1.0 / h:.6g} Hz is not finite")
+    return _Point(worst, float(np.linalg.norm(sensors[0])), alg)
+
+
+def _evaluate(makers, environments, h, quantity) -> list:
+    """Each maker at h (:class:`_Point`), each in its own guarded call.
 
     One :func:`response_integrals` per environment serves every maker: the
     closed form D of each fixed algorithm and the lag responses of each tuned
-    form are integrated together.
+    form are integrated together; the aliasing pairs of lines
+    (:func:`strapdown.analysis.vibration.aliasing.alias_response`) are added
+    per maker.  A rate at which the sensors are not defined, or a maker whose
+    evaluation fails, gets its reason instead of a number.
     """
+    reason = _sensor_reason(environments[0], h) or next((_sensor_reason(e, h) for e in environments[1:] if _sensor_reason(e, h)), "")
+    if reason:
+        return [_Point(math.nan, math.nan, None, f"{1.0 / h:.6g} Hz: {reason}") for _ in makers]
     col = 0 if quantity == "coning" else 1
     functions, slices = [], []
     for m in makers:
@@ -183,39 +247,65 @@ def _evaluate(makers, environments, h, quantity):
         slices.append(slice(start, len(functions)))
     try:
         results = [response_integrals(e, h, functions) for e in environments]
-    except ValueError:  # e.g. a digital filter's cut-off above the sensor Nyquist frequency at this rate
-        return [(math.nan, math.nan, None) for _ in makers]
+    except ValueError as exc:
+        return [_Point(math.nan, math.nan, None, f"{1.0 / h:.6g} Hz: {exc}") for _ in makers]
+    aliases = {}
+    for m in makers:
+        pairs = list(m.algorithm.pairwise) if m.algorithm is not None else [(m.samples - lag, m.samples) for lag in range(1, m.samples + m.history)]
+        aliases[m.name] = [alias_response(e, h, m.samples, pairs) for e in environments]
     sensors = [(r.true[:, col] - r.sensed[:, col]).sum(axis=0) for r in results]
     out = []
     for m, sl in zip(makers, slices):
-        parts = [r.algorithm[sl, :, col].sum(axis=1) for r in results]  # (functions of the maker, 3) per environment
-        if m.algorithm is not None:
-            drifts = [sensor + p[0] for sensor, p in zip(sensors, parts)]
-            alg = m.algorithm
-        else:
-            cs = [sensor + p[0] for sensor, p in zip(sensors, parts)]
-            Ms = [p[1:].T for p in parts]
-            try:
-                k, _, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
-            except ValueError:
-                out.append((math.nan, math.nan, None))
-                continue
-            k = np.array([float(Fraction(repr(float(v)))) for v in k])
-            drifts = [c - M @ k for c, M in zip(cs, Ms)]
-            terms = tuple(Term(Fraction(repr(float(v))), (m.samples - lag, m.samples)) for lag, v in enumerate(k, start=1) if v != 0.0)
-            alg = Algorithm(m.name, m.samples, terms, f"tuned at h = {h:g} s", "tuned by strapdown-analysis")
-        out.append((max(float(np.linalg.norm(d)) for d in drifts), float(np.linalg.norm(sensors[0])), alg))
+        try:
+            out.append(_maker_point(m, sl, results, aliases, sensors, col, h, quantity))
+        except ValueError as exc:
+            out.append(_Point(math.nan, math.nan, None, f"{m.name} at {1.0 / h:.6g} Hz: {exc}"))
     return out
 
 
+def rate_design_estimate(environment: Environment, rates: int, *, makers: int = 5, margin: float = FREQUENCY_MARGIN) -> Estimate:
+    """Estimated time and memory of :func:`rate_design` before it starts.
+
+    The spectra's product-integration weights are computed once per
+    environment (the nominal one and the two with scaled frequencies), each
+    costing per table segment; each rate then takes one response integral per
+    environment, and the bisections about 7 more per maker.
+
+    Parameters
+    ----------
+    environment : Environment
+        The environment.
+    rates : int
+        Sample rates on the grid [count].
+    makers : int, keyword-only
+        Algorithms, fixed and tuned [count].
+    margin : float, keyword-only
+        Frequency margin (0: the nominal environment only).
+
+    Returns
+    -------
+    strapdown.analysis.core.budget.Estimate
+    """
+    envs = 1 if margin == 0 else 3
+    segments = sum(float(segment_count(s)) for s in environment.spectra)
+    integrals = envs * (float(rates) + 7.0 * makers)
+    nodes = integrals * sum(quadrature_evaluations(s) for s in environment.spectra)
+    rows = sum(s.frequency.size for s in environment.spectra)
+    what = (f"`rates` = {rates} sample rates × {envs} environments ({makers} algorithms), spectra of {rows} table rows "
+            f"({segments:.3g} segments, {integrals:.3g} response integrals)")  # fmt: skip
+    seg = SPECTRUM_SEGMENT.estimate(envs * segments, what=what)
+    ev = RESPONSE_EVALUATION.estimate(nodes * max(1, makers), what=what)
+    return Estimate(seg.seconds + ev.seconds, max(seg.memory, ev.memory), what)
+
+
 def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned=((2, 0), (3, 0)), rates=DEFAULT_RATES,
-                margin: float = FREQUENCY_MARGIN, model: LoadModel | None = None, quantity: str = "coning") -> RateDesign:  # fmt: skip
+                margin: float = FREQUENCY_MARGIN, model: LoadModel | None = None, quantity: str = "coning", limits: Limits | None = None) -> RateDesign:  # fmt: skip
     """Lowest admissible sample rate and load of each algorithm (module docstring).
 
     Parameters
     ----------
     environment : Environment
-        Lines, spectra and sensors.
+        Lines, spectra and sensors (at least one line or spectrum).
     budget : float
         Drift budget [rad/s], > 0.
     algorithms : sequence of Algorithm, keyword-only
@@ -225,20 +315,29 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
     rates : array_like, keyword-only
         Algorithm sample rates searched [Hz], > 0.
     margin : float, keyword-only
-        Relative frequency margin, ≥ 0 (0: nominal environment only).
+        Relative frequency margin, in [0, 1) (0: nominal environment only).
     model : LoadModel, keyword-only
         Load rules (default ``LoadModel()``).
     quantity : str, keyword-only
         Tune for ``"coning"`` (the only quantity whose budget is checked here).
+    limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
+        Largest estimated memory and run time (default 2 GB, 300 s): a design
+        beyond them (:func:`rate_design_estimate`) raises
+        :class:`~strapdown.analysis.core.budget.BudgetExceeded` naming ``rates``.
 
     Returns
     -------
     RateDesign
+        Rows with the reason where an algorithm has no admissible rate for a
+        cause other than the budget; notes on the rates left out (sensors not
+        defined there).
 
     Raises
     ------
     ValueError
-        A non-positive budget or rate.
+        A non-positive budget or rate, a margin outside [0, 1), an environment
+        without vibration, sensors defined at no rate of the grid, or a design
+        beyond ``limits``.
 
     References
     ----------
@@ -247,18 +346,33 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
     if not isinstance(environment, Environment):
         raise TypeError(f"Expected `environment` to be an Environment, got {type(environment).__name__}")
     u = positive(budget, "budget")
-    grid = np.sort(as_array(rates, "rates").ravel())
+    if not environment.has_motion:
+        raise ValueError(
+            "Expected an `environment` with motion (a line or spectrum with a nonzero amplitude), got no motion: no line or spectrum, "
+            "or every amplitude and density zero; without motion every algorithm would meet any budget"
+        )
+    grid = np.sort(as_array(rates, "rates", nonempty=True).ravel())
     if np.any(grid <= 0):
         raise ValueError("Expected `rates` > 0")
     margin = nonnegative(margin, "margin")
+    if margin >= 1.0:
+        raise ValueError(f"Expected `margin` in [0, 1) (the frequencies are scaled by 1 ± margin), got {margin:g}")
     model = model or LoadModel()
-    envs = [environment] + ([scaled_frequency(environment, 1 - margin), scaled_frequency(environment, 1 + margin)] if margin > 0 else [])
     makers = [_Maker(a.name, a.samples, a.history, a) for a in algorithms]
     makers += [_Maker(f"tuned-{n}" if k == 0 else f"tuned-{n}+{k}", n, k, None) for n, k in tuned]
+    check(rate_design_estimate(environment, grid.size, makers=max(1, len(makers)), margin=margin), limits)
+    defined = np.array([not _sensor_reason(environment, 1.0 / r) for r in grid])
+    notes = []
+    if not defined.any():
+        raise ValueError(f"Expected `rates` at which the sensors are defined, got none in {grid[0]:g}–{grid[-1]:g} Hz: {_sensor_reason(environment, 1.0 / grid[-1])}")
+    if not defined.all():
+        skipped = grid[~defined]
+        notes.append(f"rates {skipped[0]:.4g}–{skipped[-1]:.4g} Hz left out: {_sensor_reason(environment, 1.0 / skipped[-1])}")
+    envs = [environment] + ([scaled_frequency(environment, 1 - margin), scaled_frequency(environment, 1 + margin)] if margin > 0 else [])
     omega_bound = _rate_bound(environment)
     table = [_evaluate(makers, envs, 1.0 / r, quantity) for r in grid]  # table[rate][maker]
-    curves = np.array([[table[i][j][0] for i in range(grid.size)] for j in range(len(makers))])
-    sensor = np.array([table[i][0][1] for i in range(grid.size)]) if makers else np.zeros(grid.size)
+    curves = np.array([[table[i][j].drift for i in range(grid.size)] for j in range(len(makers))]).reshape(len(makers), grid.size)
+    sensor = np.array([table[i][0].sensor for i in range(grid.size)]) if makers else np.zeros(grid.size)
     rows = []
     for j, m in enumerate(makers):
         curve = curves[j]
@@ -268,22 +382,27 @@ def rate_design(environment: Environment, budget: float, *, algorithms=(), tuned
                 break
             admissible = i
         if admissible is None:
-            rows.append(RateRow(m.name, m.samples, m.algorithm is None, None, None, None, None, None))
+            top = next((table[i][j] for i in range(grid.size - 1, -1, -1) if defined[i]), table[-1][j])
+            reason = top.reason or f"the drift at the highest rate exceeds the budget ({top.drift:.3g} rad/s > {u:.3g} rad/s)"
+            rows.append(RateRow(m.name, m.samples, m.algorithm is None, None, None, None, None, None, reason))
             continue
         rate = float(grid[admissible])
-        if admissible > 0:  # bisect between the failing rate below and the admissible one
+        note = ""
+        if admissible > 0 and defined[admissible - 1]:  # bisect between the failing rate below and the admissible one
             lo, hi = float(grid[admissible - 1]), rate
             while hi / lo > 1 + RATE_TOLERANCE:
                 mid = math.sqrt(lo * hi)
-                if _evaluate([m], envs, 1.0 / mid, quantity)[0][0] <= u:
+                if _evaluate([m], envs, 1.0 / mid, quantity)[0].drift <= u:
                     hi = mid
                 else:
                     lo = mid
             rate = hi
+        elif admissible > 0:
+            note = f"the lowest rate at which the sensors are defined on the grid; {table[admissible - 1][j].reason}"
         h = 1.0 / rate
-        worst, sens, alg = _evaluate([m], envs, h, quantity)[0]
+        point = _evaluate([m], envs, h, quantity)[0]
         step = m.samples * h
         terms = series_terms(omega_bound * step, step, u, fraction=model.truncation_fraction) if omega_bound > 0 else 1
-        cost = operation_count(alg).cost(model.m) + quaternion_update_count(terms).cost(model.m)
-        rows.append(RateRow(m.name, m.samples, m.algorithm is None, rate, worst, sens, cost, cost / model.time(step, m.samples)))
-    return RateDesign(u, grid, tuple(rows), curves, sensor, margin)
+        cost = operation_count(point.algorithm).cost(model.m) + quaternion_update_count(terms).cost(model.m)
+        rows.append(RateRow(m.name, m.samples, m.algorithm is None, rate, point.drift, point.sensor, cost, cost / model.time(step, m.samples), note))
+    return RateDesign(u, grid, tuple(rows), curves, sensor, margin, tuple(notes))

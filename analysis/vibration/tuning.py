@@ -4,10 +4,14 @@ The mean drift of an N-sample algorithm (``history`` samples of earlier
 steps) in an environment is affine in its lag sums ``k_l``, l = 1 … L,
 ``L = N + history − 1`` (:mod:`strapdown.analysis.vibration.drift`):
 
-    u(k) = u_sensor + ∫ q̃ [φ₀(ωh) − Σ_l k_l φ_l(ωh)] / ω  =  c − M k,
+    u(k) = u_sensor + ∫ q̃ [φ₀(ωh) − Σ_l k_l φ_l(ωh)] / ω  (+ aliasing pairs)  =  c − M k,
 
 ``φ₀(x) = E(Nx)/(Nx)``, ``φ_l(x) = R_l(x)/(Nx)``, the sensors included (q̃
-is what they pass; the sensor part is in c).  The same holds for the
+is what they pass; the sensor part is in c).  Pairs of lines that alias with
+the step rate (:mod:`strapdown.analysis.vibration.aliasing`) add a drift that
+depends on where each coefficient sits, not only on the lag sums; with the
+lag sum k_l on the pair (N − l, N) it is affine in k as well, and enters c and
+M.  The same holds for the
 rectification of the dual extension, with the sculling vector.
 
 :func:`tune` picks the lag sums:
@@ -36,6 +40,8 @@ Public API
 
    TunedAlgorithm
    tune
+   classical_algorithm
+   NothingToTune
    tuned_drift
    solve_lag_sums
    lag_functions
@@ -53,12 +59,14 @@ from fractions import Fraction
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm, Term
-from ...derivations.coning.drift import optimal_coning_algorithm
+from ...derivations.coning.drift import lag_sums, optimal_coning_algorithm
+from ...derivations.coning.registry import get, names
 from ..core.validation import as_array, as_int, positive
+from .aliasing import alias_response
 from .drift import environment_drift, response_integrals
 from .environment import Environment, coning_line
 
-__all__ = ["TunedAlgorithm", "tune", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES", "CONDITION_LIMIT"]
+__all__ = ["NothingToTune", "TunedAlgorithm", "tune", "classical_algorithm", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES", "CONDITION_LIMIT"]
 
 #: Condition number above which a tuned design is called ill-conditioned: its coefficients keep
 #: fewer than half of float64's 16 significant digits (and are large and of alternating sign).
@@ -163,11 +171,14 @@ class TunedAlgorithm:
         Drift (coning, rad/s) or rectification error (sculling, m/s²) of the
         tuned algorithm in the environment (closed form).
     classical : Algorithm
-        The classical algorithm of the same form (optimal coning, same N and history).
+        The classical algorithm of the same N and history (optimal coning lag
+        sums; :func:`classical_algorithm`).
     classical_drift : ndarray (3,)
         Its drift or rectification error in the environment.
     sample_interval : float
         h [s] it was tuned at.
+    classical_in_registry : bool
+        ``classical`` is a registry algorithm (its name is a registry name).
     condition_number : float
         2-norm condition number of the system solved for the lag sums (row-normalised):
         the coefficients lose up to about ``log10(condition_number)`` of float64's
@@ -184,6 +195,7 @@ class TunedAlgorithm:
     classical: Algorithm
     classical_drift: np.ndarray
     sample_interval: float
+    classical_in_registry: bool = True
     condition_number: float = 1.0
 
     @property
@@ -235,7 +247,9 @@ def _environment_model(environment: Environment, samples: int, history: int, sam
     sensor = (r.true[:, col] - r.sensed[:, col]).sum(axis=0)
     c = sensor + r.algorithm[0, :, col].sum(axis=0)
     M = np.stack([r.algorithm[lag, :, col].sum(axis=0) for lag in range(1, L + 1)], axis=1) if L else np.zeros((3, 0))
-    return c, M
+    # pairs of lines that alias with the step rate: affine in the coefficients of the pairs (N − l, N)
+    alias = alias_response(environment, sample_interval, samples, [(samples - lag, samples) for lag in range(1, L + 1)])
+    return c + alias.base[col], M - alias.per_pair[col]
 
 
 def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, quantity: str = "coning") -> tuple:
@@ -261,19 +275,31 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
 
     Raises
     ------
+    NothingToTune
+        When there is nothing to tune to (c and M zero), a ValueError.
     ValueError
-        When there is nothing to tune to (c and M zero).
+        A model that is not finite.
     """
     L = samples + history - 1
     augmented = np.concatenate([M, c[:, None]], axis=1)
+    if not np.all(np.isfinite(augmented)):
+        raise ValueError(f"Expected a finite drift model to tune to, got {augmented.tolist()}")
     scale = float(np.max(np.abs(augmented))) if augmented.size else 0.0
     if scale == 0.0:
-        raise ValueError(f"Expected an environment with {quantity} to tune to, got none (no {quantity} vector in any line or spectrum)")
+        raise NothingToTune(f"Expected an environment with {quantity} to tune to, got none (no {quantity} vector in any line or spectrum)")
     u, s, _ = np.linalg.svd(augmented)
     directions = u[:, : s.size][:, s > 1e-12 * s[0]]
-    r = directions.shape[1]
     A_env = directions.T @ M
     b_env = directions.T @ c
+    # A direction the lag sums do not reach (the algorithm's responses vanish there, e.g. a line at the
+    # sample rate) cannot be nulled: it is left out of the conditions, and the drift is minimised, not nulled.
+    reach = np.linalg.norm(A_env, axis=1) > 1e-12 * scale
+    unreachable = bool(np.any(~reach & (np.abs(b_env) > 1e-12 * scale)))
+    A_env, b_env = A_env[reach], b_env[reach]
+    r = A_env.shape[0]
+    if r == 0:
+        rows, rhs = zip(*(_taylor_row(samples, L, m) for m in range(1, L + 1)))
+        return _taylor_solution(samples, L), False, 0, L, float(np.linalg.cond(np.array(rows, dtype=float)))
     if r <= L:
         rows, rhs = [a / np.linalg.norm(a) for a in A_env], [b / np.linalg.norm(a) for a, b in zip(A_env, b_env)]
         for m in range(1, L - r + 1):
@@ -282,8 +308,18 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
             rows.append(np.array(row) / norm)
             rhs.append(value / norm)
         system = np.array(rows)
-        return np.linalg.solve(system, np.array(rhs)), True, r, L - r, float(np.linalg.cond(system))
+        return np.linalg.solve(system, np.array(rhs)), not unreachable, r, L - r, float(np.linalg.cond(system))
     return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0, float(np.linalg.cond(A_env))
+
+
+def _taylor_solution(samples: int, lags: int) -> np.ndarray:
+    """Lag sums of the classical form: the first ``lags`` low-frequency conditions (:func:`_taylor_row`)."""
+    rows, rhs = zip(*(_taylor_row(samples, lags, m) for m in range(1, lags + 1)))
+    return np.linalg.solve(np.array(rows), np.array(rhs))
+
+
+class NothingToTune(ValueError):
+    """The environment has none of the quantity (coning or sculling) that a tuning would null."""
 
 
 def tune(environment: Environment, samples: int, sample_interval: float, *, history: int = 0, quantity: str = "coning", name: str | None = None) -> TunedAlgorithm:
@@ -341,11 +377,57 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     suffix = f"{N}" if K == 0 else f"{N}+{K}"
     terms = tuple(Term(Fraction(repr(float(v))), (N - lag, N)) for lag, v in enumerate(k, start=1) if v != 0.0)
     alg = Algorithm(name or f"tuned-{quantity}-{suffix}", N, terms, f"{N}-sample algorithm tuned to {environment.name} ({quantity}, h = {h:g} s)", "tuned by strapdown-analysis")
-    classical = optimal_coning_algorithm(N, history=K)
+    classical, in_registry = classical_algorithm(N, K)
     d_c = environment_drift(classical, environment, h)
-    lag_sums = tuple(float(Fraction(repr(float(v)))) for v in k)
-    drift = c - M @ np.array(lag_sums)
-    return TunedAlgorithm(alg, quantity, lag_sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h, condition)
+    sums = tuple(float(Fraction(repr(float(v)))) for v in k)
+    drift = c - M @ np.array(sums)
+    return TunedAlgorithm(alg, quantity, sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h, in_registry, condition)
+
+
+def classical_algorithm(samples: int, history: int = 0) -> tuple:
+    """The classical algorithm a tuned one is compared with: optimal coning lag sums, from the registry where it has them.
+
+    A registry algorithm with the lag sums of
+    :func:`strapdown.derivations.coning.drift.optimal_coning_algorithm` (the
+    same drift under any single line) is preferred, first one whose pairwise
+    coefficients are those of Ignagni's form (the tuned algorithm's form:
+    ``two-sample`` for N = 2, ``compressed-3`` for N = 3), then any with the
+    same lag sums; without one, the generated algorithm, which no registry name
+    reaches.
+
+    Parameters
+    ----------
+    samples : int
+        N [count].
+    history : int, optional
+        Samples of earlier steps [count].
+
+    Returns
+    -------
+    tuple
+        ``(Algorithm, in_registry)``.
+
+    Examples
+    --------
+    >>> [classical_algorithm(n)[0].name for n in (2, 3)]
+    ['two-sample', 'compressed-3']
+    >>> classical_algorithm(7)[1]      # no seven-sample algorithm in the registry
+    False
+    """
+    generated = optimal_coning_algorithm(samples, history=history)
+    target = lag_sums(generated)
+    same_sums = []
+    for name in names(library=True):
+        a = get(name)
+        if a.samples != samples or a.history != history or any(t.dots or not isinstance(t.cross[1], int) or not isinstance(t.cross[0], int) for t in a.terms):
+            continue
+        if a.pairwise == generated.pairwise:
+            return a, True
+        if lag_sums(a) == target:
+            same_sums.append(a)
+    if same_sums:
+        return same_sums[0], True
+    return generated, False
 
 
 def tuned_drift(environment: Environment, samples: int, sample_interval: float, lag_sums, *, history: int = 0, quantity: str = "coning") -> np.ndarray:
@@ -395,7 +477,7 @@ class BandDrift:
     frequency : ndarray (F,)
         Line frequencies [Hz].
     half_angle : float
-        Half-cone angle α of the line [rad].
+        Half-cone angle α of the line [rad] (NaN: a fixed rate amplitude instead).
     names : tuple of str
         Algorithm names.
     total : ndarray (A, F)
@@ -411,8 +493,14 @@ class BandDrift:
     sensor: np.ndarray
 
 
-def drift_across_band(algorithms, environment: Environment, sample_interval: float, frequency, *, half_angle: float) -> BandDrift:
+def drift_across_band(algorithms, environment: Environment, sample_interval: float, frequency, *, half_angle: float | None = None,
+                      rate_amplitude: float | None = None) -> BandDrift:  # fmt: skip
     """Drift of each algorithm for one classical coning line swept across ``frequency``.
+
+    The line has either one half-cone angle α at every frequency, or one rate
+    amplitude Ω (then ``α = asin(Ω/ω)``, the same angular-rate vibration at
+    every frequency: a fixed α is a rate ``αω`` that grows with frequency, 63
+    deg/s at 10 Hz for α = 1°).
 
     Parameters
     ----------
@@ -425,11 +513,14 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     frequency : array_like
         Line frequencies [Hz], > 0.
     half_angle : float, keyword-only
-        α [rad].
+        α [rad] (or give ``rate_amplitude``).
+    rate_amplitude : float, keyword-only
+        Ω [rad/s], below 2π times the lowest frequency (or give ``half_angle``).
 
     Returns
     -------
     BandDrift
+        Its ``half_angle`` is NaN for a rate amplitude.
 
     Raises
     ------
@@ -439,11 +530,21 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     f = as_array(frequency, "frequency", nonempty=True).ravel()
     if np.any(f <= 0):
         raise ValueError("Expected `frequency` > 0")
-    lines = tuple(coning_line(v, half_angle) for v in f)
+    if (half_angle is None) == (rate_amplitude is None):
+        raise ValueError("Expected exactly one of `half_angle` and `rate_amplitude`, got " + ("both" if half_angle is not None else "neither"))
+    if rate_amplitude is not None:
+        rate = positive(rate_amplitude, "rate_amplitude")
+        if rate >= 2.0 * math.pi * f.min():
+            raise ValueError(f"Expected `rate_amplitude` below 2π × the lowest frequency ({2.0 * math.pi * f.min():.6g} rad/s), got {rate:g}")
+        lines = tuple(coning_line(v, math.asin(rate / (2.0 * math.pi * v))) for v in f)
+        half_angle = math.nan
+    else:
+        lines = tuple(coning_line(v, half_angle) for v in f)
     env = Environment(lines, (), environment.gyro, environment.accelerometer, environment.name)
     totals, sensor = [], None
     for a in algorithms:
         d = environment_drift(a, env, sample_interval)
-        totals.append([p.total @ d.coning_axis for p in d.parts])
-        sensor = np.array([p.sensor @ d.coning_axis for p in d.parts])
+        own = [p for p in d.parts if p.kind == "line"]  # each line alone: the swept lines are not one flight's lines
+        totals.append([p.total @ d.coning_axis for p in own])
+        sensor = np.array([p.sensor @ d.coning_axis for p in own])
     return BandDrift(f, float(half_angle), tuple(a.name for a in algorithms), np.array(totals), sensor)

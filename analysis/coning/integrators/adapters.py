@@ -23,6 +23,9 @@ interface of :mod:`.interface`):
     increment in the body axes at the start of the step.  ``accel`` and
     ``velocity`` are NULL for a coning-only call.  The function starts every
     call from rest and returns 0 on success (``docs/integrator_example.c``).
+:func:`per_sample_library`
+    a per-sample C API (``reset`` / ``put`` / ``get``), or a C++ class
+    behind an ``extern "C"`` shim (``docs/integrator_example.cpp``);
 :func:`algorithm_integrator`
     an algorithm given as data, run from its own terms
     (:func:`strapdown.analysis.coning.evaluation.increment`; velocity by its dual
@@ -32,7 +35,7 @@ interface of :mod:`.interface`):
 
 Public API
 ----------
-:func:`stateful`, :func:`compiled`, :func:`algorithm_integrator`,
+:func:`stateful`, :func:`compiled`, :func:`per_sample_library`, :func:`algorithm_integrator`,
 :func:`as_integrator`, :func:`load_integrator`.
 """
 
@@ -45,17 +48,16 @@ import inspect
 import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ....derivations.coning.algorithms import Algorithm
-from ...core import quaternion as quat
-from ...core.dual import Dual
-from ..evaluation import increment
-from ..simulator import step_windows
 from .interface import OUTPUTS, Integrator, IntegratorError
 
-__all__ = ["stateful", "compiled", "algorithm_integrator", "as_integrator", "load_integrator"]
+if TYPE_CHECKING:  # imported where used: the child process that runs user code stays light
+    from ....derivations.coning.algorithms import Algorithm
+
+__all__ = ["stateful", "compiled", "per_sample_library", "algorithm_integrator", "as_integrator", "load_integrator"]
 
 _PROTOCOL = ("update", "output")
 
@@ -64,7 +66,7 @@ def _has_protocol(obj) -> bool:
     return all(callable(getattr(obj, m, None)) for m in _PROTOCOL)
 
 
-def stateful(target, *, output: str = "rotation_vector", velocity: bool = False, name: str = "") -> Integrator:
+def stateful(target, *, output: str = "rotation_vector", velocity: bool = False, name: str = "", input: str = "increment", sample_interval: float | None = None) -> Integrator:
     """An integrator object with ``reset`` / ``update`` / ``output`` as a black-box integrator.
 
     Every record: the object is reset (``reset()``; a class is instantiated
@@ -85,6 +87,11 @@ def stateful(target, *, output: str = "rotation_vector", velocity: bool = False,
         ``update`` takes accelerometer increments too, and ``output`` returns a pair.
     name : str, keyword-only
         Name in messages (default: the class name).
+    input : str, keyword-only
+        ``"increment"`` or ``"rate"``: ``update`` takes the mean rates of the
+        sample [rad/s, m/s²] (:mod:`.interface`).
+    sample_interval : float, keyword-only, optional
+        h [s] of a rate integrator.
 
     Returns
     -------
@@ -141,7 +148,7 @@ def stateful(target, *, output: str = "rotation_vector", velocity: bool = False,
         return (np.array(rows), np.array(vel_rows)) if velocity else np.array(rows)
 
     label = name or (target.__name__ if is_class else type(target).__name__)
-    return Integrator(run, output=output, velocity=velocity, name=label)
+    return Integrator(run, output=output, velocity=velocity, name=label, input=input, sample_interval=sample_interval)
 
 
 def compiled(library, function: str = "integrate", *, velocity: bool = False, name: str = "") -> Integrator:
@@ -199,6 +206,99 @@ def compiled(library, function: str = "integrate", *, velocity: bool = False, na
     return Integrator(run, velocity=velocity, name=name or f"{path.name}:{function}")
 
 
+def per_sample_library(library, prefix: str = "integrator_", *, handle: bool = False, velocity: bool = False, name: str = "") -> Integrator:
+    """A per-sample C API (reset / put / get), or a C++ class behind an ``extern "C"`` shim, through :mod:`ctypes`.
+
+    Flight code written one sample at a time exports, with ``P`` the prefix:
+
+    .. code-block:: c
+
+        void P_reset(void);                          /* clear every state: a new record */
+        void P_put(const double gyro[3]);            /* one sample: P_put(gyro, accel) with velocity */
+        void P_get(double rotation[3]);              /* the step's result; starts the next step */
+                                                     /* P_get(rotation, velocity) with velocity */
+
+    and, with ``handle``, an object: ``void *P_create(void)``,
+    ``void P_destroy(void *)``, and ``reset``, ``put`` and ``get`` taking
+    that pointer first: the shape of an ``extern "C"`` shim around a C++
+    class (``docs/integrator_example.cpp``).  Every record: one object is
+    created (with ``handle``) and reset, every sample is put, and after every
+    ``samples_per_step`` samples ``get`` gives the step's rotation vector
+    [rad] (and velocity increment, body axes at the start of the step
+    [m/s]), as :func:`stateful` does for a Python object.
+
+    Parameters
+    ----------
+    library : str or Path
+        Shared library (``.so``, ``.dylib``, ``.dll``).
+    prefix : str
+        The functions' common prefix (``"integrator_"`` gives ``integrator_reset`` …).
+    handle : bool, keyword-only
+        The functions take an object pointer first, made by ``P_create``.
+    velocity : bool, keyword-only
+        ``put`` takes accelerometer increments and ``get`` writes the velocity increment too.
+    name : str, keyword-only
+        Name in messages (default ``"<library>:<prefix>"``).
+
+    Returns
+    -------
+    Integrator
+        Rotation-vector output.
+
+    Raises
+    ------
+    ValueError
+        If the library cannot be loaded or lacks one of the functions.
+    """
+    path = Path(library)
+    try:
+        lib = ctypes.CDLL(str(path))
+    except OSError as exc:
+        raise ValueError(f"Expected `library` to be a loadable shared library, got {str(path)!r} ({' '.join(str(exc).split())})") from None
+    wanted = ("reset", "put", "get") + (("create", "destroy") if handle else ())
+    fns = {}
+    for what in wanted:
+        try:
+            fns[what] = getattr(lib, prefix + what)
+        except AttributeError:
+            raise ValueError(f"Expected `library` {path.name} to export {prefix + what}() (`prefix` = {prefix!r}), got no such function") from None
+    ptr = ctypes.c_void_p
+    first = [ptr] if handle else []
+    fns["reset"].argtypes, fns["reset"].restype = first, None
+    fns["put"].argtypes, fns["put"].restype = first + [ptr] * (2 if velocity else 1), None
+    fns["get"].argtypes, fns["get"].restype = first + [ptr] * (2 if velocity else 1), None
+    if handle:
+        fns["create"].argtypes, fns["create"].restype = [], ptr
+        fns["destroy"].argtypes, fns["destroy"].restype = [ptr], None
+
+    def run(gyro, samples_per_step, accel=None):
+        gyro = np.ascontiguousarray(gyro, dtype=np.float64)
+        acc = np.ascontiguousarray(accel, dtype=np.float64) if velocity else None
+        steps = gyro.shape[0] // samples_per_step
+        rotation = np.zeros((steps, 3))
+        vel = np.zeros((steps, 3)) if velocity else None
+        obj = fns["create"]() if handle else None
+        if handle and not obj:
+            raise IntegratorError(f"{prefix}create() returned NULL")
+        lead = (obj,) if handle else ()
+        g0, r0 = gyro.ctypes.data, rotation.ctypes.data
+        a0, v0 = (acc.ctypes.data, vel.ctypes.data) if velocity else (0, 0)
+        put, get = fns["put"], fns["get"]
+        try:
+            fns["reset"](*lead)
+            for k in range(gyro.shape[0]):
+                put(*lead, g0 + 24 * k, *((a0 + 24 * k,) if velocity else ()))
+                if (k + 1) % samples_per_step == 0:
+                    step = k // samples_per_step
+                    get(*lead, r0 + 24 * step, *((v0 + 24 * step,) if velocity else ()))
+        finally:
+            if handle:
+                fns["destroy"](obj)
+        return (rotation, vel) if velocity else rotation
+
+    return Integrator(run, velocity=velocity, name=name or f"{path.name}:{prefix}")
+
+
 def algorithm_integrator(algorithm: Algorithm, *, velocity: bool = True) -> Integrator:
     """An algorithm given as data, as a black-box integrator (its own terms, no expansion).
 
@@ -232,6 +332,12 @@ def algorithm_integrator(algorithm: Algorithm, *, velocity: bool = True) -> Inte
     ----------
     Lebedev & Panov (1989), eqs. (1.12), (2.5).
     """
+    from ....derivations.coning.algorithms import Algorithm
+    from ...core import quaternion as quat
+    from ...core.dual import Dual
+    from ..evaluation import increment
+    from ..simulator import step_windows
+
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
     history = algorithm.history
@@ -277,7 +383,8 @@ def as_integrator(obj, *, name: str = "") -> Integrator:
     """
     if isinstance(obj, Integrator):
         return obj
-    if isinstance(obj, Algorithm):
+    algorithms = sys.modules.get(__name__.split(".analysis.")[0] + ".derivations.coning.algorithms")  # an Algorithm exists only once it is imported
+    if algorithms is not None and isinstance(obj, algorithms.Algorithm):
         return algorithm_integrator(obj)
     if _has_protocol(obj):
         return stateful(obj, name=name)
@@ -289,8 +396,14 @@ def as_integrator(obj, *, name: str = "") -> Integrator:
 def load_integrator(spec: str) -> Integrator:
     """The integrator ``NAME`` defined in the Python file ``FILE.py``, from ``"FILE.py:NAME"``.
 
-    The file is executed as a module (it may import anything, including this
-    package); ``NAME`` is then passed to :func:`as_integrator`.
+    The file is executed as a module with its own directory first on
+    ``sys.path`` (as ``python FILE.py`` would run it: a sibling module imports;
+    the directory stays on the path, for imports made later by the
+    integrator), so it may import what its directory holds, this package, and
+    anything installed; ``NAME`` is then passed to :func:`as_integrator`.  A
+    file that calls ``sys.exit`` while it is imported is refused with the exit
+    status it gave.  :class:`~.isolation.Isolated` runs this loader in a child
+    process, where a file that hangs or crashes cannot take the caller with it.
 
     Parameters
     ----------
@@ -305,8 +418,9 @@ def load_integrator(spec: str) -> Integrator:
     ------
     ValueError
         A spec without ``:NAME``, a missing file, a file that cannot be
-        imported (its error is quoted with the line), or no ``NAME`` in it (the
-        message lists what the file defines).
+        imported (its error is quoted with the line) or that calls ``sys.exit``
+        when imported, or no ``NAME`` in it (the message lists what the file
+        defines).
     TypeError
         If ``NAME`` is not an integrator of any accepted kind.
     """
@@ -323,12 +437,18 @@ def load_integrator(spec: str) -> Integrator:
     if loader_spec is None or loader_spec.loader is None:
         raise ValueError(f"Expected `spec` to name a Python file (.py), got {file!r}")
     module = importlib.util.module_from_spec(loader_spec)
+    folder = str(path.resolve().parent)
+    if folder not in sys.path:
+        sys.path.insert(0, folder)  # its siblings import, as when the file is run as a script
     sys.modules[module_name] = module  # dataclasses and pickling look the module up by name
     try:
         loader_spec.loader.exec_module(module)
     except SyntaxError as exc:
         del sys.modules[module_name]
         raise ValueError(f"{file}: syntax error at line {exc.lineno}: {exc.msg}") from None
+    except SystemExit as exc:
+        del sys.modules[module_name]
+        raise ValueError(f"{file}: importing it called sys.exit({exc.code!r}); expected a file that defines the integrator and returns") from None
     except Exception as exc:  # the user's file: its failure becomes one message
         del sys.modules[module_name]
         detail = " ".join(str(exc).split()) or "no message"

@@ -24,8 +24,17 @@ samples.  What a row holds is declared by :attr:`Integrator.output`:
     shape ``(n_steps, 3, 3)``.
 
 Every record starts from rest: the integrator's state (a previous sample, an
-accumulated angle) is that of a record preceded by zero increments.  A call
-must depend on its arguments alone (no state left over from an earlier call).
+accumulated angle) is that of a record preceded by zero increments.  The
+identification assumes that a call depends on its arguments alone (no state
+left over from an earlier call, no dependence on a sample's position in the
+record); it tests that assumption and reports what it finds
+(:mod:`.assumptions`) rather than refusing the integrator.
+
+Rate samples.  An integrator declared with ``input="rate"`` takes the mean
+rate of each sample, ``ω̄_j = p_j / h`` [rad/s], and with ``velocity`` the
+mean specific force ``f̄_j = b_j / h`` [m/s²], at its ``sample_interval`` h:
+what an integrating-rate gyro or a gyro with a box-car (sample-and-average)
+output gives.  Its outputs are the same as those of an increment integrator.
 
 :func:`step_increments` calls an integrator, checks what it returns (shape,
 finite values, unit quaternions, orthonormal matrices) and turns every kind
@@ -36,8 +45,9 @@ it, says what was expected and what came.
 
 Public API
 ----------
-:data:`OUTPUTS`, :class:`Integrator`, :class:`StepIncrements`,
-:class:`IntegratorError`, :func:`step_increments`.
+:data:`OUTPUTS`, :data:`INPUTS`, :class:`Integrator`, :class:`StepIncrements`,
+:class:`IntegratorError`, :class:`IntegratorStopped`, :class:`IntegratorRaised`,
+:func:`step_increments`.
 """
 
 from __future__ import annotations
@@ -47,15 +57,16 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from ...core import quaternion as quat
-from ...core.validation import as_int, as_vector
+from ...core.validation import as_int, as_vector, positive
 
-__all__ = ["OUTPUTS", "Integrator", "StepIncrements", "IntegratorError", "step_increments"]
+__all__ = ["OUTPUTS", "INPUTS", "Integrator", "StepIncrements", "IntegratorError", "IntegratorStopped", "IntegratorRaised", "step_increments"]
 
 #: The kinds of output an integrator may declare (module docstring).
 OUTPUTS = ("rotation_vector", "quaternion", "dcm")
+#: What an integrator may take (module docstring): increments [rad, m/s] or mean rates [rad/s, m/s²].
+INPUTS = ("increment", "rate")
 
 #: Tolerance of a unit quaternion's norm and of a direction-cosine matrix's orthonormality [dimensionless].
 UNIT_TOLERANCE = 1e-6
@@ -63,6 +74,26 @@ UNIT_TOLERANCE = 1e-6
 
 class IntegratorError(ValueError):
     """An integrator that raised, or returned something other than its declared output."""
+
+
+class IntegratorStopped(IntegratorError):
+    """An integrator run in a child process that did not return within its time limit, or whose process died."""
+
+
+class IntegratorRaised(Exception):
+    """An exception the integrator raised in a child process, as its type name and message.
+
+    Parameters
+    ----------
+    kind : str
+        The name of the exception's type (``"RuntimeError"``).
+    message : str
+        Its message.
+    """
+
+    def __init__(self, kind: str, message: str):
+        super().__init__(message)
+        self.kind = kind
 
 
 @dataclass(frozen=True)
@@ -81,13 +112,20 @@ class Integrator:
         velocity (a pair ``(attitude_rows, velocity_rows)``).
     name : str
         Name in messages and reports (default: the function's name).
+    input : str
+        One of :data:`INPUTS`: ``"increment"`` (default) or ``"rate"`` (mean
+        rates of each sample, module docstring).
+    sample_interval : float or None
+        h [s] of a rate integrator (required with ``input="rate"``, None otherwise).
 
     Raises
     ------
     TypeError
         If ``function`` is not callable or ``velocity`` not a bool.
     ValueError
-        If ``output`` is not one of :data:`OUTPUTS`.
+        If ``output`` is not one of :data:`OUTPUTS`, ``input`` not one of
+        :data:`INPUTS`, or ``sample_interval`` missing, not positive or given
+        for an increment integrator.
 
     Examples
     --------
@@ -102,6 +140,8 @@ class Integrator:
     output: str = "rotation_vector"
     velocity: bool = False
     name: str = ""
+    input: str = "increment"
+    sample_interval: float | None = None
 
     def __post_init__(self):
         if not callable(self.function):
@@ -114,6 +154,14 @@ class Integrator:
             raise TypeError(f"Expected `name` to be a str, got {type(self.name).__name__}")
         if not self.name:
             object.__setattr__(self, "name", getattr(self.function, "__qualname__", None) or type(self.function).__name__)
+        if self.input not in INPUTS:
+            raise ValueError(f"Expected `input` to be one of {', '.join(INPUTS)}, got {self.input!r}")
+        if self.input == "rate":
+            if self.sample_interval is None:
+                raise ValueError("Expected `sample_interval` [s] for an integrator that takes rates (`input` = 'rate'), got None")
+            object.__setattr__(self, "sample_interval", positive(self.sample_interval, "sample_interval"))
+        elif self.sample_interval is not None:
+            raise ValueError(f"Expected no `sample_interval` for an integrator that takes increments, got {self.sample_interval!r}")
 
 
 class StepIncrements(NamedTuple):
@@ -173,8 +221,9 @@ def _attitudes(arr: np.ndarray, integrator: Integrator, context: str) -> np.ndar
             f"integrator {integrator.name!r} returned a matrix at step {k} that is not a rotation "
             f"(|MᵀM − I| = {off[k]:.3g}, det M = {det[k]:.6g}), expected direction-cosine matrices ({context})"
         )
-    q = Rotation.from_matrix(arr).as_quat(scalar_first=True)
-    return q
+    from scipy.spatial.transform import Rotation  # here: a child process that runs user code imports no scipy
+
+    return Rotation.from_matrix(arr).as_quat(scalar_first=True)
 
 
 def step_increments(integrator: Integrator, gyro, samples_per_step, accel=None) -> StepIncrements:
@@ -223,12 +272,16 @@ def step_increments(integrator: Integrator, gyro, samples_per_step, accel=None) 
         accel = np.zeros_like(gyro)
     steps = gyro.shape[0] // n
     context = f"called with {gyro.shape[0]} samples, {n} per step"
-    args = (gyro.copy(), n) + ((accel.copy(),) if integrator.velocity else ())
+    scale = 1.0 / integrator.sample_interval if integrator.input == "rate" else 1.0
+    args = (gyro * scale, n) + ((accel * scale,) if integrator.velocity else ())
     try:
         out = integrator.function(*args)
+    except IntegratorStopped:
+        raise
     except Exception as exc:  # the user's code: any failure becomes one message naming it
         detail = " ".join(str(exc).split()) or "no message"
-        raise IntegratorError(f"integrator {integrator.name!r} raised {type(exc).__name__}: {detail} ({context})") from exc
+        kind = exc.kind if isinstance(exc, IntegratorRaised) else type(exc).__name__
+        raise IntegratorError(f"integrator {integrator.name!r} raised {kind}: {detail} ({context})") from exc
     if integrator.velocity:
         if not isinstance(out, (tuple, list)) or len(out) != 2:
             raise IntegratorError(

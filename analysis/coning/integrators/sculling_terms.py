@@ -35,9 +35,32 @@ the tests check).  Amplitudes are evaluated in :mod:`mpmath` at
 :data:`DIGITS` digits: the rates of high-order algorithms are differences of
 O(1) terms.
 
+Velocity accuracy order.  With the rate and the specific force expanded at
+the start of the step, ``ω = Σ_k ω_k τ^k/k!`` and ``a = Σ_l a_l τ^l/l!``, a
+sample's increments are ``p_i = Σ_k ω_k h^(k+1) P_k(i)`` and
+``b_j = Σ_l a_l h^(l+1) P_l(j)`` with ``P_k(i) = (i^(k+1) − (i−1)^(k+1))/(k+1)!``.
+The exact velocity increment over the step, ``∫_0^H C(τ) a(τ) dτ`` in the body
+axes at its start, is to second order ``∫ a + ∫ φ(τ) × a(τ) dτ``, whose term
+``ω_k × a_l`` has the coefficient ``H^(k+l+2) / ((k+1)! l! (k+l+2))``.  The
+error of the linear and bilinear part at weight w (the power of h) is then
+
+    Σ_j a°_j P_(w−1)(j) − N^w/w!                       (the term a_(w−1)),
+    Σ_{i,j} m_ij P_k(i) P_l(j) − N^w/((k+1)! l! w)      (the term ω_k × a_l, k + l = w − 2),
+
+in exact fractions (:meth:`ScullingTerms.error_weight`).  The first weight where
+one of them is not zero is that of the local velocity error, O(h^w), when
+w ≤ 2; from h³ on, the terms of degree three (ω × (ω × a) and their like, in
+the identified remainder) count as well, and the integrator's own error,
+measured against the exact increment
+(:func:`~.verification.velocity_error_exponent`), decides.  A departure from the
+dual extension alone makes an error at the weight of its own moments
+(:func:`departure_weight`): a missing rotation term ½ P × V, ``m_ij`` short by
+½ over the step, already at h² (accuracy order 1).
+
 Public API
 ----------
-:data:`DIGITS`, :class:`ScullingTerms`, :class:`ScullingError`.
+:data:`DIGITS`, :data:`MAX_WEIGHT`, :class:`ScullingTerms`, :class:`ScullingError`,
+:func:`departure_weight`.
 
 References
 ----------
@@ -56,10 +79,69 @@ from ....derivations.coning.algorithms import Algorithm
 from ...core.validation import as_int, positive
 from ..sculling_motion import ScullingMotion
 
-__all__ = ["DIGITS", "ScullingTerms", "ScullingError"]
+__all__ = ["DIGITS", "MAX_WEIGHT", "ScullingTerms", "ScullingError", "departure_weight"]
 
 #: Working precision of the closed form [decimal digits].
 DIGITS = 60
+#: Highest weight (power of h) of the velocity error examined.
+MAX_WEIGHT = 8
+
+
+def _moment(k: int, i: int) -> Fraction:
+    """``P_k(i) = (i^(k+1) − (i−1)^(k+1)) / (k+1)!``: the weight of ``ω_k`` (or ``a_k``) in sample i's increment."""
+    return Fraction(i ** (k + 1) - (i - 1) ** (k + 1), math.factorial(k + 1))
+
+
+def _error_terms(linear: dict, bilinear: dict, weight: int, exact_samples: int | None) -> list:
+    """The nonzero error terms at ``weight``: ``("a", l)`` and ``("w×a", k, l)`` with their coefficients.
+
+    ``exact_samples`` N subtracts the exact increment's terms (None: the moments of ``linear`` and ``bilinear`` alone).
+    """
+    out = []
+    lin = sum((c * _moment(weight - 1, j) for j, c in linear.items()), Fraction(0))
+    if exact_samples is not None:
+        lin -= Fraction(exact_samples**weight, math.factorial(weight))
+    if lin:
+        out.append((("a", weight - 1), lin))
+    for k in range(weight - 1):
+        l_ = weight - 2 - k
+        total = sum((c * _moment(k, i) * _moment(l_, j) for (i, j), c in bilinear.items()), Fraction(0))
+        if exact_samples is not None:
+            total -= Fraction(exact_samples**weight, math.factorial(k + 1) * math.factorial(l_) * weight)
+        if total:
+            out.append((("w×a", k, l_), total))
+    return out
+
+
+def departure_weight(departures, max_weight: int = MAX_WEIGHT) -> int | None:
+    """The lowest weight w (power of h) at which ``departures`` alone change the velocity increment.
+
+    Parameters
+    ----------
+    departures : iterable of (str, tuple, Fraction)
+        ``("linear", (j,), d)`` and ``("bilinear", (i, j), d)`` as
+        :meth:`ScullingTerms.defect` gives them.
+    max_weight : int
+        Highest weight examined.
+
+    Returns
+    -------
+    int or None
+        None: no change through ``max_weight``.
+
+    Examples
+    --------
+    >>> departure_weight([("bilinear", (1, 1), Fraction(-1, 2))])   # the rotation term ½ P × V missing, N = 1
+    2
+    >>> departure_weight([("bilinear", (0, 1), Fraction(1)), ("bilinear", (1, 0), Fraction(-1))])
+    3
+    """
+    linear = {key[0]: d for kind, key, d in departures if kind == "linear"}
+    bilinear = {tuple(key): d for kind, key, d in departures if kind == "bilinear"}
+    for w in range(1, as_int(max_weight, "max_weight", minimum=1) + 1):
+        if _error_terms(linear, bilinear, w, None):
+            return w
+    return None
 
 
 @dataclass(frozen=True)
@@ -164,6 +246,33 @@ class ScullingTerms:
             if d:
                 out.append(("bilinear", key, d))
         return tuple(out)
+
+    def error_weight(self, max_weight: int = MAX_WEIGHT) -> int | None:
+        """The lowest weight w at which the linear and bilinear part differs from the exact velocity increment (module docstring).
+
+        Parameters
+        ----------
+        max_weight : int
+            Highest weight examined.
+
+        Returns
+        -------
+        int or None
+            The local velocity error of the linear and bilinear part is
+            O(h^w); None: none through ``max_weight``.
+
+        Examples
+        --------
+        >>> from strapdown.derivations.coning.registry import get
+        >>> ScullingTerms.dual_extension(get("two-sample")).error_weight()
+        5
+        >>> ScullingTerms(1, {1: Fraction(1)}, {}).error_weight()   # no sculling term: ½ ω_0 × a_0 h² missed
+        2
+        """
+        for w in range(1, as_int(max_weight, "max_weight", minimum=1) + 1):
+            if _error_terms(self.linear, self.bilinear, w, self.samples):
+                return w
+        return None
 
     def rectification_error(self, motion: ScullingMotion, sample_interval: float) -> ScullingError:
         """Rectification error rate under ``motion`` at sample interval h, first order in θ₀ A, exact in ν h.

@@ -17,7 +17,7 @@ What the report section "Integrators in the wild" shows, computed here:
 Public API
 ----------
 :data:`RECURSIONS`, :data:`RECURSION_SAMPLES`, :data:`CONING`, :data:`SCULLING`,
-:data:`SAMPLE_INTERVAL`, :class:`PeerRun`, :func:`recursion_study`,
+:data:`SAMPLE_INTERVAL`, :data:`MEMORY_PROBED`, :class:`PeerRun`, :func:`recursion_study`,
 :func:`composition_study`, :func:`peer_study`.
 """
 
@@ -36,7 +36,7 @@ from .peers import pyins_increments, pyins_integrator, smsfusion_ins
 from .recursions import quaternion_composition, recursion
 from .verification import coning_drift_rate, sculling_rate
 
-__all__ = ["RECURSIONS", "RECURSION_SAMPLES", "CONING", "SCULLING", "SAMPLE_INTERVAL", "PeerRun", "recursion_study", "composition_study", "peer_study"]
+__all__ = ["RECURSIONS", "RECURSION_SAMPLES", "CONING", "SCULLING", "SAMPLE_INTERVAL", "MEMORY_PROBED", "PeerRun", "recursion_study", "composition_study", "peer_study"]
 
 #: The forms of Savage's recursion: key → (label, keyword arguments of :func:`~.recursions.recursion`).
 RECURSIONS = {
@@ -51,6 +51,9 @@ RECURSION_SAMPLES = tuple(range(1, 9))
 SAMPLE_INTERVAL = 1.0 / 400.0
 #: Classical coning of the like-for-like runs: 10 Hz, half-cone angle 1° (Budennyi, Kalinovsky, Panov et al., Table 3).
 CONING = RegularPrecession(-1.0, 2 * math.pi * 10.0, math.radians(1.0))
+#: Longest memory the assumption tests probe here [samples]: these integrators read at most one sample
+#: back, and a test that said otherwise would still see it (the scan reaches twice as far).
+MEMORY_PROBED = 8
 #: Classical sculling of the like-for-like runs: 10 Hz, θ₀ = 1 mrad, A = 1 m/s², in phase (40 samples per period).
 SCULLING = ScullingMotion(1e-3, 1.0, 2 * math.pi * 10.0)
 
@@ -87,7 +90,7 @@ def recursion_study(variant: str, samples=RECURSION_SAMPLES, *, velocity: bool =
     kwargs = dict(RECURSIONS[variant][1])
     kwargs["velocity"] = velocity and not kwargs.get("one_accumulator", False)
     integrator = recursion(**kwargs)
-    return tuple(assess(integrator, n, verify=_verify(verify, n), name=f"{variant}-{n}") for n in samples)
+    return tuple(assess(integrator, n, verify=_verify(verify, n), name=f"{variant}-{n}", max_previous_limit=MEMORY_PROBED) for n in samples)
 
 
 def composition_study(samples=RECURSION_SAMPLES, *, verify=True) -> tuple:
@@ -105,7 +108,7 @@ def composition_study(samples=RECURSION_SAMPLES, *, verify=True) -> tuple:
     tuple of Assessment
     """
     integrator = quaternion_composition(velocity=True)
-    return tuple(assess(integrator, n, verify=_verify(verify, n), name=f"composition-{n}") for n in samples)
+    return tuple(assess(integrator, n, verify=_verify(verify, n), name=f"composition-{n}", max_previous_limit=MEMORY_PROBED) for n in samples)
 
 
 @dataclass(frozen=True)
@@ -176,7 +179,7 @@ def peer_study() -> tuple:
     """
     out = []
     for label, source, integrator, n, verify in _peers():
-        a = assess(integrator, n, verify=verify)
+        a = assess(integrator, n, verify=verify, max_previous_limit=MEMORY_PROBED)
         history = max(a.identification.history, a.identification.max_previous)
         u = coning_drift_rate(integrator, n, CONING, SAMPLE_INTERVAL, steps=400 // n, history=history)
         u_cf = None

@@ -17,6 +17,12 @@ At the command line::
     strapdown design-coning --samples 2 --environment my-imu.toml --sample-interval 1e-3
     strapdown environment-rates --environment my-imu.toml --budget-deg-per-h 0.5
 
+A designer who has a linear random-vibration specification of the structure
+(breakpoints in g²/Hz) and an IMU mount, rather than the IMU's own spectra,
+gets the environment from them (:doc:`../mount-files`)::
+
+    strapdown mount-environment --profile airframe.toml --mount mount.toml --out my-imu.toml --sample-interval 1e-3
+
 This page writes a small environment, checks the closed form against a
 simulation that shares nothing with it, and then runs the package's example of
 a MEMS IMU in a rotorcraft bay.
@@ -57,11 +63,14 @@ cutoff_hz = 100.0
 environment = load_environment(path)
 for name in ("two-sample", "optimal-3"):
     d = environment_drift(get(name), environment, h)
-    print(f"{name:>10}: drift {deg_per_h(d.total):+.4f} deg/h = sensor part {deg_per_h(d.sensor):+.4f} + algorithm part {deg_per_h(d.algorithm_part):+.2e} deg/h")
+    print(f"{name:>10}: |drift| {deg_per_h(d.magnitude):.4f} deg/h; about the cone axis z: sensor part {deg_per_h(d.sensor):+.4f} + algorithm part {deg_per_h(d.algorithm_part):+.2e} deg/h")
 
 # %%
-# The filter delays the sensed rate, so the sensed motion cones less than the
-# true one; the difference is the same for every algorithm, and here it is
+# The filter passes the rate with a gain |H| < 1, so the sensed motion cones
+# less than the true one (with the same filter on every axis only |H|² counts,
+# not its phase: the sensed coning is |H|² times the true one, and a resonant
+# filter with |H| > 1 makes the sensor part negative); the difference is the
+# same for every algorithm, and here it is
 # four orders of magnitude above the two-sample algorithm's own residual. A
 # better coning algorithm does not help: only a wider filter, or an algorithm
 # tuned to this filter (below), does.
@@ -88,7 +97,7 @@ print(f"total:       closed form {deg_per_h(d.total):.6f} deg/h, DOP853 {deg_per
 # as well as its own residual (``strapdown design-coning``):
 tuned = tune(environment, 2, h)
 print(f"tuned coefficient {tuned.coefficients}, nulled: {tuned.nulled}")
-print(f"drift: tuned {deg_per_h(tuned.drift @ d.coning_axis):+.2e} deg/h, classical {tuned.classical.name} {deg_per_h(tuned.classical_drift @ d.coning_axis):+.4f} deg/h")
+print(f"|drift|: tuned {deg_per_h(np.linalg.norm(tuned.drift)):.2e} deg/h, classical {tuned.classical.name} {deg_per_h(np.linalg.norm(tuned.classical_drift)):.4f} deg/h")
 
 # %%
 # A MEMS IMU in a rotorcraft bay
@@ -96,17 +105,19 @@ print(f"drift: tuned {deg_per_h(tuned.drift @ d.coning_axis):+.2e} deg/h, classi
 # The package ships a larger example (:data:`~strapdown.analysis.vibration.examples.QUALIFICATION`):
 # rotor lines over a qualification random-vibration spectrum, second-order
 # anti-aliasing filters, digital low-pass filters at the sensor rate and
-# decimation by 4. The drift comes line by line and band by band; signed values
-# are along the environment's coning axis.
+# decimation by 4. The drift is a vector in body axes, quoted by its
+# magnitude; it comes line by line and band by band. The main rotor cones about
+# z, the tail rotor about y: a projection on one axis would hide the other.
 qualification = load_environment(QUALIFICATION)
 print(qualification.description)
 for name in ("two-sample", "optimal-3", "ignagni-1996-5"):
     d = environment_drift(get(name), qualification, h)
-    print(f"{name:>15}: total {deg_per_h(d.total):+.5f} deg/h, sensor part {deg_per_h(d.sensor):+.5f}, algorithm part {deg_per_h(d.algorithm_part):+.2e}, rectification {d.sculling:+.3e} m/s²")
+    sensor = deg_per_h(np.linalg.norm(d.sensor_vector))
+    print(f"{name:>15}: |drift| {deg_per_h(d.magnitude):.5f} deg/h, vector {np.round(deg_per_h(d.total_vector), 5)} deg/h, |sensor part| {sensor:.5f}")
 d = environment_drift(get("two-sample"), qualification, h)
 for p in d.parts:
     band = f"{p.band[0]:g} Hz" if p.band[0] == p.band[1] else f"{p.band[0]:g}–{p.band[1]:g} Hz"
-    print(f"  {p.label:>32} ({band}): sensor part {deg_per_h(p.sensor @ d.coning_axis):+.5f}, two-sample {deg_per_h(p.algorithm @ d.coning_axis):+.2e} deg/h")
+    print(f"  {p.label:>32} ({band}): sensor part {np.round(deg_per_h(p.sensor), 5)}, two-sample {np.round(deg_per_h(p.algorithm), 6)} deg/h (body axes)")
 
 # %%
 # Here too the filters, not the algorithm, set the drift. The gallery page
