@@ -266,6 +266,7 @@ COMMANDS = {
     "log coning": ("log_analysis", "replay coning algorithms on a log: mean correction rate of each, their exact drift differences, the closed form beside"),
     "log environment": ("log_analysis", "vibration environment of a log: lines and cross-spectra with intervals, written as an environment file"),
     "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
+    "mount-environment": ("mount", "a base vibration profile through an IMU mount: modes, rms, and the IMU's cross-spectra as an environment file"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
