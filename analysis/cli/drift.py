@@ -68,7 +68,7 @@ def _run(args) -> Result:
         raise UsageError(f"Expected --max-order in {MIN_ORDER}..{WEIGHT_LIMIT}, got {K}")
     rtol = positive(args.series_rtol, "--series-rtol")
     alg = algorithm_from(args)
-    params = motion_parameters(args, alg)
+    params = motion_parameters(args)  # the work is estimated by the streaming run itself (constant memory)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
     r = simulate_long_run(alg, motion, args.sample_interval, args.duration, progress=args.progress, limits=limits_from(args))
     data, header = run_summary(alg, r, params)
