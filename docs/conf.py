@@ -49,6 +49,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "api_pages",  # one API page per module, generated from the installed packages (_ext/api_pages.py)
     "repository_links",  # a link to a repository file outside docs/ shows its path (_ext/repository_links.py)
+    "cli_lexer",  # ``cli`` blocks: command lines whose hyphens are not operators (_ext/cli_lexer.py)
 ]
 
 templates_path = ["_templates"]
@@ -103,7 +104,8 @@ warnings.filterwarnings("ignore", message="Matplotlib is currently using agg", c
 # --------------------------------------------------------------------------- HTML
 html_theme = "furo"
 html_title = f"strapdown-analysis {release}"
-html_static_path = []
+html_static_path = ["_static"]
+html_css_files = ["blocks.css"]  # code and output blocks wrap at the page width (_static/blocks.css)
 html_show_sourcelink = False
 html_theme_options = {
     "navigation_with_keys": True,

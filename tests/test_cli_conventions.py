@@ -178,3 +178,14 @@ def test_defaults_of_options_that_apply_only_with_others_are_checked():
     commands.only_with(p, "--period", "--rocking", ("b",))
     commands.only_with(p, "--damping", "--rocking", ("b",))
     assert problems("x", p) == ["--period: help does not show its default 8.0 as '(default ...)'"]
+
+
+def test_help_shows_no_restructuredtext():
+    """Descriptions taken from docstrings reach --help as plain text (``identify --help`` showed ``:class:`~...```)."""
+    from strapdown.analysis.cli import plain_text
+
+    for name, parser in COMMANDS.items():
+        text = parser.format_help()
+        assert not re.search(r":(class|func|meth|mod|attr|data):`|``", text), (name, text[:300])
+    assert plain_text(":func:`~strapdown.analysis.coning.integrators.assessment.assess`") == "assess"  # and can see markup
+    assert re.search(r":(class|func):`", ":class:`~a.B`")  # the pattern above finds a role

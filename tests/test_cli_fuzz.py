@@ -226,8 +226,8 @@ def test_the_table_is_large():
 
 @pytest.mark.parametrize("kind, argv, expect, names", CASES, ids=[f"{c[0]}: {' '.join(c[1])[:80]}" for c in CASES])
 def test_hostile_option_values(kind, argv, expect, names):
-    outcome = run(argv, timeout=120.0)
-    assert not violations(outcome, expect=expect, names=names, limit=5.0, argv=argv), (argv, outcome)
+    outcome = run(argv)
+    assert not violations(outcome, expect=expect, names=names, argv=argv), (argv, outcome)
 
 
 # --------------------------------------------------------------------------- hostile files
@@ -315,7 +315,7 @@ def with_algorithm_file(command: str, path: str) -> list:
 def test_hostile_algorithm_files_refused_fast(toml_dir, command, label):
     path = dict(file_cases(toml_dir))[label]
     outcome = run(with_algorithm_file(command, path))
-    assert not violations(outcome, expect="refuse", names=("--algorithm-file",), limit=2.0), outcome
+    assert not violations(outcome, expect="refuse", names=("--algorithm-file",)), outcome
 
 
 def test_unreadable_file_is_refused(toml_dir):
@@ -326,7 +326,7 @@ def test_unreadable_file_is_refused(toml_dir):
         if os.access(path, os.R_OK):
             pytest.skip("running with privileges that read any file")
         outcome = run(command_argv("derive local-error", ["--algorithm-file", str(path)]))
-        assert not violations(outcome, expect="refuse", names=("--algorithm-file",), limit=2.0), outcome
+        assert not violations(outcome, expect="refuse", names=("--algorithm-file",)), outcome
     finally:
         path.chmod(stat.S_IRUSR | stat.S_IWUSR)
 
@@ -360,7 +360,7 @@ def test_any_value_of_any_numeric_option_meets_the_contract(target, value):
     name, flag = target
     outcome_argv = command_argv(name, _with(BASELINES[name], flag, value))
     outcome = run(outcome_argv)
-    assert not violations(outcome, names=(flag,), limit=5.0, argv=outcome_argv), (name, flag, value, outcome)
+    assert not violations(outcome, names=(flag,), argv=outcome_argv), (name, flag, value, outcome)
 
 
 @settings(max_examples=40, suppress_health_check=[HealthCheck.too_slow])

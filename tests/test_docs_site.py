@@ -193,3 +193,44 @@ def test_link_check_finds_missing_files_and_anchors(tmp_path):
     found = check_docs.broken_links(page, bad, site, cache)
     assert len(found) == 3
     assert "no such file" in found[0] and "no anchor #no-such-id" in found[1] and "leaves the site" in found[2]
+
+
+def _fenced(text: str, language: str) -> list:
+    return re.findall(rf"^```{re.escape(language)}\n(.*?)^```$", text, flags=re.S | re.M)
+
+
+def test_the_landing_page_example_prints_what_the_page_shows():
+    """The five lines of docs/index.md run, and print the output the page shows under them."""
+    import contextlib
+    import io
+
+    page = (ROOT / "docs" / "index.md").read_text(encoding="utf-8")
+    (code,), (shown,) = _fenced(page, "python"), _fenced(page, "text")
+    assert len(code.strip().splitlines()) == 5
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "docs/index.md", "exec"), {})
+    assert out.getvalue() == shown
+    assert "sphx_glr_plot_drift_vs_step_001.png" in page and (ROOT / "docs" / "examples" / "gallery" / "coning" / "plot_drift_vs_step.py").is_file()
+
+
+def test_command_lines_are_not_read_as_arithmetic():
+    """The ``cli`` lexer of the site keeps ``panov-4s-3`` one plain word and ``--algorithm`` an option; Python's does not."""
+    sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+    try:
+        from cli_lexer import CommandLineLexer
+    finally:
+        sys.path.remove(str(ROOT / "docs" / "_ext"))
+    from pygments.lexers import PythonLexer
+    from pygments.token import Name, Number, Operator, Text
+
+    line = "strapdown drift --algorithm panov-4s-3 --freq-hz 10  # coning\n"
+    tokens = [(t, v) for t, v in CommandLineLexer().get_tokens(line) if v.strip()]
+    assert (Text, "panov-4s-3") in tokens and (Name.Attribute, "--algorithm") in tokens
+    assert not any(t in Operator or t in Number for t, _ in tokens)
+    python = [(t, v) for t, v in PythonLexer().get_tokens(line) if v.strip()]
+    assert any(t in Operator and v == "-" for t, v in python)  # the failure the lexer avoids
+    # every shell block of the pages is a cli block
+    for page in sorted((ROOT / "docs").glob("*.md")):
+        for block in _fenced(page.read_text(encoding="utf-8"), ""):
+            assert not re.match(r"\s*(strapdown|pip|python|sphinx-build) ", block), f"{page.name}: a shell block without the cli lexer"

@@ -137,6 +137,7 @@ HUGE = {
         lambda: __import__("strapdown.analysis.coning.sculling_motion", fromlist=["x"]).ScullingMotion(0.01, 1.0, 2 * np.pi).grid_increments(0.0025, 0, 10**12, dual=True),
         "count",
     ),
+    "coning.simulate_long_run duration": (lambda: __import__("strapdown.analysis.coning.long_run", fromlist=["x"]).simulate_long_run(ALG, _coning(), 0.0025, 1e12), "duration"),
     "coning.simulate_batch duration": (
         lambda: __import__("strapdown.analysis.coning.batch", fromlist=["x"]).simulate_batch(ALG, -1.0, 2 * np.pi * 10, np.radians([0.5, 1.0]), 0.0025, 1e30),
         "duration",
@@ -362,7 +363,7 @@ def test_limits_of_the_wrong_type_are_refused():
 
 
 def test_the_estimate_of_a_large_run_is_checked_and_passes():
-    """A run of 2e5 s at h = 2.5 ms (2e7 steps, about 1 GB of error series) is estimated and within the defaults."""
+    """A run of 2e5 s at h = 2.5 ms (2e7 steps, about 0.8 GB of error series and times) is estimated and within the defaults."""
     steps = 2e5 / (ALG.samples * 0.0025)
     est = budget.coning_simulation(steps, window=ALG.window, degree_sum=sum(t.degree for t in ALG.terms), velocity=False, chunk_steps=65536, what="")
     assert 0.5e9 < est.memory <= budget.DEFAULT_MEMORY_LIMIT

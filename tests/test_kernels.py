@@ -109,7 +109,7 @@ def test_template_runs_as_plain_python():
     n = ref.steps
     par, theta = kernels.parameter_rows(*(np.array([v]) for v in (m.eps, m.nu, m.nutation, 0.0, 0.0, 0.01)), np.array([1.0, 0, 0, 0]), np.zeros(3), velocity=False)
     sums, err = empty_sums(1), np.zeros((1, n + 1, 3))
-    template.run(par, np.array([n]), theta, 0, n, sums, err, err, err, True, np.zeros((0, 3)), 2, 0)
+    template.run(par, np.array([n]), theta, 0, n, sums, err, err, err, True, 0, np.zeros((0, 3)), 2, 0)
     np.testing.assert_allclose(err[0], ref.attitude_error, rtol=0, atol=1e-15)
 
 

@@ -83,3 +83,60 @@ def test_a_counted_command_reports_its_fraction():
     rows = [LINE.match(line) for line in r.stderr.splitlines()]
     assert rows and all(rows), r.stderr
     assert any(m["pct"] is not None for m in rows), r.stderr
+
+
+def _percentages(text: str) -> list:
+    return [int(m["pct"]) for m in (LINE.match(line) for line in text.splitlines()) if m and m["pct"] is not None]
+
+
+def test_the_fraction_never_goes_backwards_when_an_inner_task_starts_afresh():
+    """An outer step with two inner tasks one after the other: the second starts at 0 %, the line does not follow it down."""
+    log = io.StringIO()
+    with progress.lines("strapdown demo", stream=log, interval=0.02):
+        for _ in progress.bar(range(2), desc="section", enabled=True):
+            for _ in range(2):  # two inner tasks of the same step, each from 0 to the end
+                with progress.bar(total=5, desc="chunks", enabled=True) as inner:
+                    for _ in range(5):
+                        time.sleep(0.03)
+                        inner.update(1)
+    shown = _percentages(log.getvalue())
+    assert len(shown) >= 4 and shown == sorted(shown), shown
+    # without the guard the raw fraction does fall: 50 % of step 1 through the first inner task, then 0 % again
+    assert max(shown[: len(shown) // 2]) > 0
+
+
+def test_expected_seconds_weight_the_steps_and_advance_a_silent_step():
+    """Steps expected to take 0.05, 0.05 and 5 s: counted alike the third would start at 67 %; weighted, the line
+    stays near 2 % after the short ones and rises with time during the long one, which reports nothing."""
+    log = io.StringIO()
+    with progress.lines("strapdown demo", stream=log, interval=0.05):
+        for i in progress.bar(range(3), desc="section", enabled=True, expected=[0.05, 0.05, 5.0]):
+            time.sleep(0.05 if i < 2 else 0.8)
+    shown = _percentages(log.getvalue())
+    assert shown == sorted(shown) and max(shown) < 33, shown
+    assert shown[-1] > shown[0], shown  # it advances with time inside the silent step
+
+
+def test_expected_seconds_of_the_wrong_length_are_ignored():
+    log = io.StringIO()
+    with progress.lines("strapdown demo", stream=log, interval=0.02):
+        for _ in progress.bar(range(2), desc="section", enabled=True, expected=[1.0]):
+            time.sleep(0.08)
+    shown = _percentages(log.getvalue())
+    assert shown and set(shown) <= {0, 50}, shown
+
+
+def test_the_progress_flag_does_what_its_help_says():
+    """Piped: plain lines by default, tqdm bars with --progress, nothing with --quiet; the help says exactly that."""
+    from strapdown.analysis.cli import build_parser
+    from strapdown.analysis.cli._options import PROGRESS_HELP
+
+    argv = ("azimuth", "--lat-deg", "60", "--sigma-xi-deg", "0.5", "--sigma-eta-deg", "0.5", "--samples", "3e6", "--json")
+    default, flagged, quiet = _cli(*argv, interval="0.05"), _cli(*argv, "--progress", interval="0.05"), _cli(*argv, "--quiet", interval="0.05")
+    assert default.returncode == flagged.returncode == quiet.returncode == 0
+    assert default.stderr and all(LINE.match(line) for line in default.stderr.splitlines()), default.stderr  # lines, although "default: off"
+    assert re.search(r"Monte Carlo: +\d+%\|", flagged.stderr), flagged.stderr  # a tqdm bar, not a plain line
+    assert quiet.stderr == ""
+    for command in ("azimuth", "align"):
+        text = " ".join(build_parser([command, "--help"])._subparsers._group_actions[0].choices[command].format_help().split())
+        assert " ".join(PROGRESS_HELP.split()) in text and "progress is shown anyway" in text

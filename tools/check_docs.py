@@ -13,6 +13,10 @@ fails on
   with ``.math`` markup that MathJax never typeset;
 * a broken internal link: a link to a file of the site that does not exist,
   or to an anchor (``#id``) that the target page does not have;
+* a code or output block cut at the viewport width (1280 px by default): a
+  ``pre`` whose text runs past its box without a scroll bar, or whose box runs
+  past the window (``docs/_static/blocks.css`` wraps them; a self-test page
+  with a cut block checks first that the check can fail);
 * a resource fetched from outside the site (the site must read offline);
 * a console error, an uncaught exception or a failed load reported by the
   browser.
@@ -54,8 +58,24 @@ FIGURE_PAGES = (
     "tasks/06_alignment_design.html",
 )
 
+#: Code and output blocks cut at the viewport: text past the box with no scroll bar, or a box past the window.
+CUT_BLOCKS = r"""
+(() => [...document.querySelectorAll('pre')].filter(p => p.offsetParent !== null).filter(p => {
+  const r = p.getBoundingClientRect(), style = getComputedStyle(p);
+  const hidden = p.scrollWidth > p.clientWidth + 1 && !['auto', 'scroll'].includes(style.overflowX);
+  return hidden || r.right > document.documentElement.clientWidth + 1;
+}).map(p => p.textContent.trim().split('\n')[0].slice(0, 60)))
+"""
+
+#: A page with one block cut at any width: the check of cut blocks must flag it.
+CUT_SELF_TEST = (
+    "<!DOCTYPE html><html><body><pre style='overflow: hidden; width: 200px'>strapdown drift --algorithm panov-4s-3 --half-angle-deg 1 "
+    "--freq-hz 10 --sample-interval 0.0025 --duration 100</pre><pre>short</pre></body></html>"
+)
+
 INSPECT = r"""
 (async () => {
+  const CUT_BLOCKS = () => """ + CUT_BLOCKS.strip() + r""";
   const deadline = Date.now() + 20000;
   await Promise.all([...document.images].map(img => img.decode().catch(() => null)));
   let typeset = null;
@@ -75,6 +95,7 @@ INSPECT = r"""
     mathTypeset: document.querySelectorAll('mjx-container').length,
     mathErrors: [...document.querySelectorAll('mjx-merror')].map(e => e.getAttribute('data-mjx-error') || e.textContent),
     mathjax: typeset,
+    cut: CUT_BLOCKS(),
     links: [...document.querySelectorAll('a[href]')].map(a => a.href),
     external: [...document.querySelectorAll('[src], link[href]')]
       .map(e => e.getAttribute('src') || e.getAttribute('href'))
@@ -147,6 +168,16 @@ def check(site: Path, *, screenshots: Path | None = None, width: int = 1280, hei
     try:
         browser.open_page()
         browser.send("Emulation.setDeviceMetricsOverride", {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False})
+        probe = site.parent / ".check-docs-cut-block.html"
+        probe.write_text(CUT_SELF_TEST, encoding="utf-8")
+        try:
+            browser.send("Page.navigate", {"url": probe.as_uri()})
+            browser.wait_event("Page.loadEventFired")
+            flagged = browser.evaluate(CUT_BLOCKS)
+        finally:
+            probe.unlink(missing_ok=True)
+        if len(flagged) != 1:
+            failures.append(f"self-test: the check of cut blocks flagged {flagged!r} on a page with exactly one cut block")
         for page in pages:
             rel = page.relative_to(site).as_posix()
             browser.events.clear()
@@ -169,6 +200,7 @@ def check(site: Path, *, screenshots: Path | None = None, width: int = 1280, hei
             failures += [f"{rel}: math not rendered: {e}" for e in info["mathErrors"]]
             if info["mathMarkup"] and not info["mathTypeset"]:
                 failures.append(f"{rel}: {info['mathMarkup']} math elements, none typeset by MathJax (loaded: {info['mathjax']})")
+            failures += [f"{rel}: a code or output block is cut at {width} px: {text!r}" for text in info["cut"]]
             failures += [f"{rel}: external resource (the site must read offline): {s}" for s in info["external"]]
             failures += [f"{rel}: broken link {b}" for b in broken_links(page, info["links"], site, ids)]
             failures += [f"{rel}: browser: {e}" for e in console_errors(browser.events)]
@@ -188,7 +220,7 @@ def check(site: Path, *, screenshots: Path | None = None, width: int = 1280, hei
         for f in failures:
             print(f"  - {f}", file=sys.stderr)
         return 1
-    print("OK: every image loaded, every figure present, every equation typeset, no broken internal link, no browser error")
+    print("OK: every image loaded, every figure present, every equation typeset, no block cut, no broken internal link, no browser error")
     return 0
 
 

@@ -59,7 +59,7 @@ from typing import Any
 from .. import __version__
 from ..core.progress import activity, lines, mode, wanted
 
-__all__ = ["main", "build_parser", "Commands", "Result", "UsageError", "EXIT_USAGE", "EXIT_INTERRUPTED", "EXIT_SOFTWARE"]
+__all__ = ["main", "build_parser", "plain_text", "Commands", "Result", "UsageError", "EXIT_USAGE", "EXIT_INTERRUPTED", "EXIT_SOFTWARE"]
 
 #: Exit status of a bad argument (argparse's convention).
 EXIT_USAGE = 2
@@ -187,6 +187,7 @@ class Commands:
         """
         if progress not in ("activity", "own"):
             raise ValueError(f"Expected `progress` in ('activity', 'own'), got {progress!r}")
+        help, description = plain_text(help), None if description is None else plain_text(description)
         if group is None:  # `strapdown --help` lists the commands itself, one line each (build_parser)
             parser = self.root.add_parser(name, description=description or help)
         else:
@@ -266,6 +267,7 @@ COMMANDS = {
     "log coning": ("log_analysis", "replay coning algorithms on a log: mean correction rate of each, their exact drift differences, the closed form beside"),
     "log environment": ("log_analysis", "vibration environment of a log: lines and cross-spectra with intervals, written as an environment file"),
     "log inspect": ("log_inspect", "what a recorded IMU log holds: streams, rate, gaps, units, frame, sensor filters, plausibility checks"),
+    "mount-environment": ("mount", "a base vibration profile through an IMU mount: modes, rms, and the IMU's cross-spectra as an environment file"),
     "identify": ("identify", "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check"),
     "observability": ("observability", "rank, unobservable directions and degree of observability of the alignment error states"),
     "multistage": ("multistage", "simulate the two-stage corrected attitude system of Plotnikov (1999), section 5"),
@@ -323,6 +325,41 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     lines = [f"  {name:<{width}}  {_one_line(text)}" for name, text in sorted(commands.listing)]
     parser.epilog = "commands:\n" + "\n".join(lines)
     return parser
+
+
+#: A Sphinx cross-reference: ``:role:`~dotted.name``` or ``:role:`title <dotted.name>```.
+_ROLE = re.compile(r":(?:py:)?(?:class|func|meth|mod|attr|data|obj|exc|ref|doc):`(~?)([^`<]*?)(?:\s*<([^`>]*)>)?`")
+
+
+def plain_text(text: str) -> str:
+    """``text`` (a docstring paragraph) as a terminal shows it: Sphinx roles and literal markup removed.
+
+    ``:class:`~a.b.C``` becomes ``C``, ``:func:`a.b.f``` becomes ``a.b.f``,
+    a titled reference its title, and double backticks are dropped, so that
+    ``--help`` never shows reStructuredText.
+
+    Parameters
+    ----------
+    text : str
+        Help or description text, possibly with reStructuredText markup.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> plain_text("an :class:`~strapdown.analysis.coning.integrators.interface.Integrator` (``assess``)")
+    'an Integrator (assess)'
+    """
+
+    def role(match):
+        tilde, target, titled = match.groups()
+        if titled is not None:
+            return target.strip() or titled
+        return target.rsplit(".", 1)[-1] if tilde else target
+
+    return _ROLE.sub(role, str(text)).replace("``", "")
 
 
 def _one_line(text: str) -> str:

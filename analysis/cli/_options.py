@@ -40,9 +40,18 @@ __all__ = [
     "floats",
     "unit_quaternion",
     "run_summary",
+    "PROGRESS_HELP",
 ]
 
 _COUNT = re.compile(r"[+-]?(\d+(_\d+)*|\d*\.?\d+([eE][+-]?\d+)?|\d+\.\d*([eE][+-]?\d+)?)")
+
+
+#: Help of ``--progress``, as the edge (:func:`strapdown.analysis.cli.main`) behaves: progress is shown by
+#: default (bars on a terminal, plain lines otherwise); the flag only turns the lines into bars.
+PROGRESS_HELP = (
+    "draw progress bars on stderr even when it is not a terminal (default: off; progress is shown anyway, "
+    "as bars on a terminal and as a plain line every few seconds in a log or pipe; --quiet shows none)"
+)
 
 
 def count(text: str) -> int:
@@ -435,8 +444,9 @@ def run_summary(alg, result, params: dict | None = None) -> tuple[dict, str]:
     ----------
     alg : Algorithm
         The algorithm run.
-    result : strapdown.analysis.coning.simulator.SimulationResult
-        The run.
+    result : SimulationResult or LongRunResult
+        The run (:mod:`strapdown.analysis.coning.simulator`, :mod:`strapdown.analysis.coning.long_run`):
+        what both have, ``sample_interval``, ``step``, ``steps``, ``duration`` and ``drift_rate``, is read.
     params : dict, optional
         ``eps``, ``nu`` [rad/s] of the motion (from :func:`motion_parameters`).
 
@@ -455,7 +465,7 @@ def run_summary(alg, result, params: dict | None = None) -> tuple[dict, str]:
         "sample_interval": result.sample_interval,
         "step": result.step,
         "steps": result.steps,
-        "simulated_duration": float(result.time[-1]),
+        "simulated_duration": float(result.duration),
     }
     prev = f" + {alg.history} previous" if alg.history else ""
     line = f"{alg.name}: N = {alg.samples}{prev}, h = {result.sample_interval:g} s, H = {result.step:g} s, {result.steps} steps, t = {data['simulated_duration']:g} s"

@@ -10,7 +10,10 @@ from __future__ import annotations
 
 from ..core import budget
 from . import Result, UsageError
-from ._options import add_limits, check_work, count, limits_from
+from ._executors import add_executor
+from ._executors import executor as executor_from
+from ._executors import workers as local_workers
+from ._options import PROGRESS_HELP, add_limits, check_work, count, limits_from
 
 __all__ = ["register"]
 
@@ -42,7 +45,8 @@ def _check_work(args, samples: int, trials: int, workers: int) -> None:
     """Refuse a Monte Carlo whose estimate exceeds ``--time-limit`` / ``--memory-limit-mb``, before it starts."""
     from ..core.validation import positive
 
-    what = f"{trials:.3g} trials (--trials) of {float(samples):.3g} samples (--duration × --sample-rate-hz) on {workers} worker(s) (--workers)"
+    where = "--dask" if args.dask is not None else "--workers"
+    what = f"{trials:.3g} trials (--trials) of {float(samples):.3g} samples (--duration × --sample-rate-hz) on {workers} worker(s) ({where})"
     epochs = 0.0
     if args.method == "kalman":  # the filter runs once per epoch: short epochs cost more than the samples
         epoch = positive(0.1 if args.epoch is None else args.epoch, "--epoch")
@@ -206,20 +210,12 @@ def _align(args) -> Result:
     scenario = _scenario(args)
     trials = as_int(args.trials, "--trials", minimum=2)
     seed = as_int(args.seed, "--seed", minimum=0)
-    workers = as_int(args.workers, "--workers", minimum=1)
+    workers = local_workers(args)
     _check_work(args, scenario.n_samples, trials, workers)
     errors = _errors(args)
     options = _options(args, scenario, errors)
-    executor = None
-    if workers > 1:
-        from concurrent.futures import ProcessPoolExecutor
-
-        executor = ProcessPoolExecutor(workers)
-    try:
+    with executor_from(args) as executor:
         mc = alignment_monte_carlo(scenario, errors, method=args.method, n_trials=trials, rng=seed, options=options, executor=executor, progress=args.progress, limits=limits_from(args))
-    finally:
-        if executor is not None:
-            executor.shutdown()
     r = mc.result
     data = {
         "method": args.method,
@@ -347,7 +343,7 @@ def register(commands) -> None:
     p.add_argument("--duration", type=float, default=120.0, help="alignment time T [s] (default 120)")
     p.add_argument("--trials", type=count, default=200, help="Monte Carlo trials [count] (default 200)")
     p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
-    p.add_argument("--workers", type=count, default=1, help="worker processes [count] (default 1; the result does not depend on it)")
+    add_executor(p)
     p.add_argument("--formula", choices=["levelled", "paper"], default=None, help="analytic only: levelled (three gyros, any heading) or paper (eq. (2) with σ, exact at heading 0) (default levelled)")
     p.add_argument("--observation", choices=["position", "velocity"], default=None, help="inertial only: integrated velocity (position) or velocity vectors (default position)")
     p.add_argument("--epoch", type=float, default=None, help="inertial: observation spacing, kalman: measurement interval [s] (default 1 for inertial, 0.1 for kalman)")
@@ -365,7 +361,7 @@ def register(commands) -> None:
     p.add_argument("--assumed-damping", type=float, default=None, help="kalman only: rocking damping ratio the filter assumes [dimensionless] (default: the true one)")
     p.add_argument("--assumed-amplitude-deg", default=None, help="kalman only: rocking amplitude the filter assumes [deg], one value or yaw,beta,gamma (default: the true one)")
     p.add_argument("--lever-arm-known", action="store_true", help="kalman only: compensate the lever-arm velocity with the known lever arm (default off)")
-    p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+    p.add_argument("--progress", action="store_true", help=PROGRESS_HELP)
     add_limits(p)
     for option, models in _ROCKING_OPTIONS.items():
         commands.only_with(p, option, "--rocking", models)

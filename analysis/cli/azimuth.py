@@ -11,7 +11,10 @@ import math
 
 from ..core import budget
 from . import Result, UsageError
-from ._options import add_limits, check_work, count, limits_from
+from ._executors import add_executor
+from ._executors import executor as executor_from
+from ._executors import workers as local_workers
+from ._options import PROGRESS_HELP, add_limits, check_work, count, limits_from
 
 __all__ = ["register", "check_rocking_domain"]
 
@@ -76,18 +79,11 @@ def _azimuth(args) -> Result:
     seed = as_int(args.seed, "--seed", minimum=0)
     period = positive(args.period, "--period")  # the library knows it per axis (period_xi, period_eta)
     model = rocking_model(args.rocking, rad(sx_deg), rad(se_deg), period=period, damping=args.damping)
-    workers = as_int(args.workers, "--workers", minimum=1)
-    check_work(args, budget.monte_carlo(n, workers=workers, what=f"{n:.3g} rocking samples (--samples) on {workers} worker(s) (--workers)"))
-    executor = None
-    if workers > 1:
-        from ..core.montecarlo import process_pool
-
-        executor = process_pool(workers)
-    try:
+    workers = local_workers(args)
+    where = "--dask" if args.dask is not None else "--workers"
+    check_work(args, budget.monte_carlo(n, workers=workers, what=f"{n:.3g} rocking samples (--samples) on {workers} worker(s) ({where})"))
+    with executor_from(args) as executor:
         mc = azimuth_monte_carlo(lat, rad(b0_deg), rad(g0_deg), model, n, rng=seed, executor=executor, progress=args.progress, limits=limits_from(args))
-    finally:
-        if executor is not None:
-            executor.shutdown()
     r, th = mc.result, mc.theory
     v14, v15 = (_in_samples(r.bound_holds(b, what=f"bound ({k})"), r) for k, b in ((14, mc.bound14), (15, mc.bound15)))
     data = {
@@ -206,8 +202,8 @@ def register(commands) -> None:
     p.add_argument("--damping", type=float, default=0.1, help="damping ratio of narrow-band rocking, in (0, 1) [dimensionless], narrowband only (default 0.1)")
     p.add_argument("--samples", type=count, default=1_000_000, help="rocking samples N [count] (default 1e6)")
     p.add_argument("--seed", type=count, default=0, help="root seed [count] (default 0)")
-    p.add_argument("--workers", type=count, default=1, help="worker processes [count] (default 1; the result does not depend on it)")
-    p.add_argument("--progress", action="store_true", help="progress bar on stderr (default off)")
+    add_executor(p)
+    p.add_argument("--progress", action="store_true", help=PROGRESS_HELP)
     add_limits(p)
     commands.only_with(p, "--period", "--rocking", ("sine", "narrowband"))
     commands.only_with(p, "--damping", "--rocking", ("narrowband",))

@@ -23,6 +23,10 @@ the exact motion).  Beside the simulated drift it prints, for any algorithm:
 The simulated drift is a least-squares slope, which a periodic error larger
 than the drift accumulated over the run biases; ``simulation_matches_series``
 is false (with a note) when the slope and the series differ by more than 1 %.
+The run streams (:func:`strapdown.analysis.coning.long_run.simulate_long_run`):
+its memory does not grow with ``--duration``, and ``periodic_error_rad`` is the
+largest peak of the error about the least-squares line of a window of
+``periodic_error_window_steps`` steps (the whole run when it is shorter).
 
 Signs follow the package convention, exact minus algorithm: the drift vector
 (``drift_vector_deg_per_h``, components in frame I, the run starting at
@@ -38,8 +42,8 @@ import numpy as np
 from ...derivations.coning.series import WEIGHT_LIMIT
 from ..coning.drift_theory import SERIES_MAX_WEIGHT, SERIES_RTOL, asymptotic_drift_vector, converged_drift_series
 from ..coning.exact_drift import exact_drift
+from ..coning.long_run import simulate_long_run
 from ..coning.precession import RegularPrecession
-from ..coning.simulator import simulate
 from ..core.units import deg_per_h
 from ..core.validation import positive
 from . import Result, UsageError
@@ -64,9 +68,9 @@ def _run(args) -> Result:
         raise UsageError(f"Expected --max-order in {MIN_ORDER}..{WEIGHT_LIMIT}, got {K}")
     rtol = positive(args.series_rtol, "--series-rtol")
     alg = algorithm_from(args)
-    params = motion_parameters(args, alg)
+    params = motion_parameters(args)  # the work is estimated by the streaming run itself (constant memory)
     motion = RegularPrecession(params["eps"], params["nu"], params["nutation"])
-    r = simulate(alg, motion, args.sample_interval, args.duration, limits=limits_from(args))
+    r = simulate_long_run(alg, motion, args.sample_interval, args.duration, progress=args.progress, limits=limits_from(args))
     data, header = run_summary(alg, r, params)
     theory = {"eps": params["eps"], "nu": params["nu"], "nutation": params["nutation"], "step": r.step}
     terms = converged_drift_series(alg, **theory, rtol=rtol, max_weight=K)
@@ -109,8 +113,9 @@ def _run(args) -> Result:
         "drift_order": leading - 1 if leading >= 0 else None,
         "largest_term_weight": largest if largest >= 0 else None,
         "simulation_matches_series": agrees,
-        "periodic_error_rad": float(r.periodic_error),
-        "final_error_rad": float((r.attitude_error[-1] ** 2).sum() ** 0.5),
+        "periodic_error_rad": r.periodic_error,
+        "periodic_error_window_steps": min(r.window, r.steps),
+        "final_error_rad": float(np.linalg.norm(r.final_error)),
     }
     u_a_text = f"{asymptotic:.6g} deg/h (drift order {leading - 1}: ∝ H^{leading - 1})" if asymptotic is not None else f"zero through h^{terms.max_weight} (raise --max-order)"
     truncation_text = f"{truncation:.2g} deg/h, the last term kept" if truncation is not None else "unknown: the terms do not fall yet"
@@ -145,7 +150,7 @@ def _run(args) -> Result:
     if agrees is False:
         lines.append(
             f"note: the simulated slope differs from the series by {abs(simulated - series) / series:.1%}: the periodic error "
-            f"(peak {data['periodic_error_rad']:.2e} rad about the drift line) is not averaged out in {r.time[-1]:g} s; "
+            f"(peak {data['periodic_error_rad']:.2e} rad about the drift line) is not averaged out in {r.duration:g} s; "
             "a longer --duration brings the two together"
         )
     return Result(data, "\n".join(lines))
@@ -163,6 +168,7 @@ def register(commands) -> None:
         "drift",
         _run,
         "constant drift rate of an algorithm under regular precession or classical coning (parallel computation, series, exact)",
+        progress="own",
     )
     add_algorithm(p)
     add_motion(p)

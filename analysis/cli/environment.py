@@ -2,24 +2,22 @@
 
 The environment is a TOML file (``docs/environment-files.md``): coning and
 sculling lines, spectra, the gyro's and accelerometers' filters, decimation.
+
+Every option is checked before the vibration library is imported (it brings
+scipy's filters and the coning theory), so that a bad value is refused as fast
+as in any other command.
 """
 
 from __future__ import annotations
 
 import math
 import sys
+import warnings
 
 import numpy as np
 
-from ...derivations.coning.registry import get
 from ..core.units import DEG, DEG_PER_RT_H_TO_RAD_PER_RT_S, RAD_PER_S_TO_DEG_PER_H
 from ..core.validation import nonnegative, positive
-from ..vibration.aliasing import alias_pairs
-from ..vibration.drift import environment_drift, theory_warnings
-from ..vibration.environment import load_environment
-from ..vibration.noise import SensorNoise, noise_through_algorithm
-from ..vibration.rate_design import DEFAULT_RATES, FREQUENCY_MARGIN, rate_design
-from ..vibration.tuning import drift_across_band, tune
 from . import Result
 from ._options import add_algorithm, add_limits, algorithm_from, count, limits_from, number, write_text_atomic
 
@@ -28,6 +26,14 @@ BAND_POINTS = 41
 K = RAD_PER_S_TO_DEG_PER_H
 #: Rate amplitude of the coning line of the band comparison [deg/s] (a fixed angle would be a rate growing with frequency).
 BAND_RATE_DEG_S = 1.0
+#: The search grid of environment-rates (lowest and highest rate [Hz], number of rates) and its
+#: frequency margin: the library's defaults (``vibration.rate_design.DEFAULT_RATES``,
+#: ``FREQUENCY_MARGIN``), restated so that parsing does not import the library
+#: (``tests/test_environment_cli.py`` checks that they agree).
+DEFAULT_RATE_GRID = (50.0, 20000.0, 61)
+FREQUENCY_MARGIN = 0.05
+#: Samples and previous samples a tuned design may have (the library's MAX_SAMPLES).
+MAX_DESIGN_SAMPLES = 8
 
 
 def _vec(v) -> list:
@@ -35,6 +41,8 @@ def _vec(v) -> list:
 
 
 def _environment(args):
+    from ..vibration.environment import load_environment
+
     return load_environment(args.environment)
 
 
@@ -78,7 +86,15 @@ def drift_command(args) -> Result:
     """
     h = _interval(args)
     alg = algorithm_from(args)
+    noisy = bool(args.arw_deg_per_rt_h or args.quantization_rad)
+    if noisy:  # checked before any import of the library
+        arw = nonnegative(args.arw_deg_per_rt_h, "--arw-deg-per-rt-h")
+        quantum = nonnegative(args.quantization_rad, "--quantization-rad")
+        mission = positive(args.mission, "--mission")
     env = _environment(args)
+    from ..vibration.aliasing import alias_pairs
+    from ..vibration.drift import environment_drift
+
     d = environment_drift(alg, env, h)
     _warn(d.warnings)
     axis, saxis = d.coning_axis, d.sculling_axis
@@ -145,10 +161,10 @@ def drift_command(args) -> Result:
             f"{p.multiple} × the step rate: beat period {p.beat_period:.4g} s; mean 0 over many beats (not in the total), "
             f"but up to {p.amplitude * K:.4g} deg/h over a flight shorter than a beat"
         )
-    if args.arw_deg_per_rt_h or args.quantization_rad:
-        noise = SensorNoise(nonnegative(args.arw_deg_per_rt_h, "--arw-deg-per-rt-h") * DEG_PER_RT_H_TO_RAD_PER_RT_S, nonnegative(args.quantization_rad, "--quantization-rad"))
-        n = noise_through_algorithm(alg, env, h, noise)
-        mission = positive(args.mission, "--mission")
+    if noisy:
+        from ..vibration.noise import SensorNoise, noise_through_algorithm
+
+        n = noise_through_algorithm(alg, env, h, SensorNoise(arw * DEG_PER_RT_H_TO_RAD_PER_RT_S, quantum))
         rw = math.sqrt(float(np.trace(n.random_walk)) * mission)
         residual = float(np.linalg.norm(n.residual)) * mission
         data["noise"] = {
@@ -169,7 +185,14 @@ def drift_command(args) -> Result:
 
 def _design(args, quantity: str) -> Result:
     h = _interval(args)
+    for flag, value, low in (("--samples", args.samples, 1), ("--previous", args.previous, 0)):
+        if not low <= value <= MAX_DESIGN_SAMPLES:
+            raise ValueError(f"Expected `{flag}` in {low}..{MAX_DESIGN_SAMPLES}, got {value}")
+    if args.samples + args.previous < 2:
+        raise ValueError(f"Expected --samples + --previous >= 2 (one lag sum at least), got {args.samples} and {args.previous}")
     env = _environment(args)
+    from ..vibration.tuning import CONDITION_LIMIT, drift_across_band, tune
+
     t = tune(env, args.samples, h, history=args.previous, quantity=quantity, name=args.name)
     scale = K if quantity == "coning" else 1.0
     unit = "deg_per_h" if quantity == "coning" else "m_s2"
@@ -200,6 +223,8 @@ def _design(args, quantity: str) -> Result:
         "classical_coefficients": {f"{i},{j}": float(c) for (i, j), c in t.classical.pairwise.items()},
         "expression": expression,
         "algorithm_file": t.toml(),
+        "condition_number": t.condition_number,
+        "well_conditioned": t.well_conditioned,
     }
     classical = t.classical.name if t.classical_in_registry else "optimal coning lag sums on (N − l, N), not a registry algorithm"
     what = "drift" if quantity == "coning" else "rectification error"
@@ -210,6 +235,16 @@ def _design(args, quantity: str) -> Result:
         f"{what} magnitude: tuned {tuned_mag * scale:.6g} {shown}, classical ({classical}) {classical_mag * scale:.6g} {shown}",
         f"  vectors in body axes: tuned {_show(t.drift, scale)}, classical {_show(t.classical_drift, scale)} {shown}",
     ]
+    digits = max(0.0, 16.0 - np.log10(max(t.condition_number, 1.0)))
+    text.append(f"condition number of the tuning system {t.condition_number:.3g}: the coefficients keep about {digits:.0f} of float64's 16 significant digits")
+    if not t.well_conditioned:
+        note = (
+            f"the tuning system is ill-conditioned (condition number {t.condition_number:.2g} > {CONDITION_LIMIT:.0e}): the coefficients "
+            f"(largest |c| = {max(abs(v) for v in t.coefficients.values()):.2g}) keep about {digits:.0f} significant digits and cancel each other; "
+            "fewer --samples or --previous give a better-conditioned algorithm"
+        )
+        text.append("warning: " + note)
+        warnings.warn(note, stacklevel=2)
     if expression:
         text.append(f"closed form (x = ωh, rho = sensed fraction of the coning): k = {expression}")
     if quantity == "coning":
@@ -283,9 +318,14 @@ def rates_command(args) -> Result:
     if hi <= lo:
         raise ValueError(f"Expected `--max-rate-hz` above `--min-rate-hz`, got {hi:g} and {lo:g}")
     budget = positive(args.budget_deg_per_h, "--budget-deg-per-h") / K
+    from ...derivations.coning.registry import get
+
     algorithms = [get(n.strip()) for n in args.algorithms.split(",") if n.strip()]
     tuned = [(n, 0) for n in range(2, args.tuned_up_to + 1)]
     env = _environment(args)
+    from ..vibration.drift import theory_warnings
+    from ..vibration.rate_design import rate_design
+
     design = rate_design(env, budget, algorithms=algorithms, tuned=tuned, rates=np.geomspace(lo, hi, args.rates), margin=args.margin, limits=limits_from(args))
     _warn(theory_warnings(env, 1.0 / hi))
     rows = []
@@ -348,9 +388,10 @@ def register(commands) -> None:
     p.add_argument("--algorithms", default="two-sample,optimal-3,ignagni-1996-5", metavar="NAMES",
                    help="comma-separated registry algorithms [name] (`strapdown algorithms list`) (default two-sample,optimal-3,ignagni-1996-5)")  # fmt: skip
     p.add_argument("--tuned-up-to", type=count, default=3, metavar="N", help="also tuned algorithms of 2 … N samples [count], 1 … 4 (default 3)")
-    p.add_argument("--min-rate-hz", type=number, default=DEFAULT_RATES[0], metavar="F", help=f"lowest sample rate searched [Hz] (default {DEFAULT_RATES[0]:g})")
-    p.add_argument("--max-rate-hz", type=number, default=DEFAULT_RATES[-1], metavar="F", help=f"highest sample rate searched [Hz] (default {DEFAULT_RATES[-1]:g})")
-    p.add_argument("--rates", type=count, default=len(DEFAULT_RATES), metavar="R", help=f"sample rates on the search grid [count] (default {len(DEFAULT_RATES)})")
+    lo, hi, rates = DEFAULT_RATE_GRID
+    p.add_argument("--min-rate-hz", type=number, default=lo, metavar="F", help=f"lowest sample rate searched [Hz] (default {lo:g})")
+    p.add_argument("--max-rate-hz", type=number, default=hi, metavar="F", help=f"highest sample rate searched [Hz] (default {hi:g})")
+    p.add_argument("--rates", type=count, default=rates, metavar="R", help=f"sample rates on the search grid [count] (default {rates})")
     p.add_argument("--margin", type=number, default=FREQUENCY_MARGIN, metavar="D",
                    help=f"relative frequency margin the budget must also hold at [dimensionless], 0 ≤ D < 1 (default {FREQUENCY_MARGIN:g})")  # fmt: skip
     add_limits(p)

@@ -300,7 +300,7 @@ def register(commands) -> None:
         "identify",
         identify_command,
         "identify a user's coning and sculling code as an exact algorithm: terms, consistency, orders, drift, remainder, check",
-        description=__doc__.split("\n\n")[1].replace("\n", " ").replace("``", ""),
+        description=__doc__.split("\n\n")[1].replace("\n", " "),
     )
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument(

@@ -26,6 +26,9 @@ kernels
     and the chunked run of a batch of points through them.
 streaming
     Drift fit and error statistics from running sums (memory independent of the run).
+long_run
+    One run of any length at constant memory: the drift fit, the error
+    statistics and the periodic error over windows of the series.
 batch
     Batches over arrays of ε, ν, ϑ, h in one call.
 local_error

@@ -228,13 +228,15 @@ def anchor_of(rate, interval, offset, index):
     return math.cos(angle), math.sin(angle)
 
 
-def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, history):
+def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, origin, pairs, samples, history):
     """Advance every point from step ``k0`` to ``min(k1, n_steps)``; accumulate the statistics.
 
     ``par`` (P, N_PARAMETERS) parameter rows; ``n_steps`` (P,) steps of each run;
     ``theta`` (P, 8) the (bi)quaternion after step ``k0``, updated in place;
-    ``sums`` (P, N_SUMS) the accumulators, updated; ``err`` (P, n + 1, 3) and
-    ``dwe``, ``dwi`` the series, written at every step index when ``keep``.
+    ``sums`` (P, N_SUMS) the accumulators, updated; ``err`` (P, rows, 3) and
+    ``dwe``, ``dwi`` the series, step k written at row ``k − origin`` when ``keep``
+    (``origin`` 0 and ``rows`` n + 1 for a whole series; ``origin`` k0 for a
+    window that holds the steps k0 … k1 only).
     Step 0 (the initial state) is compared when ``k0 == 0``.  ``samples`` (N) and
     ``history`` are the algorithm's, and ``pairs`` holds the pairwise terms of a
     data-driven increment (:func:`pairwise_increment`).
@@ -341,7 +343,7 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, 
             a3 += e2n
             a4 = max(a4, e2n)
             if keep:
-                err[i, k, 0], err[i, k, 1], err[i, k, 2] = ex, ey, ez
+                err[i, k - origin, 0], err[i, k - origin, 1], err[i, k - origin, 2] = ex, ey, ez
             if k == n:
                 sums[i, 5], sums[i, 6], sums[i, 7] = ex, ey, ez
             if DUAL:
@@ -369,8 +371,8 @@ def run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, 
                 b16 += b2n
                 b17 += i2n
                 if keep:
-                    dwe[i, k, 0], dwe[i, k, 1], dwe[i, k, 2] = bx, by, bz
-                    dwi[i, k, 0], dwi[i, k, 1], dwi[i, k, 2] = ix, iy, iz
+                    dwe[i, k - origin, 0], dwe[i, k - origin, 1], dwe[i, k - origin, 2] = bx, by, bz
+                    dwi[i, k - origin, 0], dwi[i, k - origin, 1], dwi[i, k - origin, 2] = ix, iy, iz
                 if k == n:
                     sums[i, 8], sums[i, 9], sums[i, 10] = bx, by, bz
                     sums[i, 11], sums[i, 12], sums[i, 13] = ix, iy, iz
@@ -396,3 +398,37 @@ def flush(sums, i, a0, a1, a2, a3, a4, b14, b15, b16, b17):
     sums[i, 15] = max(sums[i, 15], b15)
     sums[i, 16] += b16
     sums[i, 17] += b17
+
+
+def window_peak(err, i, count):
+    """Peak distance of rows ``0 … count − 1`` of ``err[i]`` from their least-squares line.
+
+    The compiled counterpart of :func:`strapdown.analysis.coning.streaming.window_peak`
+    (same definition, its sums in another order: equal to round-off): the
+    line ``a + d (k − (count − 1)/2)`` from one pass, the largest distance from
+    a second.
+    """
+    if count < 3:
+        return 0.0
+    mid = 0.5 * (count - 1)
+    s0 = s1 = s2 = 0.0
+    m0 = m1 = m2 = 0.0
+    for k in range(count):
+        c = k - mid
+        s0 += err[i, k, 0]
+        s1 += err[i, k, 1]
+        s2 += err[i, k, 2]
+        m0 += c * err[i, k, 0]
+        m1 += c * err[i, k, 1]
+        m2 += c * err[i, k, 2]
+    norm = count * (count * count - 1.0) / 12.0
+    a0, a1, a2 = s0 / count, s1 / count, s2 / count
+    d0, d1, d2 = m0 / norm, m1 / norm, m2 / norm
+    best = 0.0
+    for k in range(count):
+        c = k - mid
+        r0 = err[i, k, 0] - a0 - c * d0
+        r1 = err[i, k, 1] - a1 - c * d1
+        r2 = err[i, k, 2] - a2 - c * d2
+        best = max(best, r0 * r0 + r1 * r1 + r2 * r2)
+    return math.sqrt(best)

@@ -60,6 +60,7 @@ from .streaming import N_SUMS, empty_sums
 __all__ = [
     "ENGINES",
     "AUTO_MIN_WORK",
+    "BLOCK",
     "available",
     "use_compiled",
     "increment_source",
@@ -77,11 +78,15 @@ __all__ = [
     "SPECIALISE_MIN_WORK",
 ]
 
+#: Steps between two flushes of the kernel's partial sums: a span that starts and ends at multiples
+#: of it gives the same sums however a run is cut (:mod:`strapdown.analysis.coning._kernel_template`).
+BLOCK = template.BLOCK
+
 #: Values of the ``engine`` argument of the simulators.
 ENGINES = ("auto", "numpy", "compiled")
 
 #: Template functions copied into every generated module, in this order.
-_TEMPLATE_FUNCTIONS = ("pairwise_increment", "qmul", "rotvec_quat", "error_rotvec", "fill_table", "phase", "anchor_of", "flush", "run")
+_TEMPLATE_FUNCTIONS = ("pairwise_increment", "qmul", "rotvec_quat", "error_rotvec", "fill_table", "phase", "anchor_of", "flush", "run", "window_peak")
 
 _lock = threading.Lock()
 _loaded: dict = {}
@@ -442,7 +447,7 @@ class Kernel(NamedTuple):
     Attributes
     ----------
     run : numba dispatcher
-        ``run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, pairs, samples, history)``
+        ``run(par, n_steps, theta, k0, k1, sums, err, dwe, dwi, keep, origin, pairs, samples, history)``
         of :mod:`strapdown.analysis.coning._kernel_template`.
     pairs : ndarray, shape (K, 3)
         :func:`pairwise_data` of the algorithm (empty for a straight-line kernel, which does not read it).
@@ -450,12 +455,17 @@ class Kernel(NamedTuple):
         N, samples per step.
     history : int
         Samples of earlier steps read.
+    window_peak : numba dispatcher, optional
+        ``window_peak(err, i, count)`` of :mod:`strapdown.analysis.coning._kernel_template`:
+        the peak distance of a window of a series from its least-squares line
+        (compiled on its first call).
     """
 
     run: object
     pairs: np.ndarray
     samples: int
     history: int
+    window_peak: object = None
 
 
 def compiled_module(text: str):
@@ -520,9 +530,10 @@ def kernel(algorithm: Algorithm, *, velocity: bool, specialised: bool | None = F
     if specialised is None:
         specialised = work >= SPECIALISE_MIN_WORK
     text = kernel_source(algorithm, velocity=velocity, specialised=specialised)
-    run = compiled_module(text).run
+    module = compiled_module(text)
+    run = module.run
     pairs = pairwise_data(algorithm) if is_pairwise(algorithm) and not specialised else np.zeros((0, 3))
-    compiled = Kernel(run, np.ascontiguousarray(pairs), int(algorithm.samples), int(algorithm.history))
+    compiled = Kernel(run, np.ascontiguousarray(pairs), int(algorithm.samples), int(algorithm.history), module.window_peak)
     if not run.signatures:  # first use in this process: compile, or load what another process compiled
         from ..core.cache import building
 
@@ -591,11 +602,11 @@ def chunk_steps(points: int, *, budget: int = 1 << 20) -> int:
     -------
     int
     """
-    block = template.BLOCK
+    block = BLOCK
     return max(block, (budget // max(points, 1)) // block * block)
 
 
-def advance(run: Kernel, par, theta, n_steps, sums, k0: int, k1: int, series=None) -> None:
+def advance(run: Kernel, par, theta, n_steps, sums, k0: int, k1: int, series=None, origin: int = 0) -> None:
     """Advance all points from step ``k0`` to ``k1`` with a compiled kernel, in place.
 
     Parameters
@@ -612,17 +623,20 @@ def advance(run: Kernel, par, theta, n_steps, sums, k0: int, k1: int, series=Non
         Accumulators (:mod:`strapdown.analysis.coning.streaming`), updated.
     k0, k1 : int
         First and last step index of the span.
-    series : tuple of three ndarray, shape (P, n + 1, 3), optional
+    series : tuple of three ndarray, shape (P, rows, 3), optional
         Error series δφ_I, ΔW_E and ΔW_I (exact minus algorithm, as
-        :class:`~strapdown.analysis.coning.simulator.SimulationResult`), written
-        at every step of the span.
+        :class:`~strapdown.analysis.coning.simulator.SimulationResult`), step k
+        of the span written at row ``k − origin``.
+    origin : int
+        Step index of row 0 of ``series``: 0 for whole series (rows n + 1), ``k0``
+        for a window buffer that holds the span only (rows ``k1 − k0 + 1``).
     """
     data = (run.pairs, run.samples, run.history)
     if series is None:
         dummy = np.zeros((1, 1, 3))
-        run.run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False, *data)
+        run.run(par, n_steps, theta, k0, k1, sums, dummy, dummy, dummy, False, 0, *data)
     else:
-        run.run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True, *data)
+        run.run(par, n_steps, theta, k0, k1, sums, series[0], series[1], series[2], True, int(origin), *data)
 
 
 

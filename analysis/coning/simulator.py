@@ -103,6 +103,11 @@ class SimulationResult:
         return self.time.shape[0] - 1
 
     @property
+    def duration(self) -> float:
+        """Simulated time n H [s], the last step end."""
+        return float(self.time[-1])
+
+    @property
     def drift_rate(self) -> np.ndarray:
         """Constant drift rate ``|slope|`` of the attitude error [rad/s], shape ``(...)``."""
         return np.linalg.norm(self.drift, axis=-1)
@@ -493,7 +498,8 @@ def simulate(
     degree_sum = sum(t.degree for t in algorithm.terms)
     runs = f"{len(motions)} runs of " if batched else ""
     what = f"`duration` = {float(duration):.3g} s over `sample_interval` = {h:g} s ({runs}{steps:.3g} steps of {n_samples} samples)"
-    budget.check(budget.coning_simulation(len(motions) * steps, window=algorithm.window, degree_sum=degree_sum, velocity=velocity, chunk_steps=CHUNK_STEPS, what=what), limits)
+    chunk = CHUNK_STEPS if batched else TIME_CHUNK
+    budget.check(budget.coning_simulation(len(motions) * steps, window=algorithm.window, degree_sum=degree_sum, velocity=velocity, chunk_steps=chunk, what=what), limits)
     lam0 = as_quaternion(attitude0, "attitude0", unit=True)
     w0 = as_vector(w_inertial0, "w_inertial0")
     if lam0.shape != (4,) or w0.shape != (3,):

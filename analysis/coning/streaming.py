@@ -19,6 +19,12 @@ Errors are exact minus algorithm, as in
 :class:`~strapdown.analysis.coning.simulator.SimulationResult`: ``δφ`` is the
 rotation vector of ``Λ* ∘ Λ̄`` in frame I, ``ΔW = W* − W``.
 
+The periodic part of the error, the peak distance of ``δφ`` from a
+least-squares line, needs the line before the distances, so it is not a
+running sum: :func:`window_peak` computes it over one window of the series (a
+buffer the kernels fill and reuse), and a long run takes the largest over
+consecutive windows.
+
 Columns: 0–2 ``Σ (k − n/2) δφ_k``; 3 ``Σ |δφ_k|²``; 4 ``max |δφ_k|²``; 5–7 the
 final ``δφ_n``; 8–10 and 11–13 the final ``ΔW_E``, ``ΔW_I``; 14, 15
 ``max |ΔW_E|²``, ``max |ΔW_I|²``; 16, 17 ``Σ |ΔW_E|²``, ``Σ |ΔW_I|²``.
@@ -30,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["N_SUMS", "ErrorStatistics", "empty_sums", "accumulate", "statistics"]
+__all__ = ["N_SUMS", "ErrorStatistics", "empty_sums", "accumulate", "statistics", "window_peak"]
 
 #: Numbers kept per parameter point (module docstring).
 N_SUMS = 18
@@ -193,3 +199,71 @@ def statistics(sums, steps, step, *, velocity: bool, shape=None) -> ErrorStatist
             "rms_dw_inertial": sc(np.sqrt(sums[:, 17] / count)),
         }
     return ErrorStatistics(**out)
+
+
+#: Rows of a window :func:`window_peak` treats at once (its temporaries stay a few MB).
+PEAK_BLOCK = 1 << 16
+
+
+def window_peak(error, rows=None) -> np.ndarray:
+    """Peak distance of a window of an error series from its own least-squares line.
+
+    For the m rows ``e_k`` of the window (equally spaced in time) the line is the
+    least-squares fit ``a + d (k − (m − 1)/2)``, and the peak is
+    ``max_k |e_k − a − d (k − (m − 1)/2)|``: the periodic error that a drift fit
+    over the window averages out.  Over a whole run it is
+    :attr:`strapdown.analysis.coning.simulator.SimulationResult.periodic_error`.
+    The sums and the distances are formed component by component in blocks of
+    :data:`PEAK_BLOCK` rows, so the temporaries do not grow with the window.
+
+    Parameters
+    ----------
+    error : ndarray, shape (P, m, 3)
+        Windows of P error series [rad] (any unit: the peak has the same).
+    rows : array_like of int, shape (P,), optional
+        Rows of each window that hold data (the first ``rows[i]``; default all m).
+        A window of fewer than three rows fits its line exactly and gives 0.
+
+    Returns
+    -------
+    ndarray, shape (P,)
+
+    Examples
+    --------
+    >>> k = np.arange(101.0)
+    >>> e = np.stack([1e-3 * k + 1e-6 * np.cos(k), 0 * k, 0 * k], axis=-1)[None]
+    >>> bool(abs(window_peak(e)[0] - 1e-6) < 1e-7)
+    True
+    """
+    error = np.asarray(error, dtype=float)
+    points, m = error.shape[0], error.shape[1]
+    full = np.full(points, m, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64)
+    peak = np.zeros(points)
+    for p in range(points):
+        count = int(full[p])
+        if count < 3:
+            continue
+        mid = 0.5 * (count - 1)
+        blocks = [(r0, min(count, r0 + PEAK_BLOCK)) for r0 in range(0, count, PEAK_BLOCK)]
+        total = np.zeros(3)
+        moment = np.zeros(3)
+        for r0, r1 in blocks:
+            c = np.arange(r0, r1) - mid
+            for j in range(3):
+                x = error[p, r0:r1, j]
+                total[j] += x.sum()
+                moment[j] += (x * c).sum()
+        line_a = total / count
+        line_d = moment / (count * (count * count - 1.0) / 12.0)  # Σ (k − mid)² over k < count
+        best = 0.0
+        for r0, r1 in blocks:
+            c = np.arange(r0, r1) - mid
+            square = np.zeros(r1 - r0)
+            for j in range(3):
+                res = error[p, r0:r1, j] - line_a[j]
+                res -= c * line_d[j]
+                res *= res
+                square += res
+            best = max(best, float(square.max()))
+        peak[p] = np.sqrt(best)
+    return peak

@@ -26,7 +26,7 @@ allocated; the command line passes its ``--time-limit`` and
 >>> check(est, Limits(seconds=60.0, memory=1e9))
 Traceback (most recent call last):
 ...
-strapdown.analysis.core.budget.BudgetExceeded: `duration` = 1e+07 s (1e9 simulator steps): estimated memory 96 GB exceeds the limit of 1 GB (pass larger `limits`)
+strapdown.analysis.core.budget.BudgetExceeded: `duration` = 1e+07 s (1e9 simulator steps): estimated memory 40 GB exceeds the limit of 1 GB (pass larger `limits`)
 """
 
 from __future__ import annotations
@@ -76,6 +76,7 @@ __all__ = [
     "LOG_SAMPLE",
     "coning_simulation",
     "coning_batch",
+    "coning_long_run",
     "arrays",
     "loop_response",
     "imu_record",
@@ -318,8 +319,10 @@ class CostModel:
 
 # ---------------------------------------------------------------- measured hot paths
 #: Parallel-computation simulator, per algorithm step of a light algorithm (two samples, one term):
-#: time, times (time + error + attitude) kept per step.  Heavier algorithms scale it (:func:`coning_simulation`).
-CONING_STEP = CostModel(seconds_per_unit=6e-7, bytes_per_unit=96.0, fixed_seconds=0.5)
+#: time; memory kept per step: the error series (24 bytes), the times (8) and the weights of the
+#: drift fit (8), measured with tracemalloc (``tests/test_long_run.py``).  Heavier algorithms scale
+#: the time (:func:`coning_simulation`).
+CONING_STEP = CostModel(seconds_per_unit=6e-7, bytes_per_unit=40.0, fixed_seconds=0.5)
 #: Azimuth Monte Carlo, per rocking sample (chunked: the working set does not grow with the run, but
 #: every error is kept for its order statistics, the quantiles: 8 bytes, and 8 more for the partial
 #: sort); the fixed time is the symbolic second-order theory derived once per process.
@@ -435,7 +438,9 @@ def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, ch
     Time grows with the samples per step (the increment window) and with the
     total degree of the algorithm's terms; dual numbers (velocity runs) cost about
     four times more per step (five is assumed) and keep three times more per step.  The increments
-    of one chunk of ``chunk_steps`` steps are held at once.
+    of one chunk of ``chunk_steps`` steps, with their step quaternions and prefix products, are held
+    at once: about ``40 · window + 120`` bytes per step of the chunk (twice that for dual numbers),
+    measured with tracemalloc.
 
     Parameters
     ----------
@@ -458,7 +463,7 @@ def coning_simulation(steps, *, window: int, degree_sum: int, velocity: bool, ch
     """
     per_step = 1.0 + window / 6.0 + degree_sum / 60.0
     dual = 5.0 if velocity else 1.0
-    chunk = min(float(steps), float(chunk_steps)) * window * 3 * 8 * 4 * (2 if velocity else 1)
+    chunk = min(float(steps), float(chunk_steps)) * (40.0 * window + 120.0) * (2 if velocity else 1)
     return CONING_STEP.estimate(steps, what=what, seconds_factor=per_step * dual, bytes_factor=3.0 if velocity else 1.0, extra_bytes=chunk)
 
 
@@ -497,6 +502,48 @@ def coning_batch(points, steps, *, window: int, degree_sum: int, velocity: bool,
     work = points * steps if points and steps else 0.0
     seconds = CONING_STEP.fixed_seconds + CONING_STEP.seconds_per_unit * per_step * (5.0 if velocity else 1.0) * work
     memory = points * 400.0 + (points * (steps + 1.0) * 3 * 8 * (3 if velocity else 1) if series and points else 0.0)
+    return Estimate(seconds, memory, what)
+
+
+#: Arrays of a long run beside its window (parameters, sums, the kernel's own buffers) [bytes].
+LONG_RUN_FIXED_BYTES = 1e5
+
+
+def coning_long_run(steps, *, window: int, samples: int, degree_sum: int, series: bool, what: str) -> Estimate:
+    """Estimate of one constant-memory run (``strapdown.analysis.coning.long_run.simulate_long_run``).
+
+    The time is that of :func:`coning_batch` for one point.  The memory is one
+    window of the error series (``window + 1`` rows of three float64, whose
+    periodic error the compiled ``window_peak`` takes in place), whatever the
+    number of steps; with
+    ``series`` (the numpy engine, which holds the series) it is that of
+    :func:`coning_simulation` instead.
+
+    Parameters
+    ----------
+    steps : float
+        Algorithm steps of the run [count].
+    window : int
+        Steps per window of the periodic error [count].
+    samples : int
+        Samples per step (the increment window of a non-cross-step algorithm) [count].
+    degree_sum : int
+        Sum of the degrees of the algorithm's nonlinear terms [count].
+    series : bool
+        The numpy engine runs (it holds the whole series).
+    what : str
+        The request in the user's terms.
+
+    Returns
+    -------
+    Estimate
+    """
+    steps = float(steps)
+    seconds = coning_batch(1, steps, window=samples, degree_sum=degree_sum, velocity=False, series=False, what=what).seconds
+    if series:
+        return Estimate(seconds, coning_simulation(steps, window=samples, degree_sum=degree_sum, velocity=False, chunk_steps=65536, what=what).memory, what)
+    rows = float(window) + 1.0
+    memory = LONG_RUN_FIXED_BYTES + 24.0 * rows
     return Estimate(seconds, memory, what)
 
 

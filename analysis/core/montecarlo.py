@@ -313,10 +313,14 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
                 bar.update(1)
             return out
         if hasattr(executor, "gather") and hasattr(executor, "submit"):  # dask.distributed.Client
+            from distributed import as_completed  # the client exists, so dask.distributed is installed
+
+            # A task whose worker is lost is run again on another (the scheduler's allowed failures):
+            # it draws from its own block seeds, so the rerun gives the same numbers.
             futures = [executor.submit(_call, task, pure=False) for task in tasks]
-            out = executor.gather(futures)
-            bar.update(len(tasks))
-            return list(out)
+            for _ in as_completed(futures):  # progress as the cluster finishes tasks, in any order
+                bar.update(1)
+            return list(executor.gather(futures))
         futures = [executor.submit(_call, task) for task in tasks]
         out = []
         for f in futures:

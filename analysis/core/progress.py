@@ -104,7 +104,7 @@ def wanted(requested: bool | None = None, stream=None) -> bool:
 class _Task:
     """A counted piece of work reported to a :func:`lines` block (the subset of tqdm's interface the package uses)."""
 
-    def __init__(self, block, iterable, desc: str, total):
+    def __init__(self, block, iterable, desc: str, total, expected=None):
         self._block, self._iterable = block, iterable
         self.desc, self.n = desc, 0
         if total is None and iterable is not None:
@@ -113,12 +113,18 @@ class _Task:
             except TypeError:
                 total = None
         self.total = total
+        # expected seconds of each iteration (an earlier run's), or None: every iteration counts alike
+        self.expected = None
+        if expected is not None and total and len(expected) == total and all(e >= 0 for e in expected) and sum(expected) > 0:
+            self.expected = [float(e) for e in expected]
+        self.since = block.clock()  # when the current iteration started
         self._open = True
         block.push(self)
 
     def __iter__(self):
         try:
             for item in self._iterable:
+                self.since = self._block.clock()
                 yield item
                 self.n += 1
         finally:
@@ -126,6 +132,7 @@ class _Task:
 
     def update(self, n: float = 1) -> None:
         self.n += n
+        self.since = self._block.clock()
 
     def set_description(self, desc: str, refresh: bool = True) -> None:
         self.desc = desc
@@ -146,9 +153,10 @@ class _Task:
 class _Lines:
     """The state of a :func:`lines` block: the open tasks, innermost last, and the timer thread."""
 
-    def __init__(self, label: str, stream, interval: float):
-        self.label, self.stream, self.interval = label, stream, interval
-        self.start = time.monotonic()
+    def __init__(self, label: str, stream, interval: float, clock=time.monotonic):
+        self.label, self.stream, self.interval, self.clock = label, stream, interval, clock
+        self.start = clock()
+        self.shown = 0.0  # the largest fraction written so far: the next is never smaller
         self.tasks: list = []
         self._lock = threading.Lock()
         self._done = threading.Event()
@@ -163,20 +171,46 @@ class _Lines:
             if task in self.tasks:
                 self.tasks.remove(task)
 
-    def text(self) -> str:
-        """One line: what runs, the fraction done (when the work is counted) and the time elapsed."""
+    def fraction(self) -> float | None:
+        """The fraction done, from the open counted tasks (None while none is counted); see :func:`lines`."""
+        now = self.clock()
         with self._lock:
-            tasks = [(t.desc, t.n, t.total) for t in self.tasks]
-        fraction, scale, known = 0.0, 1.0, False
-        for _, n, total in tasks:  # nested counts: the inner ones refine the current step of the outer
+            tasks = [(t.n, t.total, t.expected, t.since) for t in self.tasks]
+        fraction, scale, known, budget, since = 0.0, 1.0, False, None, now
+        for n, total, expected, started in tasks:  # nested counts: the inner ones refine the current step of the outer
             if not total:
                 break
-            share = min(max(n, 0) / total, 1.0)
-            fraction += scale * share
-            scale /= total
+            done = min(max(int(n), 0), int(total))
+            if expected is None:
+                fraction += scale * min(max(n, 0) / total, 1.0)
+                scale /= total
+                budget = None
+            else:
+                whole = sum(expected)
+                fraction += scale * sum(expected[:done]) / whole
+                current = expected[done] if done < len(expected) else 0.0
+                scale *= current / whole
+                budget, since = current, started
             known = True
+        if not known:
+            return None
+        if budget:  # the current iteration reports nothing finer: let it advance with its expected time, to 90 %
+            fraction += scale * min((now - since) / budget, 0.9)
+        return fraction
+
+    def text(self) -> str:
+        """One line: what runs, the fraction done (when the work is counted) and the time elapsed.
+
+        The fraction never decreases from one line to the next (an inner task
+        that starts afresh does not take back what the line said).
+        """
+        fraction = self.fraction()
+        with self._lock:
+            tasks = [(t.desc, t.n, t.total) for t in self.tasks]
+            if fraction is not None:
+                fraction = self.shown = min(max(fraction, self.shown), 1.0)
         steps = "; ".join(f"{d} {n:.0f}/{total:.0f}" if total else f"{d} {n:.0f}" for d, n, total in tasks if d)
-        parts = [f"{100.0 * fraction:.0f}% done" if known else None, steps or None, f"{time.monotonic() - self.start:.0f} s elapsed"]
+        parts = [f"{100.0 * fraction:.0f}% done" if fraction is not None else None, steps or None, f"{self.clock() - self.start:.0f} s elapsed"]
         return f"{self.label}: " + ", ".join(p for p in parts if p)
 
     def _run(self) -> None:
@@ -216,7 +250,10 @@ def lines(label: str, *, stream=None, interval: float | None = None) -> Iterator
     block ends.  Each line is ``<label>: <fraction>% done, <task> <n>/<total>;
     <inner task> <n>/<total>, <seconds> s elapsed``, from the :func:`bar`
     tasks open at that instant (the fraction is left out while no task has a
-    count).
+    count).  Nested counts refine the current step of the task around them;
+    a task with ``expected`` seconds per step weights its steps by them.  The
+    fraction never goes backwards: a line repeats the largest fraction shown
+    so far rather than a smaller one (as when an inner task starts afresh).
 
     Parameters
     ----------
@@ -251,7 +288,7 @@ def lines(label: str, *, stream=None, interval: float | None = None) -> Iterator
         _active.reset(token)
 
 
-def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = None, enabled: bool = False, unit: str = "it", leave: bool = False):
+def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = None, enabled: bool = False, unit: str = "it", leave: bool = False, expected=None):
     """A progress bar on stderr: tqdm on a terminal, a counted task inside :func:`lines`, else silent.
 
     Parameters
@@ -268,6 +305,11 @@ def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = No
         Name of one iteration.
     leave : bool, keyword-only
         Keep the finished bar on screen.
+    expected : sequence of float, keyword-only, optional
+        Expected seconds of each iteration (for example an earlier run's), one
+        per iteration [s].  Inside :func:`lines` they weight the fraction done,
+        and an iteration that reports nothing finer advances with its expected
+        time (to 90 % of its share); ignored when their number is not ``total``.
 
     Returns
     -------
@@ -276,7 +318,7 @@ def bar(iterable: Iterable | None = None, *, desc: str, total: float | None = No
     """
     block = _active.get() if enabled else None
     if block is not None:
-        return _Task(block, iterable, desc, total)
+        return _Task(block, iterable, desc, total, expected)
     from tqdm import tqdm
 
     return tqdm(iterable, desc=desc, total=total, unit=unit, file=sys.stderr, leave=leave, disable=not enabled, dynamic_ncols=True)

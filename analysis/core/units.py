@@ -11,6 +11,7 @@ the reports), which convert with the factors below.
 from __future__ import annotations
 
 import math
+import numbers
 
 __all__ = [
     "DEG",
@@ -63,6 +64,20 @@ DEG_PER_H_PER_RT_H_TO_RAD_PER_S_PER_RT_S = DEG_PER_H_TO_RAD_PER_S / math.sqrt(SE
 MICRO_G = STANDARD_GRAVITY * 1e-6
 
 
+def _quantity(x):
+    """``x`` itself if it scales like a number (a number, an array, a dual number), an array for a list or tuple; else a clear TypeError."""
+    if isinstance(x, numbers.Number) and not isinstance(x, bool) or hasattr(x, "__array_ufunc__"):
+        return x  # numbers, numpy arrays and scalars (the hot path)
+    if isinstance(x, (list, tuple)):
+        from .validation import as_array
+
+        return as_array(x, "x", finite=False)
+    if not isinstance(x, (str, bytes, bool)) and x is not None and hasattr(x, "__mul__") and hasattr(x, "__rmul__"):
+        return x  # dual numbers and other numeric types
+    text = repr(x) if len(repr(x)) <= 60 else repr(x)[:57] + "..."
+    raise TypeError(f"Expected `x` to be a number or an array of numbers, got {type(x).__name__} {text}")
+
+
 def deg(x):
     """Radians → degrees.
 
@@ -75,8 +90,13 @@ def deg(x):
     -------
     float or ndarray
         The same value(s) [deg].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
-    return x * DEG_PER_RAD
+    return _quantity(x) * DEG_PER_RAD
 
 
 def rad(x):
@@ -91,8 +111,13 @@ def rad(x):
     -------
     float or ndarray
         The same value(s) [rad].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
-    return x * RAD_PER_DEG
+    return _quantity(x) * RAD_PER_DEG
 
 
 def deg_per_h(x):
@@ -107,8 +132,13 @@ def deg_per_h(x):
     -------
     float or ndarray
         The same value(s) [deg/h].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
-    return x * RAD_PER_S_TO_DEG_PER_H
+    return _quantity(x) * RAD_PER_S_TO_DEG_PER_H
 
 
 def rad_per_s(x):
@@ -123,8 +153,13 @@ def rad_per_s(x):
     -------
     float or ndarray
         The same value(s) [rad/s].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
-    return x * DEG_PER_H_TO_RAD_PER_S
+    return _quantity(x) * DEG_PER_H_TO_RAD_PER_S
 
 
 def deg_per_sqrt_h(x):
@@ -139,6 +174,11 @@ def deg_per_sqrt_h(x):
     -------
     float or ndarray
         The same value(s) [deg/√h].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
     return deg(x) * math.sqrt(SECONDS_PER_HOUR)
 
@@ -155,8 +195,13 @@ def micro_g_per_sqrt_hz(x):
     -------
     float or ndarray
         The same value(s) [µg/√Hz].
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
     """
-    return x / STANDARD_GRAVITY * 1e6
+    return _quantity(x) / STANDARD_GRAVITY * 1e6
 
 
 def milli_g(x):
@@ -172,7 +217,12 @@ def milli_g(x):
     float or ndarray
         The same value(s) [mg].
 
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a number, an array of numbers or a dual number.
+
     >>> round(milli_g(2e-3), 4)
     0.2039
     """
-    return x / STANDARD_GRAVITY * 1e3
+    return _quantity(x) / STANDARD_GRAVITY * 1e3

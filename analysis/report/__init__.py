@@ -32,6 +32,7 @@ from __future__ import annotations
 import importlib
 import io
 import pkgutil
+import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
@@ -433,15 +434,20 @@ def generate(
             kept = _carry_over(dest, staged, {m.SECTION.name for m in todo}) if only is not None else {}
             ctx = Context(out_dir=staged, quick=quick, show_progress=show_progress, command=command, sections=tuple(modules), figure_check=figure_check)
             written = dict(kept)
-            progress = bar(todo, desc="report", enabled=show_progress, leave=False)
+            expected = _expected_seconds([m.SECTION.name for m in todo], quick) if show_progress else None
+            progress = bar(todo, desc="report", enabled=show_progress, leave=False, expected=expected)
+            seconds = {}
             for module in progress:
                 progress.set_description(f"report: {module.SECTION.name}")
                 before = len(ctx.files)
+                started = time.monotonic()
                 with reproducible():  # SymPy's random choices fixed: same path and time every run
                     module.build(ctx)
+                seconds[module.SECTION.name] = time.monotonic() - started
                 written[module.SECTION.name] = tuple(sorted(ctx.files[before:]))
                 output.fault("section")
             progress.close()
+            _record_seconds(seconds, quick)
             files = {f for fs in written.values() for f in fs}
             output.check_legacy(dest, files)
             import matplotlib
@@ -461,6 +467,62 @@ def generate(
         finally:
             warm_up.stop(helper)
     return [m.SECTION.name for m in todo]
+
+
+def _timings_file() -> Path:
+    """Where the sections' durations of the last run are kept (beside the cache of generated code)."""
+    from ..core.cache import cache_directory
+
+    return cache_directory().parent / "report-timings.json"
+
+
+def _expected_seconds(names: list, quick: bool) -> list | None:
+    """Each section's duration in the last run of the same kind, to weight the progress (None before any run).
+
+    A section the last run did not time counts as the median of the others.
+    The durations only pace the progress lines; the report does not depend on them.
+    """
+    import json
+    import statistics
+
+    try:
+        known = json.loads(_timings_file().read_text(encoding="utf-8")).get("quick" if quick else "full", {})
+    except (OSError, ValueError, AttributeError):
+        return None
+    values = [known.get(n) for n in names]
+    timed = [float(v) for v in values if isinstance(v, (int, float)) and v >= 0]
+    if not timed:
+        return None
+    fill = statistics.median(timed)
+    return [float(v) if isinstance(v, (int, float)) and v >= 0 else fill for v in values]
+
+
+def _record_seconds(seconds: dict, quick: bool) -> None:
+    """Keep this run's section durations for the next run's progress (atomically; an unwritable cache is ignored)."""
+    import json
+    import os
+    import tempfile
+
+    path = _timings_file()
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        data = data if isinstance(data, dict) else {}
+    except (OSError, ValueError):
+        data = {}
+    kind = "quick" if quick else "full"
+    data[kind] = {**(data.get(kind) if isinstance(data.get(kind), dict) else {}), **{k: round(v, 3) for k, v in seconds.items()}}
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".json")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as handle:
+                json.dump(data, handle, indent=1, sort_keys=True)
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+    except OSError:
+        pass
 
 
 def _carry_over(dest: output.Destination, staged: Path, rebuilt: set) -> dict:

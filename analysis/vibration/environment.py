@@ -61,6 +61,7 @@ Public API
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -778,7 +779,12 @@ def load_environment(path, *, limits: EnvironmentLimits = ENVIRONMENT_LIMITS) ->
         unstable or has a gain other than 1 at zero frequency, a spectrum that
         is not positive semidefinite; the message names the file, the table
         and the key.
+    TypeError
+        If ``path`` is not a path (str or os.PathLike).
     """
+    if not isinstance(path, (str, os.PathLike)):
+        text = repr(path) if len(repr(path)) <= 60 else repr(path)[:57] + "..."
+        raise TypeError(f"Expected `path` to be a file path (str or os.PathLike), got {type(path).__name__} {text}")
     path = Path(path)
     data = _read_file(path, limits)
     top = _Reader(path, "top level", data, _TOP, limits)

@@ -208,7 +208,7 @@ def _maker_point(m: _Maker, sl: slice, results, aliases, sensors, col: int, h: f
         cs = [sensor + p[0] + a.base[col] for sensor, p, a in zip(sensors, parts, aliases[m.name])]
         Ms = [p[1:].T - a.per_pair[col] for p, a in zip(parts, aliases[m.name])]
         try:
-            k, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
+            k, _, _, _, _ = solve_lag_sums(cs[0], Ms[0], m.samples, m.history, quantity=quantity)
         except NothingToTune:  # no coning at all: the classical form, whose lag sums the Taylor conditions alone fix
             k = np.array([float(v) for v in lag_sums(optimal_coning_algorithm(m.samples, history=m.history))])
         if not np.all(np.isfinite(k)):

@@ -47,6 +47,7 @@ Public API
    lag_functions
    drift_across_band
    BandDrift
+   CONDITION_LIMIT
 """
 
 from __future__ import annotations
@@ -65,7 +66,11 @@ from .aliasing import alias_response
 from .drift import environment_drift, response_integrals
 from .environment import Environment, coning_line
 
-__all__ = ["NothingToTune", "TunedAlgorithm", "tune", "classical_algorithm", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES"]
+__all__ = ["NothingToTune", "TunedAlgorithm", "tune", "classical_algorithm", "tuned_drift", "solve_lag_sums", "lag_functions", "drift_across_band", "BandDrift", "QUANTITIES", "CONDITION_LIMIT"]
+
+#: Condition number above which a tuned design is called ill-conditioned: its coefficients keep
+#: fewer than half of float64's 16 significant digits (and are large and of alternating sign).
+CONDITION_LIMIT = 1e8
 
 #: What an algorithm is tuned for.
 QUANTITIES = ("coning", "sculling")
@@ -174,6 +179,10 @@ class TunedAlgorithm:
         h [s] it was tuned at.
     classical_in_registry : bool
         ``classical`` is a registry algorithm (its name is a registry name).
+    condition_number : float
+        2-norm condition number of the system solved for the lag sums (row-normalised):
+        the coefficients lose up to about ``log10(condition_number)`` of float64's
+        16 significant digits to round-off.
     """
 
     algorithm: Algorithm
@@ -187,6 +196,12 @@ class TunedAlgorithm:
     classical_drift: np.ndarray
     sample_interval: float
     classical_in_registry: bool = True
+    condition_number: float = 1.0
+
+    @property
+    def well_conditioned(self) -> bool:
+        """Whether the coefficients keep at least half of float64's digits (:data:`CONDITION_LIMIT`)."""
+        return bool(self.condition_number <= CONDITION_LIMIT)
 
     @property
     def coefficients(self) -> dict:
@@ -254,7 +269,9 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
     Returns
     -------
     tuple
-        ``(k, nulled, conditions, taylor_conditions)``.
+        ``(k, nulled, conditions, taylor_conditions, condition_number)``: the
+        last is the 2-norm condition number of the (row-normalised) system
+        solved, which bounds how many of float64's 16 digits ``k`` loses.
 
     Raises
     ------
@@ -281,8 +298,8 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
     A_env, b_env = A_env[reach], b_env[reach]
     r = A_env.shape[0]
     if r == 0:
-        k = np.array([v for v in _taylor_solution(samples, L)])
-        return k, False, 0, L
+        rows, rhs = zip(*(_taylor_row(samples, L, m) for m in range(1, L + 1)))
+        return _taylor_solution(samples, L), False, 0, L, float(np.linalg.cond(np.array(rows, dtype=float)))
     if r <= L:
         rows, rhs = [a / np.linalg.norm(a) for a in A_env], [b / np.linalg.norm(a) for a, b in zip(A_env, b_env)]
         for m in range(1, L - r + 1):
@@ -290,8 +307,9 @@ def solve_lag_sums(c: np.ndarray, M: np.ndarray, samples: int, history: int, *, 
             norm = math.sqrt(sum(v * v for v in row))
             rows.append(np.array(row) / norm)
             rhs.append(value / norm)
-        return np.linalg.solve(np.array(rows), np.array(rhs)), not unreachable, r, L - r
-    return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0
+        system = np.array(rows)
+        return np.linalg.solve(system, np.array(rhs)), not unreachable, r, L - r, float(np.linalg.cond(system))
+    return np.linalg.lstsq(A_env, b_env, rcond=None)[0], False, r, 0, float(np.linalg.cond(A_env))
 
 
 def _taylor_solution(samples: int, lags: int) -> np.ndarray:
@@ -355,7 +373,7 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
         raise ValueError(f"Expected `quantity` among {', '.join(QUANTITIES)}, got {quantity!r}")
     h = positive(sample_interval, "sample_interval")
     c, M = _environment_model(environment, N, K, h, quantity)
-    k, nulled, r, taylor = solve_lag_sums(c, M, N, K, quantity=quantity)
+    k, nulled, r, taylor, condition = solve_lag_sums(c, M, N, K, quantity=quantity)
     suffix = f"{N}" if K == 0 else f"{N}+{K}"
     terms = tuple(Term(Fraction(repr(float(v))), (N - lag, N)) for lag, v in enumerate(k, start=1) if v != 0.0)
     alg = Algorithm(name or f"tuned-{quantity}-{suffix}", N, terms, f"{N}-sample algorithm tuned to {environment.name} ({quantity}, h = {h:g} s)", "tuned by strapdown-analysis")
@@ -363,7 +381,7 @@ def tune(environment: Environment, samples: int, sample_interval: float, *, hist
     d_c = environment_drift(classical, environment, h)
     sums = tuple(float(Fraction(repr(float(v)))) for v in k)
     drift = c - M @ np.array(sums)
-    return TunedAlgorithm(alg, quantity, sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h, in_registry)
+    return TunedAlgorithm(alg, quantity, sums, nulled, r, taylor, drift, classical, d_c.total_vector if quantity == "coning" else d_c.sculling_vector, h, in_registry, condition)
 
 
 def classical_algorithm(samples: int, history: int = 0) -> tuple:
