@@ -82,7 +82,7 @@ sphinx_gallery_conf = {
     "filename_pattern": r".*",  # execute every script, not only plot_*.py
     "within_subsection_order": "FileNameSortKey",  # pages keep the order of their numbered file names
     # the gallery's sections in the order of the report
-    "subsection_order": ["examples/gallery/coning", "examples/gallery/stability", "examples/gallery/azimuth", "examples/gallery/alignment"],
+    "subsection_order": ["examples/gallery/coning", "examples/gallery/stability", "examples/gallery/azimuth", "examples/gallery/alignment", "examples/gallery/navigation"],
     "abort_on_example_error": False,  # run them all, then fail the build listing every failure
     "only_warn_on_example_error": False,
     "download_all_examples": False,

@@ -49,6 +49,7 @@ BASELINES = {
     "log environment": [EXAMPLE_LOG, "--out", os.path.join(LOG_OUT, "environment.toml")],
     "mount-environment": ["--profile", str(ROOT / "analysis" / "vibration" / "environments" / "airframe-profile.toml"),
                           "--mount", str(ROOT / "analysis" / "vibration" / "environments" / "isolated-imu-mount.toml"), "--tolerance", "0.01"],
+    "budget": ["--imu", str(ROOT / "analysis" / "navigation" / "imus" / "tactical.toml"), "--lat-deg", "45", "--duration", "600", "--alignment", "none"],
     "identify": ["--integrator", str(ROOT / "docs" / "integrator_examples.py") + ":two_sample", "--samples-per-step", "2", "--max-previous", "1", "--omega-h-rad", "1"],
     "drift": ["--algorithm", "panov-4s-1", "--eps", "-1", "--nutation-deg", "1", "--freq-hz", "10", "--sample-interval", "0.0025", "--duration", "0.5"],
     "multistage": ["--duration", "200", "--step", "0.1"],

@@ -503,9 +503,10 @@ def _blame(message: str, args, argv=()) -> str:
         choices = {a.dest for a in getattr(parser, "_actions", ()) if a.choices is not None}
         for dest, option in options.items():
             value = getattr(args, dest, None)
-            if dest in choices or not isinstance(value, str) or len(value) < 2 or (argv and not _typed(option, argv)):
+            values = [v for v in (value if isinstance(value, list | tuple) else [value]) if isinstance(v, str) and len(v) >= 2]  # an option given several times holds a list
+            if dest in choices or not values or (argv and not _typed(option, argv)):
                 continue  # a default the user did not type is never blamed
-            if any(w.strip(":,;()") == value for w in words) or f"{value!r}" in message:
+            if any(w.strip(":,;()") == v or f"{v!r}" in message for v in values for w in words):
                 flag = option
                 break
     if flag is not None:

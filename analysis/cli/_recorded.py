@@ -172,10 +172,15 @@ def align_recorded(args, options) -> Result:
     tuning = options.tuning
     spec = None
     if args.imu is not None:
-        from ..logs.sensor_spec import read_sensor_spec
+        from ..logs.sensor_file import read_sensor_file
 
-        spec = read_sensor_spec(args.imu)
-        tuning = replace(tuning, gyro_noise=spec.arw, accel_noise=spec.vrw)
+        spec = read_sensor_file(args.imu).sheet
+        if not (spec.gyro.random_walk > 0 and spec.accel.random_walk > 0):
+            raise ValueError(
+                f"Expected arw_deg_per_rt_h and vrw_m_s_per_rt_h > 0 in {args.imu} (zero noise makes the filter diverge on a long log), "
+                f"got {spec.gyro.random_walk:g} and {spec.accel.random_walk:g} (SI)"
+            )
+        tuning = replace(tuning, gyro_noise=spec.gyro.random_walk, accel_noise=spec.accel.random_walk)
     else:
         tuning = replace(tuning, gyro_noise=args.arw_deg_per_rt_h * DEG_PER_RT_H_TO_RAD_PER_RT_S, accel_noise=args.vrw_m_s_per_rt_h * M_S_PER_RT_H_TO_M_S_PER_RT_S)
     if args.method in ("kalman", "aided") and not (tuning.gyro_noise > 0 and tuning.accel_noise > 0):
@@ -183,8 +188,8 @@ def align_recorded(args, options) -> Result:
             f"--method {args.method} on a recorded log needs the sensor's noise: --imu SPEC.toml (a data sheet, or the output of log allan) "
             "or --arw-deg-per-rt-h and --vrw-m-s-per-rt-h > 0 (a filter told the noise is zero diverges on a long log)"
         )
-    gyro_bias = rad_per_s(args.gyro_bias_sigma_deg_per_h) if args.gyro_bias_sigma_deg_per_h > 0 else (spec.gyro_bias_instability if spec and spec.gyro_bias_instability else None)
-    accel_bias = args.accel_bias_sigma_m_s2 if args.accel_bias_sigma_m_s2 > 0 else (spec.accel_bias_instability if spec and spec.accel_bias_instability else None)
+    gyro_bias = rad_per_s(args.gyro_bias_sigma_deg_per_h) if args.gyro_bias_sigma_deg_per_h > 0 else (spec.gyro.bias_instability if spec and spec.gyro.bias_instability else None)
+    accel_bias = args.accel_bias_sigma_m_s2 if args.accel_bias_sigma_m_s2 > 0 else (spec.accel.bias_instability if spec and spec.accel.bias_instability else None)
     if args.method == "kalman":
         tuning = replace(tuning, **({"gyro_bias": gyro_bias} if gyro_bias else {}), **({"accel_bias": accel_bias} if accel_bias else {}))
     aided = None

@@ -7,7 +7,9 @@ environment file (``docs/environment-files.md``) adds the algorithms' residuals.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
+from ..core.atomic import replaced_atomically
 from ..core.units import DEG, DEG_PER_RAD
 from ..core.validation import in_open_interval
 from . import Result
@@ -34,44 +36,19 @@ def _line(ln, i: int) -> dict:
 
 
 def _save_figure(r, path) -> None:
-    """The sources stacked in root sum square against time, one panel per quantity; written atomically."""
-    import os
-    import tempfile
-    from pathlib import Path
-
+    """The sources stacked in root sum square against time (the report's figure), written atomically."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import numpy as np
 
-    from ..report.rendering import fixed_layout
+    from ..report.error_budget import draw_budget
 
-    path = Path(path)
-    t = r.times / 60.0
-    fig, axes = plt.subplots(1, 3, figsize=(13.0, 4.2))
-    order = sorted(r.lines, key=lambda ln: float(ln.position[-1]))
-    for ax, (key, attr, k) in zip(axes, _QUANTITIES):
-        below = np.zeros_like(t)
-        for ln in order:
-            top = np.sqrt(below**2 + (getattr(ln, attr) * k) ** 2)
-            ax.fill_between(t, below, top, label=ln.name, linewidth=0)
-            below = top
-        ax.plot(t, getattr(r.total, attr) * k, color="black", linewidth=1.0, label="total")
-        ax.set_xlabel("time [min]")
-        ax.set_ylabel(key.replace("_", " ").replace(" m s", " [m/s]").replace(" deg", " [deg]").replace(" error m", " error [m]"))
-    axes[0].legend(fontsize=6, loc="upper left")
-    fig.suptitle(f"{r.imu}: sources stacked in root sum square (alignment {r.alignment})", fontsize=9)
-    fixed_layout(fig, left=0.8, right=0.2, bottom=0.55, top=0.4, wgap=0.9)
-    fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", suffix=path.suffix or ".png")
-    os.close(fd)
+    fig = plt.figure(figsize=(13.0, 4.2))
     try:
-        fig.savefig(tmp, format=(path.suffix.lstrip(".") or "png"))
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+        draw_budget(fig, r)
+        with replaced_atomically(path) as tmp:
+            fig.savefig(tmp, format=Path(path).suffix.lstrip(".") or "png")
     finally:
         plt.close(fig)
 

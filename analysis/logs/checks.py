@@ -25,7 +25,7 @@ each window), so their cost is one pass over the samples:
     accelerometers' is 1; k = π/180 means degrees logged as radians, k = interval means
     rates in the increment columns.
 ``Earth rate``
-    At rest, a gyro good enough to see the Earth's rate reads |ω| = Ω = 15.04 °/h; the
+    At rest, a gyro good enough to see the Earth's rate reads ``|ω| = Ω`` = 15.04 °/h; the
     angle of ω above the horizontal is the latitude.  A gyro whose bias hides Ω is
     skipped, not failed.
 ``gaps``

@@ -16,7 +16,7 @@ narrow and tall its peak in a spectrum.  The search has two stages.
    candidate's frequency, giving the complex amplitudes ``Z_m`` of each
    channel.  For a band they are independent complex Gaussian numbers of mean
    zero; for a line they share the line's amplitude.  Thomson's statistic
-   (Thomson 1982, sec. XIII, with blocks in place of tapers)
+   (Thomson 1982, sec. XIII, with blocks in place of tapers)::
 
        F = M (M − 1) |Z̄|² / Σ_m |Z_m − Z̄|²
 

@@ -48,7 +48,7 @@ __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "genera
 SEED = 20261122
 
 #: Modules of this package that are machinery, not sections.
-_MACHINERY = frozenset({"output", "rendering", "corrections", "warm_up"})
+_MACHINERY = frozenset({"output", "rendering", "corrections", "warm_up", "log_figures"})
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
 """Figures of a recorded log: rates and specific force against time with the gaps (``strapdown log inspect --figure``),
-and an alignment filter's histories (``strapdown align --log ... --figure``).
+and an alignment filter's histories (``strapdown align --log FILE --figure PNG``).
 
 Public API
 ----------

@@ -130,7 +130,7 @@ class AliasPair:
     frequencies : tuple of float
         f₁, f₂ [Hz].
     kind : str
-        ``"sum"`` (f₁ + f₂ ≈ k/H) or ``"difference"`` (|f₁ − f₂| ≈ k/H).
+        ``"sum"`` (f₁ + f₂ ≈ k/H) or ``"difference"`` (``|f₁ − f₂| ≈ k/H``).
     multiple : int
         k [count].
     offset : float

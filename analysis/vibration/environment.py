@@ -472,7 +472,7 @@ class Environment:
         return any(np.any(ln.amplitude != 0) for ln in self.lines) or any(np.any(sp.density != 0) for sp in self.spectra)
 
     def rotation_amplitude(self) -> float:
-        """Bound on the rotation-vector amplitude θ of the vibration [rad]: Σ |A|/ω over the lines plus 3σ of the spectra's angle.
+        """Bound on the rotation-vector amplitude θ of the vibration [rad]: ``Σ |A|/ω`` over the lines plus 3σ of the spectra's angle.
 
         The spectra's angle variance ``∫ Σ_c G_cc(f)/ω² df`` (rate channels) is
         taken by the trapezoidal rule in ln f on the table.
@@ -490,7 +490,7 @@ class Environment:
         return lines + 3.0 * math.sqrt(var)
 
     def rate_amplitude(self) -> float:
-        """Bound on the body-rate amplitude Ω [rad/s]: Σ |A| over the lines plus 3σ of the spectra's rate.
+        """Bound on the body-rate amplitude Ω [rad/s]: ``Σ |A|`` over the lines plus 3σ of the spectra's rate.
 
         Returns
         -------

@@ -15,7 +15,7 @@ point of the base and a point of the block, with stiffness ``K_i = diag(k_i)``
 it carries no moment of its own (its rotational stiffness is left out).  The
 static load of gravity is carried by the isolators' preload; what the
 preload adds to the stiffness under rotation (the pendulum term, of relative
-order m g |c| / (k L²)) is left out.
+order ``m g |c| / (k L²)``) is left out.
 
 Coordinates ``q = (x, θ)``: the small displacement x of O and the small
 rotation θ of the block, both relative to the inertial frame (the base's

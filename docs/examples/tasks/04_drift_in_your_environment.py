@@ -66,10 +66,10 @@ for name in ("two-sample", "optimal-3"):
     print(f"{name:>10}: |drift| {deg_per_h(d.magnitude):.4f} deg/h; about the cone axis z: sensor part {deg_per_h(d.sensor):+.4f} + algorithm part {deg_per_h(d.algorithm_part):+.2e} deg/h")
 
 # %%
-# The filter passes the rate with a gain |H| < 1, so the sensed motion cones
-# less than the true one (with the same filter on every axis only |H|² counts,
-# not its phase: the sensed coning is |H|² times the true one, and a resonant
-# filter with |H| > 1 makes the sensor part negative); the difference is the
+# The filter passes the rate with a gain ``|H| < 1``, so the sensed motion cones
+# less than the true one (with the same filter on every axis only ``|H|²`` counts,
+# not its phase: the sensed coning is ``|H|²`` times the true one, and a resonant
+# filter with ``|H| > 1`` makes the sensor part negative); the difference is the
 # same for every algorithm, and here it is
 # four orders of magnitude above the two-sample algorithm's own residual. A
 # better coning algorithm does not help: only a wider filter, or an algorithm

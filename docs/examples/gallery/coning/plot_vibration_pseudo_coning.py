@@ -6,7 +6,7 @@ A classical coning line of 1 deg/s rate amplitude swept in frequency (a fixed
 1° cone would be 63 deg/s of rate at 10 Hz: extreme motion), seen by gyros
 behind common filter settings, the algorithm at h = 1 ms. The sensor part of
 the mean drift (pseudo-coning: with the same filter on every axis the sensed
-coning is |H|² times the true one) is the same for every algorithm; relative
+coning is ``|H|²`` times the true one) is the same for every algorithm; relative
 to the true coning it grows as (ω/ω_c)² for the first-order and Bessel filters
 and as (ω/ω_c)⁴ for the maximally flat Butterworth and the DLPF;
 dashed and dotted, the algorithms' own residuals with ideal sensors
