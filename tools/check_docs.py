@@ -64,7 +64,7 @@ CUT_BLOCKS = r"""
   const r = p.getBoundingClientRect(), style = getComputedStyle(p);
   const hidden = p.scrollWidth > p.clientWidth + 1 && !['auto', 'scroll'].includes(style.overflowX);
   return hidden || r.right > document.documentElement.clientWidth + 1;
-}).map(p => p.textContent.trim().split('\n')[0].slice(0, 60)))
+}).map(p => p.textContent.trim().split('\n')[0].slice(0, 60)))()
 """
 
 #: A page with one block cut at any width: the check of cut blocks must flag it.
