@@ -99,6 +99,11 @@ def api_site(tmp_path_factory) -> Path:
 
     shutil.copytree(DOCS, source, ignore=ignore)
     _copy_repository_pages(work)
+    # the landing page shows a figure the gallery draws; unexecuted, the gallery draws none, so the
+    # report's copy of that figure (the gallery page draws the same one) stands in for it
+    landing = source / "gallery" / "coning" / "images" / "sphx_glr_plot_drift_vs_step_001.png"
+    landing.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copy2(ROOT / "reports" / "figures" / "algorithms-drift-vs-step.png", landing)
     out = work / "html"
     cmd = [sys.executable, "-m", "sphinx", "-b", "html", "-q", "-W", "-D", "plot_gallery=0", str(source), str(out)]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=1200)

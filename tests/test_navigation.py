@@ -242,3 +242,24 @@ def test_example_imus_load():
     for name in ("tactical", "mems"):
         imu = example_imu(name)
         assert imu.sample_rate > 0 and imu.gyro.random_walk > 0
+
+
+def test_the_budgets_memory_estimate_is_within_a_factor_1_5_of_its_peak():
+    """The guard's estimate against the traced peak of a long series (it once said 771 MB for 10 MB)."""
+    import tracemalloc
+
+    from strapdown.analysis.core import budget
+    from strapdown.analysis.navigation import error_budget as eb
+
+    imu, site, points = example_imu("tactical"), Site(math.radians(45.0), 0.0), 2000
+    seen = []
+    real_check = budget.check
+    try:
+        budget.check = lambda estimate, limits=None: seen.append(estimate) or real_check(estimate, limits)
+        tracemalloc.start()
+        eb.error_budget(imu, site, 600.0, alignment="none", points=points)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+        budget.check = real_check
+    assert 1 / 1.5 <= seen[0].memory / peak <= 1.5, (seen[0].memory, peak)

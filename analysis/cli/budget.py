@@ -80,7 +80,7 @@ def budget_command(args) -> Result:
     if args.algorithm is not None or env is not None:
         from ...derivations.coning.registry import get
 
-        alg = get(args.algorithm or "two-sample")
+        alg = get("two-sample" if args.algorithm is None else args.algorithm)
     r = error_budget(
         imu, Site(lat * DEG, args.heading_deg * DEG), args.duration, environment=env, algorithm=alg,
         alignment=args.alignment, alignment_time=args.alignment_time, report_times=report, points=args.points,

@@ -11,8 +11,8 @@ time over ten minutes, as in the quick report: the tactical IMU after 120 s of
 analytic self-alignment, the MEMS IMU with its heading given (its gyro cannot
 find north).
 
-Report figure ``error-budget-tactical.png`` and Report figure
-``error-budget-mems.png`` (ten minutes, as in the quick report).
+Report figure ``error-budget-tactical.png`` and
+Report figure ``error-budget-mems.png`` (ten minutes, as in the quick report).
 """
 
 import math
