@@ -11,11 +11,11 @@ Public API
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
 
+from ..core.atomic import replaced_atomically
 from ..core.units import DEG_PER_RAD
 
 __all__ = ["draw_overview", "draw_alignment_history"]
@@ -67,13 +67,8 @@ def draw_overview(overview, path, *, title: str = "") -> Path:
         axes[0].set_title(title, fontsize=9)
     if overview.time.size:
         axes[1].set_xlim(float(np.min(overview.time)), float(np.max(overview.time)))
-    tmp = p.with_name(f".{p.name}.partial")
-    try:
+    with replaced_atomically(p) as tmp:
         fig.savefig(tmp, format="png")
-        os.replace(tmp, p)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return p
 
 
@@ -135,11 +130,6 @@ def draw_alignment_history(history, path, *, title: str = "") -> Path:
         axes[0].set_title(title, fontsize=9)
     if t.size > 1:
         axes[3].set_xlim(float(t[0]), float(t[-1]))
-    tmp = p.with_name(f".{p.name}.partial")
-    try:
+    with replaced_atomically(p) as tmp:
         fig.savefig(tmp, format="png")
-        os.replace(tmp, p)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return p
