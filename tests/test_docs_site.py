@@ -1,8 +1,9 @@
 """The documentation site: its API reference is complete, its gallery covers the report, its link check can fail.
 
-The API reference is built here (without executing the pages of the user
-guide and the gallery, which the full build in CI does) from a copy of
-``docs/``, and read back as a reader's tools would: the object inventory
+The API reference is the full build in ``docs/_build/html`` when it is newer
+than every source of the site and the package (CI builds it just before the
+tests); otherwise it is built here (without executing the pages of the user
+guide and the gallery) from a copy of ``docs/``. It is read back as a reader's tools would: the object inventory
 ``objects.inv`` and the anchors of the HTML pages. Every public name of every
 module of the installed packages must be in both. A module's public names are
 its ``__all__``; without one, the functions and classes it defines and the
@@ -87,9 +88,26 @@ def _copy_repository_pages(work: Path) -> None:
         shutil.copy2(path, work / relative)
 
 
+def _fresh_full_build() -> Path | None:
+    """``docs/_build/html`` when it is newer than every source it is built from (CI builds it just before), else None."""
+    site = DOCS / "_build" / "html"
+    inventory = site / "objects.inv"
+    if not inventory.is_file():
+        return None
+    generated = {"_build", "api", "concepts", "tasks", "gallery", "__pycache__"}
+    sources = [p for p in DOCS.rglob("*") if p.is_file() and not generated & set(p.relative_to(DOCS).parts[:1] + p.relative_to(DOCS).parts[-2:-1])]
+    for package in (strapdown.analysis, strapdown.derivations):
+        sources += list(Path(package.__path__[0]).rglob("*.py"))
+    built = inventory.stat().st_mtime
+    return site if all(p.stat().st_mtime < built for p in sources) else None
+
+
 @pytest.fixture(scope="module")
 def api_site(tmp_path_factory) -> Path:
-    """The site built from a copy of docs/, the pages of the user guide and the gallery not executed."""
+    """The site: the full build in ``docs/_build/html`` when it is up to date, else one built here from a copy of docs/, the pages of the user guide and the gallery not executed."""
+    fresh = _fresh_full_build()
+    if fresh is not None:
+        return fresh
     work = tmp_path_factory.mktemp("docs")
     source = work / "docs"
     generated = {"_build", "api", "concepts", "tasks", "gallery"}  # outputs of an earlier build in docs/ itself
