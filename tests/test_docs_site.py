@@ -96,8 +96,8 @@ def _fresh_full_build() -> Path | None:
         return None
     generated = {"_build", "api", "concepts", "tasks", "gallery", "__pycache__"}
     sources = [p for p in DOCS.rglob("*") if p.is_file() and not generated & set(p.relative_to(DOCS).parts[:1] + p.relative_to(DOCS).parts[-2:-1])]
-    for package in (strapdown.analysis, strapdown.derivations):
-        sources += list(Path(package.__path__[0]).rglob("*.py"))
+    for package in ("analysis", "derivations"):  # the repository's sources (an install copies them later, with new times)
+        sources += list((ROOT / package).rglob("*.py"))
     built = inventory.stat().st_mtime
     return site if all(p.stat().st_mtime < built for p in sources) else None
 
