@@ -42,6 +42,7 @@ UnscentedTuning, UnscentedResult, unscented_alignment
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -143,6 +144,25 @@ def _residual(a, b):
     return y
 
 
+@functools.cache
+def _batch_filter():
+    """filterpy's ``UnscentedKalmanFilter`` with its sigma points propagated all at once.
+
+    filterpy calls ``fx`` once per sigma point in a Python loop
+    (``compute_process_sigmas``); here ``fx`` takes the ``(2n + 1, n)`` sigma
+    points and returns them propagated, every other step being filterpy's own.
+    Built on first use so that importing this module does not import filterpy.
+    """
+    from filterpy.kalman import UnscentedKalmanFilter
+
+    class BatchUnscentedKalmanFilter(UnscentedKalmanFilter):
+        def compute_process_sigmas(self, dt, fx=None, **fx_args):
+            fx = self.fx if fx is None else fx
+            self.sigmas_f = fx(self.points_fn.sigma_points(self.x, self.P), dt, **fx_args)
+
+    return BatchUnscentedKalmanFilter
+
+
 def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None, *, rng=None, initial_errors=None) -> UnscentedResult:
     """Align every trial of a record with filterpy's unscented Kalman filter, from a large heading error.
 
@@ -171,7 +191,7 @@ def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None
     ----------
     Wan & van der Merwe (2000); filterpy's ``UnscentedKalmanFilter`` and ``MerweScaledSigmaPoints``.
     """
-    from filterpy.kalman import MerweScaledSigmaPoints, UnscentedKalmanFilter
+    from filterpy.kalman import MerweScaledSigmaPoints
 
     if not isinstance(record, ImuRecord):
         raise TypeError(f"Expected `record` to be an ImuRecord, got {type(record).__name__}")
@@ -188,15 +208,16 @@ def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None
     sg, sa = t.gyro_bias, t.accel_bias
 
     def fx(x, dt, R, dV, S):
-        C = attitude_matrix(x[0:3])
-        bg, ba = x[6:9] * sg, x[9:12] * sa
-        v = x[3:6]
-        v = v + C @ (dV - ba * D) - Wx @ (C @ S) + gn * D - 2.0 * D * (Wx @ v)
+        """The sigma points ``x`` (``(k, 12)``) propagated over one epoch, all at once."""
+        C = attitude_matrix(x[:, 0:3])
+        bg, ba = x[:, 6:9] * sg, x[:, 9:12] * sa
+        v = x[:, 3:6]
+        v = v + (C @ (dV - ba * D)[:, :, None])[:, :, 0] - (Wx @ (C @ S)[:, :, None])[:, :, 0] + gn * D - 2.0 * D * (Wx @ v[:, :, None])[:, :, 0]
         C = E_earth @ C @ R @ Rotation.from_rotvec(-bg * D).as_matrix()
         a = angles_from_matrix(C)
         out = x.copy()
-        out[0:3] = (a.heading, a.beta, a.gamma)
-        out[3:6] = v
+        out[:, 0], out[:, 1], out[:, 2] = a.heading, a.beta, a.gamma
+        out[:, 3:6] = v
         return out
 
     def hx(x):
@@ -215,7 +236,7 @@ def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None
         x0_err = np.asarray(initial_errors, dtype=float).reshape(n, 3)
     noise = t.measurement_noise * g.standard_normal((n, E, 3))
     for i in range(n):  # filterpy runs one state at a time
-        ukf = UnscentedKalmanFilter(12, 3, D, hx, fx, points, x_mean_fn=_mean, z_mean_fn=None, residual_x=_residual)
+        ukf = _batch_filter()(12, 3, D, hx, fx, points, x_mean_fn=_mean, z_mean_fn=None, residual_x=_residual)
         ukf.x = np.zeros(12)
         ukf.x[0:3] = record.truth_angles[i, 0] + x0_err[i]
         ukf.P, ukf.Q, ukf.R = P0.copy(), Q.copy(), R.copy()
