@@ -77,3 +77,27 @@ def test_filter_sequence_refuses_shapes_that_do_not_fit():
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 3)), np.eye(1), np.eye(2), 3)
     with pytest.raises(ValueError, match="`n_steps` >= 0"):
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 2)), np.eye(1), np.eye(2), -1)
+
+
+def test_filter_sequence_is_bit_identical_to_filterpys_filter():
+    # the covariance cycles without the filter object: the same numbers as filterpy's predict/update, to the last bit
+    rng = np.random.default_rng(7)
+    n, m = 5, 2
+    F = np.eye(n) + 0.1 * rng.standard_normal((n, n))
+    A = rng.standard_normal((n, n))
+    Q = 1e-3 * A @ A.T
+    H = rng.standard_normal((m, n))
+    R = np.diag([0.2, 0.05])
+    P0 = np.diag([1.0, 2.0, 0.5, 0.1, 3.0])
+    seq = kalman.filter_sequence(F, Q, H, R, P0, 40)
+    kf = kalman.make_filter(F, Q, H, R, np.zeros(n), P0)
+    for k in range(40):
+        kf.predict()
+        assert np.array_equal(seq.prior[k], kf.P)
+        kf.update(np.zeros((m, 1)))
+        assert np.array_equal(seq.gains[k], kf.K)
+        assert np.array_equal(seq.posterior[k], kf.P)
+        assert np.array_equal(seq.innovation[k], kf.S)
+    # and it can tell: another process noise gives other covariances
+    other = kalman.filter_sequence(F, 2.0 * Q, H, R, P0, 40)
+    assert not np.array_equal(other.prior[-1], seq.prior[-1])
