@@ -241,10 +241,16 @@ class GradeCurve:
     time_to_align: float
 
 
-def _sigma_curve(scenario: Scenario, tuning: FilterTuning) -> tuple:
+def _filter_run(scenario: Scenario, tuning: FilterTuning) -> tuple:
+    """The fine filter's model and covariance sequence over the whole scenario (as :func:`fine_alignment` computes them)."""
     model = filter_model(scenario, tuning)
     E = scenario.n_samples // model.samples_per_epoch
-    seq = kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, E)
+    return model, kalman.filter_sequence(model.F, model.Q, model.H, model.R, model.P0, E)
+
+
+def _sigma_curve(scenario: Scenario, tuning: FilterTuning, run: tuple | None = None) -> tuple:
+    model, seq = _filter_run(scenario, tuning) if run is None else run
+    E = seq.posterior.shape[0]
     return model.epoch * np.arange(1, E + 1), np.sqrt(seq.posterior[:, 2, 2])
 
 
@@ -378,12 +384,14 @@ class _SheetKernel:
     scenario: Scenario
     sheet: DataSheet
     tuning: FilterTuning
+    model: object = None  # filter_model(scenario, tuning), computed once for every block (default: per block)
+    sequence: object = None  # its covariance sequence (default: per block)
 
     def __call__(self, n_trials: int, rng) -> np.ndarray:
-        model = filter_model(self.scenario, self.tuning)
+        model = filter_model(self.scenario, self.tuning) if self.model is None else self.model
         rec = simulate_imu(self.scenario, None, n_trials=n_trials, rng=rng, truth_stride=model.samples_per_epoch)
         rec = add_sensor_errors(rec, self.sheet, rng=rng)
-        res = fine_alignment(rec, self.tuning, rng=rng, model=model, score=False)
+        res = fine_alignment(rec, self.tuning, rng=rng, model=model, sequence=self.sequence, score=False)
         return res.estimate.heading_error[:, None]
 
 
@@ -414,8 +422,9 @@ def design_check_points(cases, *, n_trials: int, rng=None) -> tuple:
         else:  # at rest 2 Hz suffice (the filter's epoch is 1 s)
             sc = Scenario(DESIGN_LATITUDE, heading=rad(30.0), sample_rate=2.0, duration=T)
             tuning = grade_tuning(sheet)
-        _, sig = _sigma_curve(sc, tuning)
-        rows = montecarlo.collect(_SheetKernel(sc, sheet, tuning), n_trials, rng=montecarlo.block_seed(root, i), trials_per_block=min(64, n_trials), blocks_per_chunk=1)
+        run = _filter_run(sc, tuning)  # one filterpy run for the predicted σ and every block's filter
+        _, sig = _sigma_curve(sc, tuning, run)
+        rows = montecarlo.collect(_SheetKernel(sc, sheet, tuning, *run), n_trials, rng=montecarlo.block_seed(root, i), trials_per_block=min(64, n_trials), blocks_per_chunk=1)
         out.append(CheckPoint(label, float(T), float(sig[-1]), summarise(rows[:, 0])))
     return tuple(out)
 
