@@ -86,3 +86,25 @@ def test_grades_and_records():
     assert rec.dtheta.shape == ideal.dtheta.shape and not np.array_equal(rec.dtheta, ideal.dtheta)
     with pytest.raises(ValueError, match="flicker_band"):
         SensorSpec(bias_instability=1.0, flicker_band=(10.0, 1.0))
+
+
+@pytest.mark.parametrize("tau", [0.7, 40.0, math.inf])
+def test_first_order_loop_equals_the_numpy_form_to_the_last_bit(tau):
+    # the fused compiled loop against the numpy form (lfilter) on the same draws: Gauss–Markov terms and the random walk
+    from strapdown.analysis.alignment.sensor_models import _first_order
+
+    ref_inc, ref_mean = _first_order(np.random.default_rng(3), (4, 257, 3), 0.1, tau, 2.5e-7, compiled=False)
+    inc, mean = _first_order(np.random.default_rng(3), (4, 257, 3), 0.1, tau, 2.5e-7, compiled=True)
+    assert np.array_equal(inc, ref_inc) and np.array_equal(mean, ref_mean)
+    # and the comparison can tell: another variance gives other increments
+    other, _ = _first_order(np.random.default_rng(3), (4, 257, 3), 0.1, tau, 3.0e-7, compiled=True)
+    assert not np.array_equal(other, inc)
+
+
+def test_first_order_loop_refuses_shapes_that_do_not_fit():
+    from strapdown.analysis.alignment import kernels
+
+    with pytest.raises(ValueError, match="start"):
+        kernels.first_order_loop(np.zeros((2, 4, 10, 3)), np.zeros((3, 1, 3)), 0.9, 0.1, np.eye(2))
+    with pytest.raises(ValueError, match="draws"):
+        kernels.first_order_loop(np.zeros((4, 10, 3)), np.zeros((4, 1, 3)), 0.9, 0.1, np.eye(2))

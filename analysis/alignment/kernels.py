@@ -10,6 +10,9 @@ sample or epoch, which numpy spreads over dozens of small array operations:
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
   (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
+* :func:`first_order_loop` turns unit draws into the exact increments of a
+  first-order Gauss–Markov process or a random walk (the flicker and rate
+  random walk terms of :mod:`~strapdown.analysis.alignment.sensor_models`), fused in one pass;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
   :mod:`~strapdown.analysis.alignment.fine` over the epochs of every trial, with gains computed
   before (by filterpy), and scores it against the truth (NEES, NIS).
@@ -20,7 +23,7 @@ cached code still costs about half a second per process, more than a small
 run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
-forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration` and :mod:`~strapdown.analysis.alignment.fine` as
+forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration`, :mod:`~strapdown.analysis.alignment.sensor_models` and :mod:`~strapdown.analysis.alignment.fine` as
 the references the tests compare these loops against (equal to round-off).
 """
 
@@ -33,7 +36,7 @@ import numpy as np
 
 from ..core.validation import as_array, as_int, as_vector
 
-__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "fine_alignment_loop"]
+__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "first_order_loop", "fine_alignment_loop"]
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -370,6 +373,59 @@ def chain_loop(start, rotations):
         raise ValueError(f"Expected `start` with shape (4,) or ({n}, 4), got shape {q0.shape}")
     out = np.empty((n, E + 1, 4))
     _jit(_chain_loop)(np.ascontiguousarray(np.broadcast_to(q0, (n, 4))), rot, out)
+    return out
+
+
+def _first_order_loop(e, x0, phi, c, l00, l10, l11, out):
+    n, N, k = out.shape
+    for i in range(n):
+        for a in range(k):
+            x = x0[i, 0, a]
+            out[i, 0, a] = c * x + (l10 * e[0, i, 0, a] + l11 * e[1, i, 0, a])
+            for t in range(1, N):
+                x = l00 * e[0, i, t - 1, a] + phi * x
+                out[i, t, a] = c * x + (l10 * e[0, i, t, a] + l11 * e[1, i, t, a])
+
+
+def first_order_loop(draws, start, transition: float, coupling: float, noise_factor) -> np.ndarray:
+    """Increments of a first-order process from unit draws, in one compiled pass (the loop of ``sensor_models._first_order``).
+
+    With the level ``x`` and its integral over each interval driven by the
+    correlated pair ``(L e₀, L e₁)`` (``L`` the Cholesky factor of the
+    discretised noise): ``x_0 = start``, ``x_{j+1} = φ x_j + L₀₀ e₀ⱼ``, and the
+    increment ``c x_j + (L₁₀ e₀ⱼ + L₁₁ e₁ⱼ)``, the same operations in the same
+    order as the numpy form (``scipy.signal.lfilter``), so the two agree to
+    the last bit.
+
+    Parameters
+    ----------
+    draws : ndarray
+        ``(2, n, N, k)`` unit normal draws ``(e₀, e₁)``.
+    start : ndarray
+        ``(n, 1, k)`` levels at the first interval's start.
+    transition : float
+        φ, the level's transition over one interval.
+    coupling : float
+        ``c``, the increment's share of the level at the interval start [s].
+    noise_factor : array_like
+        ``(2, 2)`` lower Cholesky factor ``L`` of the discretised noise.
+
+    Returns
+    -------
+    ndarray
+        ``(n, N, k)`` increments.
+
+    Raises
+    ------
+    ValueError
+        For shapes that do not fit ``draws``.
+    """
+    e = _shaped(draws, "draws", (2, None, None, None))
+    n, N, k = e.shape[1:]
+    x0 = _shaped(start, "start", (n, 1, k))
+    L = _shaped(noise_factor, "noise_factor", (2, 2))
+    out = np.empty((n, N, k))
+    _jit(_first_order_loop)(e, x0, float(transition), float(coupling), float(L[0, 0]), float(L[1, 0]), float(L[1, 1]), out)
     return out
 
 

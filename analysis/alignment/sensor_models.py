@@ -60,6 +60,7 @@ from ..core import budget, kalman
 from ..core.units import DEG_PER_RT_H_TO_RAD_PER_RT_S, M_S_PER_RT_H_TO_M_S_PER_RT_S, rad_per_s
 from ..core.validation import as_int, nonnegative, positive
 from ..gyrocompass.rocking import as_generator
+from . import kernels
 from .imu import ImuRecord
 
 __all__ = [
@@ -270,11 +271,13 @@ class SensorErrorIncrements:
     mean_bias: np.ndarray
 
 
-def _first_order(g, shape, dt: float, tau: float, variance: float):
+def _first_order(g, shape, dt: float, tau: float, variance: float, compiled: bool | None = None):
     """Exact increments ``∫ x dt`` over each interval of a stationary first-order process (or a random walk from zero).
 
     ``x' = −x/τ + w``; τ = inf is the random walk with ``E w² = variance`` per second.
-    Returns ``(increments, mean level)``.
+    Returns ``(increments, mean level)``.  ``compiled``: the fused loop of
+    :func:`~strapdown.analysis.alignment.kernels.first_order_loop` or the numpy form (None: whichever pays off,
+    :func:`~strapdown.analysis.alignment.kernels.use_compiled`); both give the same bits.
     """
     from scipy.signal import lfilter
 
@@ -287,8 +290,11 @@ def _first_order(g, shape, dt: float, tau: float, variance: float):
     F, Q = kalman.discretise(A, Qc, dt)
     L = np.linalg.cholesky(Q + 1e-300 * np.eye(2))
     e = g.standard_normal((2, n, N, k))
-    e1, e2 = L[0, 0] * e[0], L[1, 0] * e[0] + L[1, 1] * e[1]
     phi, c = F[0, 0], F[1, 0]
+    if kernels.use_compiled(compiled, n * N * k):  # the same operations fused in one pass, equal to the last bit
+        inc = kernels.first_order_loop(e, x0, phi, c, L)
+        return inc, inc.sum(axis=1) / (N * dt)
+    e1, e2 = L[0, 0] * e[0], L[1, 0] * e[0] + L[1, 1] * e[1]
     # x_{j+1} = φ x_j + e1_j from x_0: the levels at the interval starts
     drive = np.concatenate([x0, e1[:, :-1]], axis=1)
     x = lfilter([1.0], [1.0, -phi], drive, axis=1)
