@@ -23,7 +23,8 @@ cached code still costs about half a second per process, more than a small
 run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
-forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration`, :mod:`~strapdown.analysis.alignment.sensor_models` and :mod:`~strapdown.analysis.alignment.fine` as
+forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration`,
+:mod:`~strapdown.analysis.alignment.sensor_models` and :mod:`~strapdown.analysis.alignment.fine` as
 the references the tests compare these loops against (equal to round-off).
 """
 
