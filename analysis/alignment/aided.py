@@ -53,12 +53,13 @@ from ..core import quaternion as quat
 from ..core.validation import as_int, nonnegative, positive
 from ..core.verdicts import Verdict
 from ..gyrocompass.rocking import as_generator
+from . import kernels
 from .comparison import TrialSummary, floor_reached, summarise
-from .earth import EARTH_RATE, normal_gravity
+from .earth import _GAMMA_E, _K, EARTH_RATE, normal_gravity  # the constants of normal gravity for the compiled navigator
 from .error_model import navigation_error_model
 from .preintegration import preintegrate
 from .sensor_models import SensorSpec, simulate_sensor_errors
-from .trajectory import WGS84_A, Manoeuvre, radii, trajectory_increments, trajectory_state
+from .trajectory import WGS84_A, WGS84_E2, Manoeuvre, radii, trajectory_increments, trajectory_state
 
 __all__ = [
     "AidedTuning",
@@ -416,7 +417,9 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
     rotation and the turn of the navigation frame; velocity with the
     rotation-compensated velocity increment, gravity, Coriolis and transport
     terms; latitude, longitude and height by the trapezoidal rule.  One step
-    per epoch, vectorised over trials.
+    per epoch, vectorised over trials (:func:`navigator_step`), or the epochs
+    between two fixes in one compiled loop (:func:`~strapdown.analysis.alignment.kernels.navigator_loop`,
+    when it pays off: :func:`~strapdown.analysis.alignment.kernels.use_compiled`), equal to the last bit.
 
     Parameters
     ----------
@@ -476,8 +479,17 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
     Pinv, Sinv = np.linalg.inv(seq.posterior), np.linalg.inv(seq.innovation)
     KT = np.swapaxes(seq.gains, 1, 2)
     u = 0
-    for j in range(E):  # one step per epoch, vectorised over trials
-        q, v, lat, lon, h = navigator_step(q, v, lat, lon, h, bg, ba, ep.rotation[:, j], ep.velocity[:, j], ep.moment[:, j], D)
+    compiled = kernels.use_compiled(None, n * E)
+    constants = np.array([EARTH_RATE, WGS84_A, WGS84_E2, _GAMMA_E, _K, quat.SERIES_ANGLE])
+    stop = 0
+    while stop < E:  # the epochs up to the next fix, then the fix
+        start, stop = stop, min(int(seq.updates[u]) + 1, E) if u < U else E
+        if compiled:  # the same steps in one compiled loop, equal to the last bit
+            q, v, lat, lon, h = kernels.navigator_loop(q, v, lat, lon, h, bg, ba, ep.rotation[:, start:stop], ep.velocity[:, start:stop], ep.moment[:, start:stop], D, constants)
+        else:
+            for j in range(start, stop):  # one step per epoch, vectorised over trials
+                q, v, lat, lon, h = navigator_step(q, v, lat, lon, h, bg, ba, ep.rotation[:, j], ep.velocity[:, j], ep.moment[:, j], D)
+        j = stop - 1
         if u < U and seq.updates[u] == j:
             vt = inputs.truth_velocity[j + 1]
             y = np.concatenate([v - vt, _ned_offset(lat, lon, h, lat_t[j + 1], lon_t[j + 1], h0)], axis=1) + noise[:, u]

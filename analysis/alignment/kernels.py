@@ -13,6 +13,8 @@ sample or epoch, which numpy spreads over dozens of small array operations:
 * :func:`first_order_loop` turns unit draws into the exact increments of a
   first-order Gauss–Markov process or a random walk (the flicker and rate
   random walk terms of :mod:`~strapdown.analysis.alignment.sensor_models`), fused in one pass;
+* :func:`navigator_loop` steps the GNSS-aided navigator of
+  :mod:`~strapdown.analysis.alignment.aided` over the epochs between two fixes, for every trial;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
   :mod:`~strapdown.analysis.alignment.fine` over the epochs of every trial, with gains computed
   before (by filterpy), and scores it against the truth (NEES, NIS).
@@ -24,7 +26,7 @@ run takes in numpy, so by default (:func:`use_compiled`) the callers use the
 numpy forms until numba is loaded or :data:`START_UP_WORK` samples have gone
 through them.  The vectorised numpy
 forms stay in :mod:`~strapdown.analysis.alignment.imu`, :mod:`~strapdown.analysis.alignment.preintegration`,
-:mod:`~strapdown.analysis.alignment.sensor_models` and :mod:`~strapdown.analysis.alignment.fine` as
+:mod:`~strapdown.analysis.alignment.sensor_models`, :mod:`~strapdown.analysis.alignment.aided` and :mod:`~strapdown.analysis.alignment.fine` as
 the references the tests compare these loops against (equal to round-off).
 """
 
@@ -37,7 +39,7 @@ import numpy as np
 
 from ..core.validation import as_array, as_int, as_vector
 
-__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "first_order_loop", "fine_alignment_loop"]
+__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop"]
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -100,7 +102,7 @@ def use_compiled(compiled: bool | None, work: int) -> bool:
 
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_rodrigues3",)
+_HELPERS = ("_rodrigues3", "_quat_mul", "_quat_rotate", "_rotvec_quat")
 
 
 def _jit(fn):
@@ -427,6 +429,134 @@ def first_order_loop(draws, start, transition: float, coupling: float, noise_fac
     L = _shaped(noise_factor, "noise_factor", (2, 2))
     out = np.empty((n, N, k))
     _jit(_first_order_loop)(e, x0, float(transition), float(coupling), float(L[0, 0]), float(L[1, 0]), float(L[1, 1]), out)
+    return out
+
+
+def _quat_mul(a0, a1, a2, a3, b0, b1, b2, b3):
+    """Hamilton product, written as ``quaternion.multiply_parts`` writes it."""
+    return (
+        a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+        a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+        a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+        a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+    )
+
+
+def _quat_rotate(q0, q1, q2, q3, v0, v1, v2):
+    """``Λ ∘ v ∘ Λ̄``, written as ``quaternion.rotate`` writes it."""
+    w0, w1, w2, w3 = _quat_mul(q0, q1, q2, q3, v0 * 0.0, v0, v1, v2)
+    c1, c2, c3 = -q1, -q2, -q3
+    return w0 * c1 + w1 * q0 + w2 * c3 - w3 * c2, w0 * c2 - w1 * c3 + w2 * q0 + w3 * c1, w0 * c3 + w1 * c2 - w2 * c1 + w3 * q0
+
+
+def _rotvec_quat(p0, p1, p2, small_angle):
+    """Quaternion of a rotation vector, written as ``quaternion.rotvec_to_quat`` writes it (series below ``small_angle``)."""
+    theta2 = p0 * p0 + p1 * p1 + p2 * p2
+    x2 = theta2 * 0.25
+    if theta2 < small_angle * small_angle:
+        c = 1.0 - x2 / 2.0 + x2 * x2 / 24.0 - x2 * x2 * x2 / 720.0
+        s = 0.5 * (1.0 - x2 / 6.0 + x2 * x2 / 120.0 - x2 * x2 * x2 / 5040.0)
+    else:
+        theta = math.sqrt(theta2)
+        half = theta * 0.5
+        c = math.cos(half)
+        s = math.sin(half) / theta
+    return c, s * p0, s * p1, s * p2
+
+
+def _navigator_loop(q, v, lat, lon, h, bg, ba, rot, vel, mom, D, const, qo, vo, lato, lono, ho):
+    n, E = rot.shape[0], rot.shape[1]
+    earth_rate, a, e2, gamma_e, k_g, small = const[0], const[1], const[2], const[3], const[4], const[5]
+    for i in range(n):
+        q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        v0, v1, v2 = v[i, 0], v[i, 1], v[i, 2]
+        la, lo, hi = lat[i], lon[i], h[i]
+        for j in range(E):
+            sl = math.sin(la)
+            s2 = sl * sl
+            w = math.sqrt(1.0 - e2 * s2)
+            RN, RE = a * (1.0 - e2) / math.pow(w, 3.0), a / w
+            cl = math.cos(la)
+            wie0, wie1, wie2 = earth_rate * cl, earth_rate * 0.0, earth_rate * -sl
+            wen0, wen1, wen2 = v1 / (RE + hi), -v0 / (RN + hi), -v1 * math.tan(la) / (RE + hi)
+            win0, win1, win2 = wie0 + wen0, wie1 + wen1, wie2 + wen2
+            r0, r1, r2 = _quat_rotate(q0, q1, q2, q3, vel[i, j, 0] - ba[i, 0] * D, vel[i, j, 1] - ba[i, 1] * D, vel[i, j, 2] - ba[i, 2] * D)
+            m0, m1, m2 = _quat_rotate(q0, q1, q2, q3, mom[i, j, 0], mom[i, j, 1], mom[i, j, 2])
+            dv0 = r0 - (win1 * m2 - win2 * m1)
+            dv1 = r1 - (win2 * m0 - win0 * m2)
+            dv2 = r2 - (win0 * m1 - win1 * m0)
+            gd = gamma_e * (1.0 + k_g * s2) / math.sqrt(1.0 - e2 * s2) * (1.0 - 2.0 * hi / a)
+            c0, c1, c2 = 2.0 * wie0 + wen0, 2.0 * wie1 + wen1, 2.0 * wie2 + wen2
+            n0 = v0 + dv0 - (c1 * v2 - c2 * v1) * D
+            n1 = v1 + dv1 - (c2 * v0 - c0 * v2) * D
+            n2 = v2 + dv2 - (c0 * v1 - c1 * v0) * D
+            n2 += gd * D
+            va0, va1, va2 = 0.5 * (v0 + n0), 0.5 * (v1 + n1), 0.5 * (v2 + n2)
+            la_new = la + va0 * D / (RN + hi)
+            lo = lo + va1 * D / ((RE + hi) * cl)
+            hi = hi - va2 * D
+            t0, t1, t2, t3 = _rotvec_quat(-win0 * D, -win1 * D, -win2 * D, small)
+            t0, t1, t2, t3 = _quat_mul(t0, t1, t2, t3, q0, q1, q2, q3)
+            b0, b1, b2, b3 = _rotvec_quat(-bg[i, 0] * D, -bg[i, 1] * D, -bg[i, 2] * D, small)
+            b0, b1, b2, b3 = _quat_mul(rot[i, j, 0], rot[i, j, 1], rot[i, j, 2], rot[i, j, 3], b0, b1, b2, b3)
+            q0, q1, q2, q3 = _quat_mul(t0, t1, t2, t3, b0, b1, b2, b3)
+            v0, v1, v2, la = n0, n1, n2, la_new
+        qo[i, 0], qo[i, 1], qo[i, 2], qo[i, 3] = q0, q1, q2, q3
+        vo[i, 0], vo[i, 1], vo[i, 2] = v0, v1, v2
+        lato[i], lono[i], ho[i] = la, lo, hi
+
+
+def navigator_loop(q, v, lat, lon, h, gyro_bias, accel_bias, rotation, velocity, moment, epoch: float, constants):
+    """The GNSS-aided navigator over ``E`` epochs for every trial (``E`` steps of ``aided.navigator_step``), in one compiled loop.
+
+    The same operations in the same order as the numpy step (the
+    quaternion product, rotation and rotation-vector quaternion as
+    :mod:`strapdown.analysis.core.quaternion` writes them, the radii and normal
+    gravity as :mod:`~strapdown.analysis.alignment.trajectory` and
+    :mod:`~strapdown.analysis.alignment.earth` write them), so the two agree to
+    the last bit where the platform's ``sin``, ``cos``, ``tan`` and ``pow`` are
+    numpy's (``tests/test_aided.py`` compares them).
+
+    Parameters
+    ----------
+    q : ndarray
+        ``(n, 4)`` attitude quaternions of ``C_b^n``.
+    v : ndarray
+        ``(n, 3)`` NED velocity [m/s].
+    lat, lon, h : ndarray
+        ``(n,)`` latitude, longitude [rad] and height [m].
+    gyro_bias, accel_bias : ndarray
+        ``(n, 3)`` bias estimates, body axes [rad/s, m/s²] (held over the epochs).
+    rotation : ndarray
+        ``(n, E, 4)`` the epoch rotations.
+    velocity, moment : ndarray
+        ``(n, E, 3)`` the epochs' velocity increments [m/s] and first moments [m].
+    epoch : float
+        The epoch D [s].
+    constants : array_like
+        ``(6,)``: Earth rate [rad/s], WGS-84 semi-major axis [m] and first
+        eccentricity squared, normal gravity at the equator [m/s²], Somigliana's
+        constant, and the series angle of the rotation-vector quaternion [rad].
+
+    Returns
+    -------
+    tuple
+        ``(q, v, lat, lon, h)`` after the ``E`` epochs.
+
+    Raises
+    ------
+    ValueError
+        For shapes that do not fit ``rotation`` (n trials, E epochs).
+    """
+    rot = _shaped(rotation, "rotation", (None, None, 4))
+    n, E = rot.shape[:2]
+    args = [_shaped(x, name, shape) for x, name, shape in (
+        (q, "q", (n, 4)), (v, "v", (n, 3)), (lat, "lat", (n,)), (lon, "lon", (n,)), (h, "h", (n,)), (gyro_bias, "gyro_bias", (n, 3)),
+        (accel_bias, "accel_bias", (n, 3)), (velocity, "velocity", (n, E, 3)), (moment, "moment", (n, E, 3)),
+    )]  # fmt: skip
+    const = _shaped(constants, "constants", (6,))
+    out = (np.empty((n, 4)), np.empty((n, 3)), np.empty(n), np.empty(n), np.empty(n))
+    _jit(_navigator_loop)(*args[:7], rot, args[7], args[8], float(epoch), const, *out)
     return out
 
 
