@@ -16,7 +16,11 @@ of the block is measured.  filterpy's ``UnscentedKalmanFilter`` with
 and its residuals wrapped to (−π, π].
 
 One filter per trial (filterpy runs one state at a time), at a coarse epoch
-(the Earth rate reveals the heading over tens of seconds).
+(the Earth rate reveals the heading over tens of seconds).  filterpy's loops
+over the sigma points (the propagation, the unscented transform of the state
+and the cross variance) are done for all points at once, summing in
+filterpy's order: the results are filterpy's to the last bit
+(``tests/test_unscented.py`` runs filterpy unmodified against them).
 
 What the comparison in ``reports/alignment-design.md`` finds: from a small
 heading error this filter and the error-state filter of :mod:`~strapdown.analysis.alignment.fine` have the
@@ -160,7 +164,44 @@ def _batch_filter():
             fx = self.fx if fx is None else fx
             self.sigmas_f = fx(self.points_fn.sigma_points(self.x, self.P), dt, **fx_args)
 
+        def cross_variance(self, x, z, sigmas_f, sigmas_h):
+            return _weighted_outer(self.Wc, _residuals(sigmas_f, x), sigmas_h - z)
+
     return BatchUnscentedKalmanFilter
+
+
+def _residuals(a, b):
+    """:func:`_residual` of every row of ``a``, at once."""
+    y = a - b
+    y[:, 0] = (y[:, 0] + math.pi) % (2.0 * math.pi) - math.pi
+    return y
+
+
+def _weighted_outer(W, Y, Z):
+    """``Σ_k W_k y_k z_kᵀ`` summed in the order of k, as filterpy's loops sum it (the same bits)."""
+    terms = W[:, None, None] * (Y[:, :, None] * Z[:, None, :])
+    out = np.zeros(terms.shape[1:])
+    for t in terms:  # in order: a pairwise sum would change the last bits
+        out += t
+    return out
+
+
+def _transform(sigmas, Wm, Wc, noise_cov=None, mean_fn=None, residual_fn=None):
+    """filterpy's ``unscented_transform`` with the heading residual applied to all sigma points at once.
+
+    The state's transform (``residual_fn`` :func:`_residual`) sums the weighted
+    outer products in filterpy's order; the measurement's (a plain difference)
+    is filterpy's own.
+    """
+    from filterpy.kalman import unscented_transform
+
+    if residual_fn is not _residual:
+        return unscented_transform(sigmas, Wm, Wc, noise_cov, mean_fn, residual_fn)
+    x = mean_fn(sigmas, Wm)
+    P = _weighted_outer(Wc, _residuals(sigmas, x), _residuals(sigmas, x))
+    if noise_cov is not None:
+        P += noise_cov
+    return x, P
 
 
 def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None, *, rng=None, initial_errors=None) -> UnscentedResult:
@@ -241,8 +282,8 @@ def unscented_alignment(record: ImuRecord, tuning: UnscentedTuning | None = None
         ukf.x[0:3] = record.truth_angles[i, 0] + x0_err[i]
         ukf.P, ukf.Q, ukf.R = P0.copy(), Q.copy(), R.copy()
         for j in range(E):
-            ukf.predict(R=dR[i, j], dV=ep.velocity[i, j], S=ep.moment[i, j])
-            ukf.update(noise[i, j])  # the block's velocity is zero: the measurement is its noise
+            ukf.predict(UT=_transform, R=dR[i, j], dV=ep.velocity[i, j], S=ep.moment[i, j])
+            ukf.update(noise[i, j], UT=_transform)  # the block's velocity is zero: the measurement is its noise
             heading_sig[i, j] = math.sqrt(max(ukf.P[0, 0], 0.0))
             if truth_every:
                 heading_err[i, j] = wrap_angle(ukf.x[0] - record.truth_angles[i, j + 1, 0])
