@@ -126,6 +126,6 @@ def test_the_compiled_navigator_refuses_shapes_that_do_not_fit():
     n, E = 3, 4
     args = [np.zeros((n, 4)), np.zeros((n, 3)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros((n, 3)), np.zeros((n, 3))]
     with pytest.raises(ValueError, match="velocity"):
-        kernels.navigator_loop(*args, np.zeros((n, E, 4)), np.zeros((n, E + 1, 3)), np.zeros((n, E, 3)), 0.1, np.zeros(6))
+        kernels.navigator_loop(*args, np.zeros((n, E, 4)), np.zeros((n, E + 1, 3)), np.zeros((n, E, 3)), 0.1, np.zeros(7))
     with pytest.raises(ValueError, match="constants"):
-        kernels.navigator_loop(*args, np.zeros((n, E, 4)), np.zeros((n, E, 3)), np.zeros((n, E, 3)), 0.1, np.zeros(5))
+        kernels.navigator_loop(*args, np.zeros((n, E, 4)), np.zeros((n, E, 3)), np.zeros((n, E, 3)), 0.1, np.zeros(6))

@@ -55,7 +55,7 @@ from ..core.verdicts import Verdict
 from ..gyrocompass.rocking import as_generator
 from . import kernels
 from .comparison import TrialSummary, floor_reached, summarise
-from .earth import _GAMMA_E, _K, EARTH_RATE, normal_gravity  # the constants of normal gravity for the compiled navigator
+from .earth import EARTH_RATE, SOMIGLIANA, normal_gravity
 from .error_model import navigation_error_model
 from .preintegration import preintegrate
 from .sensor_models import SensorSpec, simulate_sensor_errors
@@ -480,7 +480,7 @@ def aided_alignment(inputs: AidedInputs, gyro: SensorSpec, accel: SensorSpec, *,
     KT = np.swapaxes(seq.gains, 1, 2)
     u = 0
     compiled = kernels.use_compiled(None, n * E)
-    constants = np.array([EARTH_RATE, WGS84_A, WGS84_E2, _GAMMA_E, _K, quat.SERIES_ANGLE])
+    constants = np.array([EARTH_RATE, WGS84_A, WGS84_E2, *SOMIGLIANA, quat.SERIES_ANGLE])
     stop = 0
     while stop < E:  # the epochs up to the next fix, then the fix
         start, stop = stop, min(int(seq.updates[u]) + 1, E) if u < U else E

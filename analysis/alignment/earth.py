@@ -20,13 +20,16 @@ import numpy as np
 
 from ..core.validation import as_float
 
-__all__ = ["EARTH_RATE", "normal_gravity", "earth_rate_ned", "gravity_ned"]
+__all__ = ["EARTH_RATE", "SOMIGLIANA", "normal_gravity", "earth_rate_ned", "gravity_ned"]
 
 #: Earth rotation rate Ω [rad/s] (WGS-84).
 EARTH_RATE = 7.292115e-5
 _GAMMA_E = 9.7803253359  # normal gravity at the equator [m/s²]
 _K = 0.00193185265241  # Somigliana constant
 _E2 = 0.00669437999013  # first eccentricity squared
+#: The constants of :func:`normal_gravity` (Somigliana's formula, WGS-84): normal gravity at the
+#: equator [m/s²], Somigliana's constant and the first eccentricity squared, for compiled loops that repeat it.
+SOMIGLIANA = (_GAMMA_E, _K, _E2)
 
 
 def normal_gravity(latitude):

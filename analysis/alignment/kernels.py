@@ -466,7 +466,7 @@ def _rotvec_quat(p0, p1, p2, small_angle):
 
 def _navigator_loop(q, v, lat, lon, h, bg, ba, rot, vel, mom, D, const, qo, vo, lato, lono, ho):
     n, E = rot.shape[0], rot.shape[1]
-    earth_rate, a, e2, gamma_e, k_g, small = const[0], const[1], const[2], const[3], const[4], const[5]
+    earth_rate, a, e2, gamma_e, k_g, e2_g, small = const[0], const[1], const[2], const[3], const[4], const[5], const[6]
     for i in range(n):
         q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
         v0, v1, v2 = v[i, 0], v[i, 1], v[i, 2]
@@ -485,7 +485,7 @@ def _navigator_loop(q, v, lat, lon, h, bg, ba, rot, vel, mom, D, const, qo, vo, 
             dv0 = r0 - (win1 * m2 - win2 * m1)
             dv1 = r1 - (win2 * m0 - win0 * m2)
             dv2 = r2 - (win0 * m1 - win1 * m0)
-            gd = gamma_e * (1.0 + k_g * s2) / math.sqrt(1.0 - e2 * s2) * (1.0 - 2.0 * hi / a)
+            gd = gamma_e * (1.0 + k_g * s2) / math.sqrt(1.0 - e2_g * s2) * (1.0 - 2.0 * hi / a)
             c0, c1, c2 = 2.0 * wie0 + wen0, 2.0 * wie1 + wen1, 2.0 * wie2 + wen2
             n0 = v0 + dv0 - (c1 * v2 - c2 * v1) * D
             n1 = v1 + dv1 - (c2 * v0 - c0 * v2) * D
@@ -534,9 +534,10 @@ def navigator_loop(q, v, lat, lon, h, gyro_bias, accel_bias, rotation, velocity,
     epoch : float
         The epoch D [s].
     constants : array_like
-        ``(6,)``: Earth rate [rad/s], WGS-84 semi-major axis [m] and first
-        eccentricity squared, normal gravity at the equator [m/s²], Somigliana's
-        constant, and the series angle of the rotation-vector quaternion [rad].
+        ``(7,)``: Earth rate [rad/s], WGS-84 semi-major axis [m] and first
+        eccentricity squared (of the radii of curvature), the constants of normal
+        gravity (:data:`~strapdown.analysis.alignment.earth.SOMIGLIANA`), and the series
+        angle of the rotation-vector quaternion [rad].
 
     Returns
     -------
@@ -554,7 +555,7 @@ def navigator_loop(q, v, lat, lon, h, gyro_bias, accel_bias, rotation, velocity,
         (q, "q", (n, 4)), (v, "v", (n, 3)), (lat, "lat", (n,)), (lon, "lon", (n,)), (h, "h", (n,)), (gyro_bias, "gyro_bias", (n, 3)),
         (accel_bias, "accel_bias", (n, 3)), (velocity, "velocity", (n, E, 3)), (moment, "moment", (n, E, 3)),
     )]  # fmt: skip
-    const = _shaped(constants, "constants", (6,))
+    const = _shaped(constants, "constants", (7,))
     out = (np.empty((n, 4)), np.empty((n, 3)), np.empty(n), np.empty(n), np.empty(n))
     _jit(_navigator_loop)(*args[:7], rot, args[7], args[8], float(epoch), const, *out)
     return out
