@@ -29,6 +29,7 @@ unless ``overwrite_modified`` (:mod:`.output`).
 
 from __future__ import annotations
 
+import gc
 import importlib
 import io
 import pkgutil
@@ -282,7 +283,13 @@ class Context:
             metadata = {"Software": None}
         quantise(fig)
         buf = io.BytesIO()
-        fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata)
+        collecting = gc.isenabled()
+        gc.disable()  # drawing allocates thousands of small objects: no cycle collection passes while it runs
+        try:
+            fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata)
+        finally:
+            if collecting:
+                gc.enable()
         p.write_bytes(buf.getvalue())
         self._record(relpath)
         if self.figure_check is not None:
