@@ -152,15 +152,24 @@ def _qmul(a, b):
 
 
 def _half_products(q, a, b, out) -> None:
-    """``out[0:4] = ½ q[0:4] ∘ (0, a)`` and ``out[4:8] = ½ q[4:8] ∘ (0, b)``: :func:`_qmul`'s operations on both at once."""
-    q = q.reshape(2, 4)
-    v = np.stack([a, b])
-    zero = np.zeros(2)
-    res = out[0:8].reshape(2, 4)
-    res[:, 0] = 0.5 * (q[:, 0] * zero - q[:, 1] * v[:, 0] - q[:, 2] * v[:, 1] - q[:, 3] * v[:, 2])
-    res[:, 1] = 0.5 * (q[:, 0] * v[:, 0] + q[:, 1] * zero + q[:, 2] * v[:, 2] - q[:, 3] * v[:, 1])
-    res[:, 2] = 0.5 * (q[:, 0] * v[:, 1] - q[:, 1] * v[:, 2] + q[:, 2] * zero + q[:, 3] * v[:, 0])
-    res[:, 3] = 0.5 * (q[:, 0] * v[:, 2] + q[:, 1] * v[:, 1] - q[:, 2] * v[:, 0] + q[:, 3] * zero)
+    """``out[0:4] = ½ q[0:4] ∘ (0, a)`` and ``out[4:8] = ½ q[4:8] ∘ (0, b)``: :func:`_qmul`'s operations, on Python floats.
+
+    The same IEEE double operations in the same order as :func:`_qmul` on the
+    arrays (hence the same bits), without a numpy call per product.
+    """
+    p0, p1, p2, p3, r0, r1, r2, r3 = q.tolist()
+    a0, a1, a2 = a.tolist()
+    b0, b1, b2 = b.tolist()
+    out[0:8] = (
+        0.5 * (p0 * 0.0 - p1 * a0 - p2 * a1 - p3 * a2),
+        0.5 * (p0 * a0 + p1 * 0.0 + p2 * a2 - p3 * a1),
+        0.5 * (p0 * a1 - p1 * a2 + p2 * 0.0 + p3 * a0),
+        0.5 * (p0 * a2 + p1 * a1 - p2 * a0 + p3 * 0.0),
+        0.5 * (r0 * 0.0 - r1 * b0 - r2 * b1 - r3 * b2),
+        0.5 * (r0 * b0 + r1 * 0.0 + r2 * b2 - r3 * b1),
+        0.5 * (r0 * b1 - r1 * b2 + r2 * 0.0 + r3 * b0),
+        0.5 * (r0 * b2 + r1 * b1 - r2 * b0 + r3 * 0.0),
+    )  # fmt: skip
 
 
 @dataclass(frozen=True)
