@@ -34,17 +34,26 @@ def cross_rows(A, i, B, j, out):
 
 @numba.njit(cache=True)
 def draw_step(g, N, H, white, phi, c, L, x, out):
-    """Error of one step per axis (sum over its samples) of white noise and the first-order terms; updates x."""
-    sq = math.sqrt(H)
+    """Error of one step per axis (sum over its samples) of white noise and the first-order terms; updates x.
+
+    Each first-order term's pair (level, integral) is drawn with its Cholesky
+    factor ``L``: the level's innovation ``L[0, 0] z₁`` and the integral's
+    ``L[1, 0] z₁ + L[1, 1] z₂``.  The parts that drive no state, the white noise
+    and every ``L[1, 1] z₂``, are independent Gaussians that only add up: one
+    draw of their summed variance gives the same distribution as one draw each.
+    """
+    var = white * white * H
+    for m in range(phi.shape[0]):
+        var += L[m, 1, 1] * L[m, 1, 1]
+    sd = math.sqrt(var)
     for k in range(3):
-        e = white * sq * g.standard_normal() if white > 0.0 else 0.0
+        e = 0.0
         for m in range(phi.shape[0]):
             z1 = g.standard_normal()
-            z2 = g.standard_normal()
-            e1 = L[m, 0, 0] * z1
-            e2 = L[m, 1, 0] * z1 + L[m, 1, 1] * z2
-            e += c[m] * x[m, k] + e2
-            x[m, k] = phi[m] * x[m, k] + e1
+            e += c[m] * x[m, k] + L[m, 1, 0] * z1
+            x[m, k] = phi[m] * x[m, k] + L[m, 0, 0] * z1
+        if sd > 0.0:
+            e += sd * g.standard_normal()
         out[k] = e
 
 
