@@ -255,7 +255,10 @@ class Context:
         The figure is saved at its own size, drawn once: its layout is fixed
         when it is built (:func:`.rendering.fixed_layout`), because a layout
         engine or ``bbox_inches="tight"`` measures every text in extra passes
-        that cost more than the drawing itself.
+        that cost more than the drawing itself.  The cycle collector is paused
+        while the figure is drawn and encoded (it would otherwise walk the heap
+        many times over the drawing's short-lived objects); the figure's
+        reference cycles are collected by a later pass, after it is closed.
 
         Parameters
         ----------
