@@ -35,6 +35,9 @@ import numpy as np
 
 __all__ = ["SampleQuantile", "sample_quantiles"]
 
+#: most ranks taken by one partial sort (``np.partition``); more are read from a full sort (the same order statistics)
+_PARTITION_RANKS = 8
+
 #: normal quantile of the two-sided 95 % interval
 _Z95 = 1.959963984540054
 
@@ -157,7 +160,8 @@ def sample_quantiles(errors, levels: Sequence[float], *, independent: bool | Non
 
 
 def _order_statistics(x: np.ndarray, ranks) -> dict:
-    """``{r: x_(r)}`` for 1-based ranks, by one partial sort."""
+    """``{r: x_(r)}`` for 1-based ranks, by one partial sort (a full sort where many ranks make it the cheaper one)."""
     r = sorted(int(k) for k in ranks)
-    part = np.partition(x, [k - 1 for k in r])
+    # introselect repeats its passes for every rank; numpy's vectorised sort beats it beyond a few ranks
+    part = np.sort(x) if len(r) > _PARTITION_RANKS else np.partition(x, [k - 1 for k in r])
     return {k: float(part[k - 1]) for k in r}
