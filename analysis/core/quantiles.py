@@ -63,7 +63,7 @@ class SampleQuantile(NamedTuple):
 
 def _binomial_ranks(m: int, p: float) -> tuple:
     """1-based ranks ``(l, u)`` with ``P(l ≤ B < u) ≥ 0.95`` for ``B ~ Bin(m, p)``, as equal-tailed as the law allows."""
-    (lo, hi), = _binomial_rank_table(m, (p,))
+    ((lo, hi),) = _binomial_rank_table(m, (p,))
     return lo, hi
 
 
