@@ -25,9 +25,13 @@ sensor errors, ``e(a) = e_0 + a u``:
     (:meth:`strapdown.analysis.alignment.monte_carlo.AlignmentKernel.draw`) and
     the same draws are evaluated at every amplitude (common random numbers,
     passed explicitly): the rms (and the percentile) of their azimuth errors is
-    then a smooth function of the amplitude, and its root is bracketed by
-    factors of 4 from the previous frequency's root and found by Brent's method
-    in log a (:func:`scipy.optimize.brentq`) to a relative ``rtol``.  The filter
+    then a smooth function of the amplitude.  Its root is searched in log a
+    from the previous frequency's root, by secant steps along the power law of
+    the rocking's share of the error (``rms² − rms(0)²``) with bisection as the
+    safeguard, until its bracket is ``log(1 + rtol)/2`` wide, the stopping
+    rule of Brent's method; the percentile's search starts where the rms
+    reaches ``budget · rms/percentile`` and reuses every amplitude simulated
+    (:func:`_root`).  The filter
     knows the rocking (its model is rebuilt at each amplitude).  The interval
     of the amplitude maps the 95 % interval of the rms at the root through the
     local slope of log rms against log a, and :func:`design_check` runs an
@@ -263,7 +267,8 @@ def admissible_rocking(
 
         floors.append(rms(0.0) ** 2)
         amp[i], (lo, hi) = _root(rms, budget, start, cap, rtol)
-        amp_p[i], _ = _root(pct, budget, amp[i] if 0.0 < amp[i] < cap else start, cap, rtol, known=tuple(simulated))
+        start_p = _percentile_start(rms, pct, amp[i], lo, hi, budget) if 0.0 < amp[i] < cap else start
+        amp_p[i], _ = _root(pct, budget, start_p, cap, rtol, known=tuple(simulated))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, cap)
         if 0.0 < amp[i] < cap:
@@ -388,6 +393,27 @@ def _root(fn, budget: float, start: float, cap: float, rtol: float, *, known=())
             hi, xh = a, xe
     best = lo if abs(math.log(max(values[lo], 1e-300) / budget)) < abs(math.log(max(values[hi], 1e-300) / budget)) else hi
     return best, (lo, hi)
+
+
+def _percentile_start(rms, pct, a: float, lo: float, hi: float, budget: float) -> float:
+    """Where the percentile search starts: the amplitude whose rms is ``budget · rms(a)/pct(a)``.
+
+    The ratio of the percentile to the rms changes slowly with the amplitude
+    (it is a property of the error's distribution), so the percentile reaches
+    the budget about where the rms reaches ``budget/κ``, ``κ = pct(a)/rms(a)``
+    at the rms root ``a``; the rms there follows the power law of its share
+    ``rms² − rms(0)²`` through the bracket ``lo``, ``hi`` of the rms root.
+    Returns ``a`` where that cannot be told.
+    """
+    f0, r, q = rms(0.0), rms(a), pct(a)
+    if not (q > 0.0 and 0.0 < lo < hi and r > f0):
+        return a
+    shares = [rms(x) ** 2 - f0 * f0 for x in (lo, hi)]
+    target = (budget * r / q) ** 2 - f0 * f0
+    if min(shares) <= 0.0 or target <= 0.0 or shares[1] <= shares[0]:
+        return a
+    slope = math.log(shares[1] / shares[0]) / math.log(hi / lo)
+    return a * (target / (r * r - f0 * f0)) ** (1.0 / slope)
 
 
 def _amplitude_interval(errors_at, a, lo, hi, cap):
