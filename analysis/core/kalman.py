@@ -4,8 +4,7 @@ filterpy's maintenance is uncertain, so the package uses a few of its calls
 through this module (``KalmanFilter`` with ``predict``/``update``/
 ``batch_filter``, and ``filterpy.stats.NEES``), and the tests pin them.  The
 filter here is linear with data-independent covariances, so the gains are
-computed once by filterpy's covariance cycle (bit for bit, without the
-filter object's per-call bookkeeping) and then applied to many trials at once.
+computed once by filterpy and then applied to many trials at once.
 """
 
 from __future__ import annotations
@@ -60,8 +59,7 @@ def gain_sequence(F, Q, H, R, P0, n_steps: int):
     """Kalman gains and posterior covariances of ``n_steps`` predict–update cycles.
 
     The covariances of a linear filter do not depend on the measurements, so
-    filterpy's covariance cycle is run once (on zero measurements, bit for bit
-    as its ``KalmanFilter`` would: :func:`_covariance_cycles`).
+    filterpy is run once on zero measurements.
 
     Parameters
     ----------
@@ -79,7 +77,16 @@ def gain_sequence(F, Q, H, R, P0, n_steps: int):
     covariances : ndarray, shape (n_steps, n, n)
         Posterior covariance of each cycle.
     """
-    gains, _, covs, _ = _covariance_cycles(F, Q, H, R, P0, n_steps)
+    F = np.atleast_2d(np.asarray(F, dtype=float))
+    kf = make_filter(F, Q, H, R, np.zeros(F.shape[0]), P0)
+    z = np.zeros((kf.dim_z, 1))
+    gains = np.empty((n_steps, kf.dim_x, kf.dim_z))
+    covs = np.empty((n_steps, kf.dim_x, kf.dim_x))
+    for k in range(n_steps):
+        kf.predict()
+        kf.update(z)
+        gains[k] = kf.K
+        covs[k] = kf.P
     return gains, covs
 
 
@@ -185,12 +192,16 @@ class FilterSequence(NamedTuple):
     innovation: np.ndarray
 
 
-def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
+def filter_sequence(F, Q, H, R, P0, n_steps: int, *, reference: bool = False) -> FilterSequence:
     """Gains, prior, posterior and innovation covariances of ``n_steps`` predict–update cycles of filterpy's ``KalmanFilter``.
 
     The covariances of a linear filter do not depend on the measurements, so
     one run on zero measurements serves every trial (as :func:`gain_sequence`, with the prior and
-    innovation covariances that NEES and NIS need).
+    innovation covariances that NEES and NIS need).  The cycles repeat filterpy's covariance
+    arithmetic call for call (the same ``numpy.dot`` products, sums and ``numpy.linalg.inv`` in the
+    same order), so the result equals filterpy's to the bit, at a fraction of its per-cycle
+    overhead (a filter over a few hundred epochs is rebuilt at every amplitude of a root search);
+    ``reference=True`` runs filterpy's ``KalmanFilter`` itself.
 
     Parameters
     ----------
@@ -206,6 +217,9 @@ def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
         Prior covariance.
     n_steps : int
         Cycles.
+    reference : bool, keyword-only
+        Run filterpy's ``KalmanFilter.predict`` and ``update`` (default False: the same
+        arithmetic without the filter object).
 
     Returns
     -------
@@ -229,42 +243,48 @@ def filter_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
     for name, a, shape in (("F", F, (n, n)), ("Q", Q, (n, n)), ("H", H, (m, n)), ("R", R, (m, m)), ("P0", P0, (n, n))):
         if np.atleast_2d(np.asarray(a, dtype=float)).shape != shape:
             raise ValueError(f"Expected `{name}` with shape {shape}, got shape {np.shape(a)}")
-    return FilterSequence(*_covariance_cycles(F, Q, H, R, P0, n_steps))
-
-
-def _covariance_cycles(F, Q, H, R, P0, n_steps: int):
-    """Gains, prior, posterior and innovation covariances of filterpy's ``KalmanFilter.predict``/``update`` cycles.
-
-    The covariance arithmetic of filterpy 1.4 (``predict``: ``P = α² F P Fᵀ + Q``
-    with α² = 1; ``update``: ``S = H P Hᵀ + R``, ``K = P Hᵀ S⁻¹``, Joseph form
-    ``P = (I − K H) P (I − K H)ᵀ + K R Kᵀ``), the same calls in the same
-    order, without the filter object's per-call bookkeeping (state, copies of
-    the prior and posterior, a deep copy of the measurement): the results are
-    bit-identical to the filter's own (``tests/test_kalman.py`` compares them).
-    """
-    F = np.atleast_2d(np.asarray(F, dtype=float))
-    H = np.atleast_2d(np.asarray(H, dtype=float))
-    Q = np.atleast_2d(np.asarray(Q, dtype=float))
-    R = np.atleast_2d(np.asarray(R, dtype=float))
+    if reference:
+        return _filterpy_sequence(F, Q, H, R, P0, n_steps)
+    # filterpy's covariance arithmetic, call for call (KalmanFilter.predict, then update with
+    # fading factor 1 and numpy.linalg.inv), without its per-step state, copies and bookkeeping
+    Q = np.atleast_2d(np.asarray(Q, dtype=float)).copy()
+    R = np.atleast_2d(np.asarray(R, dtype=float)).copy()
+    F, H = F.copy(), H.copy()
     P = np.atleast_2d(np.asarray(P0, dtype=float)).copy()
-    n, m = F.shape[0], H.shape[0]
-    I = np.eye(n)
-    FT, HT = F.T, H.T
+    eye, dot, inv = np.eye(n), np.dot, np.linalg.inv
     gains = np.empty((n_steps, n, m))
     prior = np.empty((n_steps, n, n))
     post = np.empty((n_steps, n, n))
     innov = np.empty((n_steps, m, m))
-    dot, inv = np.dot, np.linalg.inv
     for k in range(n_steps):
-        P = 1.0 * dot(dot(F, P), FT) + Q
+        P = 1.0 * dot(dot(F, P), F.T) + Q
         prior[k] = P
-        PHT = dot(P, HT)
+        PHT = dot(P, H.T)
         S = dot(H, PHT) + R
         K = dot(PHT, inv(S))
-        I_KH = I - dot(K, H)
+        I_KH = eye - dot(K, H)
         P = dot(dot(I_KH, P), I_KH.T) + dot(dot(K, R), K.T)
         gains[k], post[k], innov[k] = K, P, S
-    return gains, prior, post, innov
+    return FilterSequence(gains, prior, post, innov)
+
+
+def _filterpy_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
+    """:func:`filter_sequence` by filterpy's ``KalmanFilter`` itself, cycle by cycle (the reference)."""
+    n, m = F.shape[0], H.shape[0]
+    kf = make_filter(F, Q, H, R, np.zeros(n), P0)
+    z = np.zeros((m, 1))
+    gains = np.empty((n_steps, n, m))
+    prior = np.empty((n_steps, n, n))
+    post = np.empty((n_steps, n, n))
+    innov = np.empty((n_steps, m, m))
+    for k in range(n_steps):
+        kf.predict()
+        prior[k] = kf.P
+        kf.update(z)
+        gains[k] = kf.K
+        post[k] = kf.P
+        innov[k] = kf.S
+    return FilterSequence(gains, prior, post, innov)
 
 
 def nis(innovations, covariances):
