@@ -10,10 +10,15 @@ pyins (``python-ins`` on the package index)
     rest at the equator (no specific force, ``with_altitude=False``), the
     transport rate is zero and its frame is inertial: its matrices are our Λ
     (E → I), multiplied on the right by each step, as ours.  Setting the rate
-    changes pyins's module in this process; its loop is compiled with that rate
-    once per process (about 4.5 s) and never cached to disk, so that other
-    processes and other users of the installation see pyins unchanged.  Its
-    "before" sample is zero (the record starts from rest).  The attitude after
+    changes pyins's module in this process only.  Its loop, compiled with that
+    rate, is kept in numba's disk cache in the package's own cache directory
+    (:func:`~strapdown.analysis.core.cache.cache_directory`, under
+    ``numba-pyins-earth-rate-zero``): later processes load it instead of
+    compiling again (about 3 s), and nothing is written into pyins's
+    installation or numba's user-wide cache, so that other users of the
+    installation see pyins unchanged.  Where that directory cannot be written
+    the loop is compiled in memory, as before.  Its "before" sample is zero
+    (the record starts from rest).  The attitude after
     every N-th sample is its output.
     :func:`pyins_increments` is its increment function alone
     (``compute_increments_from_imu``, one sample per step): rotation vector
@@ -39,6 +44,7 @@ Public API
 
 from __future__ import annotations
 
+import os
 import warnings
 
 import numpy as np
@@ -58,11 +64,13 @@ def _pyins(sample_interval: float):
     except ImportError:
         raise ImportError("pyins is not installed: it is a dependency of strapdown-analysis (the package index name is python-ins)") from None
     # pyins's loop reads the Earth rate when numba compiles it, once per process: zero then gives an inertial
-    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); it is never
-    # cached to disk, so other processes and other users of the installation see pyins unchanged.
+    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); its disk cache
+    # is the package's own (_disk_cache), so other processes and other users of the installation see pyins unchanged.
     pyins.earth.RATE = 0.0
     import pandas as pd
-    from pyins import strapdown
+    from pyins import _numba_integrate, strapdown
+
+    _disk_cache(_numba_integrate.integrate)
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])
@@ -70,6 +78,56 @@ def _pyins(sample_interval: float):
         return pd.DataFrame(rows, index=np.arange(rows.shape[0]) * sample_interval, columns=_GYRO + _ACCEL)
 
     return pd, strapdown, imu
+
+
+#: Subdirectory of the package's cache directory holding pyins's loop compiled with a zero Earth rate.
+_PYINS_CACHE = "numba-pyins-earth-rate-zero"
+
+
+def _disk_cache(dispatcher) -> None:
+    """Keep ``dispatcher``'s machine code in numba's disk cache, in the package's own cache directory.
+
+    numba's cache is keyed by the function's source (a hash of its file) and
+    the argument types, not by the module globals it froze at compile time
+    (here pyins's Earth rate): so its entries go to a directory only this
+    module uses, in which every entry was compiled with the rate at zero.
+    The adapters still check the compiled loop at rest
+    (:func:`pyins_integrator`).  A dispatcher already caching, or a directory
+    that cannot be written, leaves the dispatcher as it was (compiled in memory).
+
+    Parameters
+    ----------
+    dispatcher : numba.core.registry.CPUDispatcher
+        A ``numba.njit`` function (pyins's ``integrate``).
+    """
+    from numba.core.caching import CompileResultCacheImpl, FunctionCache, NullCache, UserProvidedCacheLocator
+
+    from ...core.cache import cache_directory
+
+    if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
+        return  # already caching (an earlier call in this process)
+    root = str(cache_directory() / _PYINS_CACHE)
+
+    class _Locator(UserProvidedCacheLocator):
+        def __init__(self, py_func, py_file):  # noqa: D107 - numba's locator, with our directory
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = os.path.join(root, self.get_suitable_cache_subpath(py_file))
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            return super(UserProvidedCacheLocator, cls).from_function(py_func, py_file)
+
+    class _Impl(CompileResultCacheImpl):
+        _locator_classes = [_Locator]
+
+    class _Cache(FunctionCache):
+        _impl_class = _Impl
+
+    try:
+        dispatcher._cache = _Cache(dispatcher.py_func)
+    except RuntimeError:  # numba found no writable location: compile in memory
+        pass
 
 
 def pyins_integrator(*, sample_interval: float = 0.0025) -> Integrator:
