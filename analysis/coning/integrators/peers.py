@@ -31,7 +31,9 @@ smsfusion
     and specific forces, not increments: it is given the mean rate and the
     mean specific force of each sample (``p/h``, ``b/h``), which over its
     sample period integrate back to the same increments.  Its attitude and
-    velocity after every N-th sample are its output.
+    velocity after every N-th sample are its output.  Its numba helpers are
+    kept in numba's disk cache under ``numba-smsfusion`` in the package's
+    cache directory, as pyins's loop is.
 
 Every adapter gives its peer exactly the increments the package's own
 algorithms get; the errors are measured against the same exact solution by
@@ -45,6 +47,7 @@ Public API
 from __future__ import annotations
 
 import os
+import sys
 import warnings
 
 import numpy as np
@@ -70,7 +73,7 @@ def _pyins(sample_interval: float):
     import pandas as pd
     from pyins import _numba_integrate, strapdown
 
-    _disk_cache(_numba_integrate.integrate)
+    _disk_cache(_numba_integrate.integrate, _PYINS_CACHE)
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])
@@ -82,23 +85,30 @@ def _pyins(sample_interval: float):
 
 #: Subdirectory of the package's cache directory holding pyins's loop compiled with a zero Earth rate.
 _PYINS_CACHE = "numba-pyins-earth-rate-zero"
+#: Subdirectory of the package's cache directory holding smsfusion's compiled helpers.
+_SMSFUSION_CACHE = "numba-smsfusion"
 
 
-def _disk_cache(dispatcher) -> None:
+def _disk_cache(dispatcher, subdirectory: str) -> None:
     """Keep ``dispatcher``'s machine code in numba's disk cache, in the package's own cache directory.
 
-    numba's cache is keyed by the function's source (a hash of its file) and
-    the argument types, not by the module globals it froze at compile time
-    (here pyins's Earth rate): so its entries go to a directory only this
-    module uses, in which every entry was compiled with the rate at zero.
-    The adapters still check the compiled loop at rest
-    (:func:`pyins_integrator`).  A dispatcher already caching, or a directory
-    that cannot be written, leaves the dispatcher as it was (compiled in memory).
+    The peers compile their numba functions without ``cache=True``, so every
+    process would compile them again (seconds).  numba's cache is keyed by
+    the function's source (a hash of its file) and the argument types, not by
+    the module globals it froze at compile time (pyins's Earth rate): so the
+    entries go to a directory only this module uses, in which pyins's loop is
+    always compiled with the rate at zero, and nothing is written into the
+    peer's installation (which may be read-only) or numba's user-wide cache.
+    :func:`pyins_integrator` still checks the compiled loop at rest.  A
+    dispatcher already caching, or a directory that cannot be written, leaves
+    the dispatcher as it was (compiled in memory).
 
     Parameters
     ----------
     dispatcher : numba.core.registry.CPUDispatcher
-        A ``numba.njit`` function (pyins's ``integrate``).
+        A ``numba.njit`` function of a peer.
+    subdirectory : str
+        Its directory under :func:`~strapdown.analysis.core.cache.cache_directory`.
     """
     from numba.core.caching import CompileResultCacheImpl, FunctionCache, NullCache, UserProvidedCacheLocator
 
@@ -106,7 +116,7 @@ def _disk_cache(dispatcher) -> None:
 
     if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
         return  # already caching (an earlier call in this process)
-    root = str(cache_directory() / _PYINS_CACHE)
+    root = str(cache_directory() / subdirectory)
 
     class _Locator(UserProvidedCacheLocator):
         def __init__(self, py_func, py_file):  # noqa: D107 - numba's locator, with our directory
@@ -228,6 +238,11 @@ def smsfusion_ins(*, sample_interval: float = 0.0025) -> Integrator:
         from smsfusion import StrapdownINS
     except ImportError:
         raise ImportError("smsfusion is not installed: it is a dependency of strapdown-analysis") from None
+    from numba.core.registry import CPUDispatcher
+
+    for value in vars(sys.modules[StrapdownINS.__module__]).values():  # the compiled helpers its update calls
+        if isinstance(value, CPUDispatcher):
+            _disk_cache(value, _SMSFUSION_CACHE)
     x0 = np.r_[np.zeros(6), 1.0, 0.0, 0.0, 0.0, np.zeros(6)]
 
     def run(gyro, samples_per_step, accel):
