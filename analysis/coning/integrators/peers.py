@@ -71,9 +71,9 @@ def _pyins(sample_interval: float):
     # is the package's own (_disk_cache), so other processes and other users of the installation see pyins unchanged.
     pyins.earth.RATE = 0.0
     import pandas as pd
-    from pyins import _numba_integrate, strapdown
+    from pyins import strapdown
 
-    _disk_cache(_numba_integrate.integrate, _PYINS_CACHE)
+    _disk_cache(strapdown.integrate, _PYINS_CACHE)  # its compiled loop, as pyins.strapdown imports it
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])
