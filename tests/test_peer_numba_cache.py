@@ -76,3 +76,24 @@ def test_peers_compiled_code_is_cached_in_the_package_cache_and_gives_the_same_b
     third = _run(blocker / "cache")
     assert third["pyins_cache"] is None and third["pyins_hits"] == 0
     assert third["pyins"] == first["pyins"] and third["smsfusion"] == first["smsfusion"]
+
+
+def test_smsfusion_adapter_feeds_the_same_floats_as_a_sample_by_sample_loop():
+    import numpy as np
+    from smsfusion import StrapdownINS
+
+    from strapdown.analysis.coning.integrators.interface import step_increments
+    from strapdown.analysis.coning.integrators.peers import smsfusion_ins
+
+    h = 0.0025
+    rng = np.random.default_rng(11)
+    gyro, accel = 1e-2 * rng.standard_normal((40, 3)), 1e-1 * rng.standard_normal((40, 3))
+    ins = StrapdownINS(1.0 / h, np.r_[np.zeros(6), 1.0, 0.0, 0.0, 0.0, np.zeros(6)], g=0.0)
+    q, v = [], []
+    for k in range(40):  # one update per sample, the division row by row
+        ins.update(accel[k] / h, gyro[k] / h)
+        if (k + 1) % 4 == 0:
+            q.append(ins.quaternion())
+            v.append(ins.velocity())
+    got = smsfusion_ins(sample_interval=h).function(gyro, 4, accel)
+    assert np.array_equal(got[0], np.array(q)) and np.array_equal(got[1], np.array(v))
