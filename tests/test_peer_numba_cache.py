@@ -82,7 +82,6 @@ def test_smsfusion_adapter_feeds_the_same_floats_as_a_sample_by_sample_loop():
     import numpy as np
     from smsfusion import StrapdownINS
 
-    from strapdown.analysis.coning.integrators.interface import step_increments
     from strapdown.analysis.coning.integrators.peers import smsfusion_ins
 
     h = 0.0025
