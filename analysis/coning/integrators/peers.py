@@ -110,9 +110,15 @@ def _disk_cache(dispatcher, subdirectory: str) -> None:
     subdirectory : str
         Its directory under :func:`~strapdown.analysis.core.cache.cache_directory`.
     """
-    from numba.core.caching import CompileResultCacheImpl, FunctionCache, NullCache, UserProvidedCacheLocator
+    from numba.core import caching
 
     from ...core.cache import cache_directory
+
+    # numba's cache classes (numba.core.caching; older numba releases spell the locator with a leading underscore): without them, compiled in memory
+    UserProvidedCacheLocator = getattr(caching, "UserProvidedCacheLocator", None) or getattr(caching, "_UserProvidedCacheLocator", None)
+    CompileResultCacheImpl, FunctionCache, NullCache = (getattr(caching, name, None) for name in ("CompileResultCacheImpl", "FunctionCache", "NullCache"))
+    if None in (UserProvidedCacheLocator, CompileResultCacheImpl, FunctionCache, NullCache):
+        return
 
     if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
         return  # already caching (an earlier call in this process)
@@ -136,7 +142,7 @@ def _disk_cache(dispatcher, subdirectory: str) -> None:
 
     try:
         dispatcher._cache = _Cache(dispatcher.py_func)
-    except RuntimeError:  # numba found no writable location: compile in memory
+    except (RuntimeError, OSError):  # numba found no writable location: compile in memory
         pass
 
 
