@@ -160,3 +160,23 @@ def test_align_at_the_admissible_amplitude_of_azimuth_design_meets_the_budget():
     lo, hi = mc.result.rms_ci
     assert lo < budget < hi, (math.degrees(lo), math.degrees(hi))
     assert mc.theory.rocking == pytest.approx(budget, rel=3e-3)  # first order against the second-order root: the curvature is small here
+
+
+@pytest.mark.parametrize("pattern", [(0.0, 1.0, 1.0), (1.0, 0.0, 0.5), (0.0, 0.0, 2.0)])
+def test_rescaled_draw_skips_only_the_axes_of_zero_amplitude(pattern):
+    """A rescaled Gaussian draw with some axes at zero amplitude transforms only the others: the same numbers on
+    those axes, to the bit, as the draw at full amplitude, and zero on the removed ones."""
+    unit = NarrowbandMotion(np.ones(3), 8.0, 0.1)
+    draw = unit.draw(np.random.default_rng(4), 5, 300, 0.1)
+    scaled = draw.rescaled(NarrowbandMotion(np.array(pattern), 8.0, 0.1))
+    full = unit.draw(np.random.default_rng(4), 5, 300, 0.1)  # the same coefficients, its own kept evaluations
+    keep = [a for a in range(3) if pattern[a]]
+    for offset in (0.0, 0.05):
+        parts, scale = scaled.unit_evaluation(300, offset, derivatives=2)
+        whole, ones = full.unit_evaluation(300, offset, derivatives=2)
+        assert np.array_equal(scale, pattern) and np.array_equal(ones, np.ones(3))
+        for p, w in zip(parts, whole):
+            assert np.array_equal(p[:, :, keep], w[:, :, keep])
+            assert not np.any(np.delete(p, keep, axis=2))
+        angles = scaled.evaluate(300, offset, derivatives=0)[0]
+        assert np.array_equal(angles[:, :, keep], (np.asarray(pattern) * whole[0])[:, :, keep])

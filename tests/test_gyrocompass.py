@@ -138,3 +138,27 @@ def test_bad_input(kwargs, message):
 
 def test_bound15_value():
     assert bound15(math.radians(60), 0.01) == pytest.approx(math.sqrt(3) * 0.01)
+
+
+def test_skipping_quantiles_keeps_the_draws_and_every_moment():
+    import dataclasses
+
+    import numpy as np
+
+    from strapdown.analysis.gyrocompass.azimuth import azimuth_monte_carlo
+    from strapdown.analysis.gyrocompass.rocking import GaussianRocking, SineRocking
+    from strapdown.analysis.gyrocompass.studies import BoundCase, run_cases
+
+    for rocking, degree in ((GaussianRocking(0.02, 0.01), 0), (SineRocking(0.02, 0.02), 4)):
+        full = azimuth_monte_carlo(1.0, 0.01, -0.02, rocking, 20_000, rng=5, steps_per_trial=64, control_degree=degree)
+        bare = azimuth_monte_carlo(1.0, 0.01, -0.02, rocking, 20_000, rng=5, steps_per_trial=64, control_degree=degree, quantiles=())
+        assert full.result.quantiles and not bare.result.quantiles and not bare.result.quantile_intervals
+        for field in dataclasses.fields(full.result):
+            if field.name == "histogram":
+                assert all(np.array_equal(x, y) for x, y in zip(full.result.histogram, bare.result.histogram))
+            elif field.name not in ("quantiles", "quantile_intervals"):
+                assert getattr(full.result, field.name) == getattr(bare.result, field.name), field.name
+        assert (full.bound14, full.bound15, full.theory, full.controls) == (bare.bound14, bare.bound15, bare.theory, bare.controls)
+    case = BoundCase("c", "normal", 1.2, 0.0, 0.0, 0.03)
+    (a,), (b,) = run_cases([case], n_samples=8192, rng=2), run_cases([case], n_samples=8192, rng=2, quantiles=())
+    assert a.mc.result.rms_ci == b.mc.result.rms_ci and a.mc.result.mean == b.mc.result.mean and not b.mc.result.quantiles

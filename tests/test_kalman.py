@@ -72,6 +72,35 @@ def test_filter_sequence_converges_to_the_riccati_solution():
     np.testing.assert_allclose(seq.posterior[-1], Pp, rtol=1e-8, atol=1e-14)
 
 
+@pytest.mark.parametrize("n, m", [(1, 1), (3, 2), (9, 3)])
+def test_filter_sequence_equals_filterpy_to_the_bit(n, m):
+    """The cycles without the filter object repeat filterpy's KalmanFilter.predict and update exactly."""
+    rng = np.random.default_rng(n * 10 + m)
+    F = np.eye(n) + 0.1 * rng.standard_normal((n, n))
+    A, B = rng.standard_normal((n, n)), rng.standard_normal((m, m))
+    Q, R = 1e-3 * (A @ A.T), 1e-2 * (B @ B.T + np.eye(m))
+    H = rng.standard_normal((m, n))
+    P0 = np.diag(rng.uniform(0.5, 2.0, n))
+    fast = kalman.filter_sequence(F, Q, H, R, P0, 50)
+    ref = kalman.filter_sequence(F, Q, H, R, P0, 50, reference=True)
+    for name in fast._fields:
+        assert np.array_equal(getattr(fast, name), getattr(ref, name)), name
+
+
+def test_filter_sequence_of_the_alignment_filter_equals_filterpy_to_the_bit():
+    """The fine-alignment filter with rocking shaping states (15 states), over a two-minute alignment."""
+    from strapdown.analysis.alignment import studies as st
+    from strapdown.analysis.alignment.fine import Disturbance, filter_model
+
+    sc = st.DESIGN_SCENARIO
+    m = filter_model(sc, st.kalman_options(sc, st.NAVIGATION_GRADE, disturbance=Disturbance("shaping", 0.01)).tuning)
+    E = sc.n_samples // m.samples_per_epoch
+    fast = kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, E)
+    ref = kalman.filter_sequence(m.F, m.Q, m.H, m.R, m.P0, E, reference=True)
+    for name in fast._fields:
+        assert np.array_equal(getattr(fast, name), getattr(ref, name)), name
+
+
 def test_filter_sequence_refuses_shapes_that_do_not_fit():
     with pytest.raises(ValueError, match=r"`H` with shape \(1, 2\)"):
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 3)), np.eye(1), np.eye(2), 3)

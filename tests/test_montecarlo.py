@@ -157,3 +157,25 @@ def test_components_match_direct_trigonometry_over_all_angles():
     A, B = tilt_components(beta, gamma, sphi, cphi)
     np.testing.assert_allclose(A, cphi * np.cos(gamma) + sphi * np.cos(beta) * np.sin(gamma), rtol=0, atol=2e-15)
     np.testing.assert_allclose(B, sphi * np.sin(beta), rtol=0, atol=1e-15)
+
+
+def test_vectorised_binomial_ranks_agree_with_the_scalar_law():
+    from strapdown.analysis.core.quantiles import _binomial_rank_table
+
+    levels = montecarlo.QUANTILES
+    for m in (1, 2, 7, 31, 100, 4096, 200_001, 4_000_000):
+        table = _binomial_rank_table(m, levels)
+        scalar = [(int(stats.binom.ppf(0.025, m, p)), int(stats.binom.ppf(0.975, m, p)) + 1) for p in levels]
+        assert table == scalar
+
+
+def test_one_partial_sort_gives_the_order_statistics_of_a_full_sort():
+    from strapdown.analysis.core.quantiles import sample_quantiles
+
+    x = np.random.default_rng(3).standard_normal(5001)
+    s = np.sort(x)
+    for q in sample_quantiles(x[:, None], montecarlo.QUANTILES):
+        lo, hi = (int(r) for r in (stats.binom.ppf(0.025, x.size, q.level), stats.binom.ppf(0.975, x.size, q.level) + 1))
+        assert q.value == s[math.ceil(q.level * x.size - 1e-12) - 1]
+        assert q.low == (s[lo - 1] if lo >= 1 else q.low) and q.high == (s[hi - 1] if hi <= x.size else q.high)
+    assert sample_quantiles(x[:, None], ()) == ()

@@ -140,7 +140,7 @@ class UnitDraw:
         self.model, self.spectrum, self.coefficients, self.dt = model, spectrum, coefficients, dt
         self._evaluations: dict = {}
 
-    def evaluation(self, n: int, offset: float, d: int, compute) -> np.ndarray:
+    def evaluation(self, n: int, offset: float, d: int, compute, axes: tuple = (0, 1, 2)) -> np.ndarray:
         """The d-th derivative at ``offset + k dt``, ``k < n``, made by ``compute()`` once (read-only).
 
         Parameters
@@ -153,12 +153,14 @@ class UnitDraw:
             Derivative.
         compute : callable
             Makes the ``(n_trials, n, 3)`` evaluation.
+        axes : tuple of int
+            The axes it evaluates (the others are zero: axes that a scale of zero removes).
 
         Returns
         -------
         ndarray
         """
-        key = (int(n), float(offset), int(d))
+        key = (int(n), float(offset), int(d), tuple(axes))
         if key not in self._evaluations:
             x = compute()
             x.flags.writeable = False
@@ -298,7 +300,10 @@ class MotionRealisation:
         if self.coefficients.shape[-1] == 0:
             return tuple(np.zeros(shape) for _ in range(k + 1)), np.ones(3)
         if self.unit is not None:
-            return tuple(self.unit.evaluation(n, offset, d, lambda d=d: self._series(self.unit.coefficients, n, offset, d)) for d in range(k + 1)), self.scale
+            axes = (0, 1, 2)
+            if self.spectrum.n_fft is not None:  # an inverse FFT per axis: not for the axes a zero scale removes
+                axes = tuple(int(a) for a in np.flatnonzero(self.scale))
+            return tuple(self.unit.evaluation(n, offset, d, lambda d=d: self._axes_series(axes, n, offset, d), axes) for d in range(k + 1)), self.scale
         return tuple(self._series(self.coefficients, n, offset, d) for d in range(k + 1)), np.ones(3)
 
     def evaluate_points(self, indices, *, derivatives: int = 2):
@@ -349,6 +354,15 @@ class MotionRealisation:
                 x = self._sinusoids(cd, t)
             out.append(x if scale is None else scale * x)
         return tuple(out)
+
+    def _axes_series(self, axes, n, offset, d):
+        """:meth:`_series` of the unit coefficients on ``axes`` only, zero on the others (each axis's transform is its own)."""
+        if len(axes) == 3:
+            return self._series(self.unit.coefficients, n, offset, d)
+        out = np.zeros((self.n_trials, n, 3))
+        if axes:
+            out[:, :, list(axes)] = self._series(self.unit.coefficients[:, list(axes), :], n, offset, d)
+        return out
 
     def _series(self, c, n, offset, d):
         """The d-th derivative of ``Re Σ_m c_m e^{iω_m t}`` at ``t_k = offset + k dt``, ``(n_trials, n, 3)``."""

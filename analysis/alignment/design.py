@@ -25,9 +25,13 @@ sensor errors, ``e(a) = e_0 + a u``:
     (:meth:`strapdown.analysis.alignment.monte_carlo.AlignmentKernel.draw`) and
     the same draws are evaluated at every amplitude (common random numbers,
     passed explicitly): the rms (and the percentile) of their azimuth errors is
-    then a smooth function of the amplitude, and its root is bracketed by
-    factors of 4 from the previous frequency's root and found by Brent's method
-    in log a (:func:`scipy.optimize.brentq`) to a relative ``rtol``.  The filter
+    then a smooth function of the amplitude.  Its root is searched in log a
+    from the previous frequency's root, by secant steps along the power law of
+    the rocking's share of the error (``rms² − rms(0)²``) with bisection as the
+    safeguard, until its bracket is ``log(1 + rtol)/2`` wide, the stopping
+    rule of Brent's method; the percentile's search starts where the rms
+    reaches ``budget · rms/percentile`` and reuses every amplitude simulated
+    (:func:`_root`).  The filter
     knows the rocking (its model is rebuilt at each amplitude).  The interval
     of the amplitude maps the 95 % interval of the rms at the root through the
     local slope of log rms against log a, and :func:`design_check` runs an
@@ -263,7 +267,8 @@ def admissible_rocking(
 
         floors.append(rms(0.0) ** 2)
         amp[i], (lo, hi) = _root(rms, budget, start, cap, rtol)
-        amp_p[i], _ = _root(pct, budget, amp[i] if 0.0 < amp[i] < cap else start, cap, rtol)
+        start_p = _percentile_start(rms, pct, amp[i], lo, hi, budget) if 0.0 < amp[i] < cap else start
+        amp_p[i], _ = _root(pct, budget, start_p, cap, rtol, known=tuple(simulated))
         unit[i] = math.sqrt(max(rms(amp[i]) ** 2 - floors[-1], 0.0)) / amp[i] if 0 < amp[i] < cap else math.nan
         ci[i] = _amplitude_interval(errors_at, amp[i], lo, hi, cap)
         if 0.0 < amp[i] < cap:
@@ -272,46 +277,143 @@ def admissible_rocking(
     return AdmissibleAlignment(method, rocking, f, amp, ci, amp_p, floor, unit, budget, level, pat, False, n_trials, cap)
 
 
-def _root(fn, budget: float, start: float, cap: float, rtol: float) -> tuple:
+def _root(fn, budget: float, start: float, cap: float, rtol: float, *, known=()) -> tuple:
     """The amplitude in (0, cap] where the increasing ``fn`` reaches ``budget``, and its last bracket.
 
-    The root is bracketed by factors of 4 from ``start`` and found by Brent's
-    method on ``log fn − log budget`` in ``log a`` to ``log(1 + rtol)/2``.
+    The search works in ``x = log a`` and stops, as Brent's method with
+    ``xtol = log(1 + rtol)/2`` does, when the bracket of the root is at most
+    ``log(1 + rtol)/2`` wide; it returns the end of that bracket where
+    ``|log fn − log budget|`` is smaller.  Its steps use what the error is
+    made of: with ``fn(0)`` the floor, ``fn(a)² − fn(0)²`` is the rocking's
+    share, a power of ``a`` locally (its square for a response linear in
+    ``a``), so the root of that power law through the two amplitudes whose
+    values lie nearest the budget (or, from one, its square) predicts the
+    root closely.  The search
+    evaluates just beside the prediction, on the side that lets the next
+    evaluation close the bracket, and halves the bracket instead whenever a
+    step fails to shrink it by half.  Amplitudes in ``known`` (already
+    simulated, cheap to evaluate again) seed the bracket.
+
     Returns ``(0, (0, 0))`` if ``fn(0)`` already exceeds the budget and
     ``(cap, (cap, cap))`` if ``fn(cap)`` does not reach it; the bracket is the
     pair of amplitudes simulated nearest the root on either side.
-    """
-    from scipy.optimize import brentq
 
+    References
+    ----------
+    Brent, R. P., *Algorithms for Minimization without Derivatives*, 1973, ch. 4
+    (the bracketing and its stopping rule, kept here); the power-law
+    interpolation is a secant step in the coordinates ``log a``,
+    ``log(fn² − fn(0)²)``.
+    """
+    tol = 0.5 * math.log(1.0 + rtol)
     values = {}
 
     def f(a):
         if a not in values:
-            values[a] = fn(a)
+            values[a] = float(fn(a))
         return values[a]
 
-    if f(0.0) > budget:
+    f0 = f(0.0)
+    if f0 > budget:
         return 0.0, (0.0, 0.0)
-    lo = hi = min(start, cap)
-    if f(lo) <= budget:
-        while f(hi) <= budget:
-            if hi >= cap:
+    for a in known:
+        if 0.0 < a <= cap:
+            f(float(a))
+    share = budget * budget - f0 * f0
+
+    def z(a):
+        """log of the rocking's share of fn² at a (None where it is not positive)."""
+        d = values[a] ** 2 - f0 * f0
+        return math.log(d) if d > 0.0 else None
+
+    def predict(a1, a2=None):
+        """log a where the power law through a1 (and a2) reaches the budget (None where it cannot tell)."""
+        if share <= 0.0:
+            return None
+        z1 = z(a1)
+        if z1 is None:
+            return None
+        slope = 2.0
+        if a2 is not None and a2 != a1:
+            z2 = z(a2)
+            if z2 is not None and z2 != z1:
+                slope = (z2 - z1) / (math.log(a2) - math.log(a1))
+        if not slope > 0.0 or not math.isfinite(slope):
+            return None
+        return math.log(a1) + (math.log(share) - z1) / slope
+
+    def nearest():
+        """The two simulated amplitudes whose values lie nearest the budget (a secant through them, not regula falsi)."""
+        near = sorted((abs(math.log(max(v, 1e-300) / budget)), p) for p, v in values.items() if p > 0.0 and z(p) is not None)
+        return [p for _, p in near[:2]] + [None] * (2 - min(len(near), 2))
+
+    # bracket: from the nearest simulated amplitudes, a step just past the power-law root (at least tol, at most a factor 16)
+    a = min(start, cap)
+    while True:
+        f(a)
+        lows = [p for p, v in values.items() if 0.0 < p and v <= budget]
+        highs = [p for p, v in values.items() if v > budget]
+        lo = max(lows) if lows else None
+        hi = min(highs) if highs else None
+        if lo is not None and hi is not None and lo < hi:
+            break
+        if hi is None:  # every amplitude so far is within the budget: go up
+            if lo >= cap:
                 return cap, (cap, cap)
-            lo, hi = hi, min(4.0 * hi, cap)
-    else:
-        while f(lo) > budget:
-            if lo < cap * 1e-9:
+            a1, a2 = nearest()
+            x = predict(a1, a2) if a1 is not None else None
+            x0 = math.log(lo)
+            x = x0 + math.log(4.0) if x is None else min(max(x + 0.45 * tol, x0 + tol), x0 + math.log(16.0))
+            a = min(math.exp(x), cap)
+        else:  # every amplitude so far exceeds it: go down
+            if hi < cap * 1e-9:
                 return 0.0, (0.0, 0.0)
-            hi, lo = lo, lo / 4.0
-    simulated = {math.log(a): a for a in values if a > 0.0}  # brentq starts at log lo, log hi: the amplitudes already simulated
+            a1, a2 = nearest()
+            x = predict(a1, a2) if a1 is not None else None
+            x0 = math.log(hi)
+            x = x0 - math.log(4.0) if x is None else max(min(x - 0.45 * tol, x0 - tol), x0 - math.log(16.0))
+            a = math.exp(x)
+    # refine: a step beside the power-law root, a halving when a step did not halve the bracket
+    xl, xh = math.log(lo), math.log(hi)
+    widths = [math.inf, math.inf]  # the bracket's widths before the last two steps
+    while xh - xl > tol:
+        x = predict(*nearest())
+        if x is None or not xl < x < xh or xh - xl > 0.5 * widths[-2]:
+            xe = 0.5 * (xl + xh)
+        elif x - xl <= xh - x:  # nearer the lower end: just above the prediction closes the bracket if it holds
+            xe = min(x + 0.5 * tol, xl + 0.98 * tol) if x - xl <= 0.48 * tol else x - 0.45 * tol
+        else:  # nearer the upper end: the mirror image
+            xe = max(x - 0.5 * tol, xh - 0.98 * tol) if xh - x <= 0.48 * tol else x + 0.45 * tol
+        xe = min(max(xe, xl + 0.2 * tol), xh - 0.2 * tol)  # never a step that cannot shrink the bracket
+        widths = [widths[-1], xh - xl]
+        a = math.exp(xe)
+        if f(a) <= budget:
+            lo, xl = a, xe
+        else:
+            hi, xh = a, xe
+    best = lo if abs(math.log(max(values[lo], 1e-300) / budget)) < abs(math.log(max(values[hi], 1e-300) / budget)) else hi
+    return best, (lo, hi)
 
-    def g(x):
-        return math.log(max(f(simulated.get(x, math.exp(x))), 1e-300) / budget)
 
-    x = brentq(g, math.log(lo), math.log(hi), xtol=0.5 * math.log(1.0 + rtol), rtol=1e-12)
-    below = max(a for a, v in values.items() if v <= budget)
-    above = min(a for a, v in values.items() if v > budget)
-    return simulated.get(x, math.exp(x)), (below, above)
+def _percentile_start(rms, pct, a: float, lo: float, hi: float, budget: float) -> float:
+    """Where the percentile search starts: the amplitude whose rms is ``budget · rms(a)/pct(a)``.
+
+    The ratio of the percentile to the rms changes slowly with the amplitude
+    (it is a property of the error's distribution), so the percentile reaches
+    the budget about where the rms reaches ``budget/κ``, ``κ = pct(a)/rms(a)``
+    at the rms root ``a``; the rms there follows the power law of its share
+    ``rms² − rms(0)²`` through the bracket ``lo``, ``hi`` of the rms root.
+    Returns ``a`` where that cannot be told.
+    """
+    f0, r, q = rms(0.0), rms(a), pct(a)
+    if not (q > 0.0 and 0.0 < lo < hi and r > f0):
+        return a
+    shares = [rms(x) ** 2 - f0 * f0 for x in (lo, hi)]
+    target = (budget * r / q) ** 2 - f0 * f0
+    if min(shares) <= 0.0 or target <= 0.0 or shares[1] <= shares[0]:
+        return a
+    slope = math.log(shares[1] / shares[0]) / math.log(hi / lo)
+    return a * (target / (r * r - f0 * f0)) ** (1.0 / slope)
 
 
 def _amplitude_interval(errors_at, a, lo, hi, cap):

@@ -35,6 +35,9 @@ import numpy as np
 
 __all__ = ["SampleQuantile", "sample_quantiles"]
 
+#: most ranks taken by one partial sort (``np.partition``); more are read from a full sort (the same order statistics)
+_PARTITION_RANKS = 8
+
 #: normal quantile of the two-sided 95 % interval
 _Z95 = 1.959963984540054
 
@@ -60,11 +63,19 @@ class SampleQuantile(NamedTuple):
 
 def _binomial_ranks(m: int, p: float) -> tuple:
     """1-based ranks ``(l, u)`` with ``P(l ≤ B < u) ≥ 0.95`` for ``B ~ Bin(m, p)``, as equal-tailed as the law allows."""
+    ((lo, hi),) = _binomial_rank_table(m, (p,))
+    return lo, hi
+
+
+def _binomial_rank_table(m: int, ps) -> list:
+    """:func:`_binomial_ranks` at every level of ``ps``, from one vectorised call of ``binom.ppf`` (the same values, elementwise)."""
     from scipy.stats import binom
 
-    lo = int(binom.ppf(0.025, m, p))  # P(B ≤ lo) ≥ 0.025: x_(lo) is below x_p with probability ≤ 0.025 … (lo may be 0: unknown)
-    hi = int(binom.ppf(0.975, m, p)) + 1  # … and x_(hi) above it with probability ≤ 0.025 (hi may be m + 1: unknown)
-    return lo, hi
+    p = np.asarray(ps, dtype=float)
+    # P(B ≤ lo) ≥ 0.025: x_(lo) is below x_p with probability ≤ 0.025 … (lo may be 0: unknown)
+    # … and x_(hi) above it with probability ≤ 0.025 (hi may be m + 1: unknown)
+    ends = binom.ppf(np.array([[0.025], [0.975]]), m, p[None, :])
+    return [(int(lo), int(hi) + 1) for lo, hi in zip(ends[0], ends[1])]
 
 
 def sample_quantiles(errors, levels: Sequence[float], *, independent: bool | None = None) -> tuple:
@@ -121,12 +132,17 @@ def sample_quantiles(errors, levels: Sequence[float], *, independent: bool | Non
     points = {}
     for p in ps:
         points[p] = rank(p)
-    sorted_at = _order_statistics(flat, set(points.values()))
+    if not ps:
+        return ()
+    # independent samples: the interval ranks are known before any sorting, so one partial sort serves them all
+    intervals = dict(zip(ps, _binomial_rank_table(m, ps))) if iid else {}
+    wanted = set(points.values()) | {r for pair in intervals.values() for r in pair if 1 <= r <= m}
+    sorted_at = _order_statistics(flat, wanted)
     out = []
     for p in ps:
         value = sorted_at[points[p]]
         if iid:
-            lo_r, hi_r = _binomial_ranks(m, p)
+            lo_r, hi_r = intervals[p]
         else:
             below = np.mean(e <= value, axis=1)  # per-trial fraction below the estimate
             se = float(np.std(below, ddof=1)) / math.sqrt(n_trials) if n_trials > 1 else math.inf
@@ -144,7 +160,8 @@ def sample_quantiles(errors, levels: Sequence[float], *, independent: bool | Non
 
 
 def _order_statistics(x: np.ndarray, ranks) -> dict:
-    """``{r: x_(r)}`` for 1-based ranks, by one partial sort."""
+    """``{r: x_(r)}`` for 1-based ranks, by one partial sort (a full sort where many ranks make it the cheaper one)."""
     r = sorted(int(k) for k in ranks)
-    part = np.partition(x, [k - 1 for k in r])
+    # introselect repeats its passes for every rank; numpy's vectorised sort beats it beyond a few ranks
+    part = np.sort(x) if len(r) > _PARTITION_RANKS else np.partition(x, [k - 1 for k in r])
     return {k: float(part[k - 1]) for k in r}

@@ -803,6 +803,7 @@ def azimuth_monte_carlo(
     control_degree: int = 0,
     pilot_samples: int = 1024,
     min_samples: int = 4096,
+    quantiles=montecarlo.QUANTILES,
     limits: budget.Limits | None = None,
 ) -> AzimuthMonteCarlo:
     """Monte Carlo of ``α − α*`` at independent instants, with bounds (14), (15) and theory.
@@ -861,6 +862,10 @@ def azimuth_monte_carlo(
         Draws of the pilot (control variates) [count].
     min_samples : int
         Fewest draws of the run (control variates) [count].
+    quantiles : sequence of float
+        Levels in (0, 1) of the sample quantiles of the result (default
+        :data:`strapdown.analysis.core.montecarlo.QUANTILES`); an empty sequence
+        skips their order statistics, for a caller that uses the moments only.
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
         Largest estimated memory and run time (default 2 GB, 300 s; the time
         of a plain run of ``n_samples`` on one core); a request beyond them
@@ -902,7 +907,7 @@ def azimuth_monte_carlo(
     theory = second_order_theory(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
     scale = theory.rms_first_order if theory.rms_first_order > 0 else 1e-12
     bounds = bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi)
-    options = dict(blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress)
+    options = dict(blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress, quantiles=tuple(quantiles))
     if control_degree == 0:
         n_trials = max(2, -(-n_samples // steps))
         result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), **options)

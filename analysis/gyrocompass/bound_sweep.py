@@ -206,14 +206,15 @@ def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int 
     rocking = case.rocking()
     control_degree = as_int(control_degree, "control_degree", minimum=0)
     if case.estimate == "known":
-        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, rocking, n_samples, rng=seed, steps_per_trial=256, control_degree=control_degree)
+        # a row keeps the moments only: no quantiles (the same draws and moments either way)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, rocking, n_samples, rng=seed, steps_per_trial=256, control_degree=control_degree, quantiles=())
         r, th = mc.result, mc.theory
         return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, mc.bound14, mc.bound15, th.rms, th.rms_first_order, th.bias, controls=mc.controls)
     n_steps = case.n_steps
     if control_degree:
         root = montecarlo.root_seed_sequence(seed)
         n_trials = max(2, n_samples // n_steps)
-        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, mean_law(rocking, n_steps, case.dt), n_trials, rng=montecarlo.block_seed(root, 0), control_degree=control_degree)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, mean_law(rocking, n_steps, case.dt), n_trials, rng=montecarlo.block_seed(root, 0), control_degree=control_degree, quantiles=())
         plugin, plugin_controls = _controlled_plugin14(case, n_trials, montecarlo.block_seed(root, 1))
         r, th = mc.result, mc.theory
         return SweepRow(
@@ -223,7 +224,7 @@ def evaluate_case(case: SweepCase, n_samples: int, seed, *, control_degree: int 
     sx = rocking.sigma_xi * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="xi"))
     se = rocking.sigma_eta * math.sqrt(mean_variance_factor(rocking, n_steps, case.dt, axis="eta"))
     th = second_order_theory(case.latitude, case.beta0, case.gamma0, sx, se, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
-    r = montecarlo.run(kernel, max(2, n_samples // n_steps), rng=seed, trials_per_block=max(1, 65536 // n_steps), scale=max(th.rms_first_order, 1e-12))
+    r = montecarlo.run(kernel, max(2, n_samples // n_steps), rng=seed, trials_per_block=max(1, 65536 // n_steps), scale=max(th.rms_first_order, 1e-12), quantiles=())
     b14 = bound14(case.latitude, case.beta0, case.gamma0, sx, se)
     b15 = bound15(case.latitude, sx)
     return SweepRow(case, r.rms, r.rms_ci[0], r.rms_ci[1], r.mean, b14, b15, th.rms, th.rms_first_order, th.bias, plugin14=math.sqrt(r.aux_mean[0]))

@@ -151,7 +151,7 @@ class CaseResult:
         return self.mc.result.rms_agrees(self.mc.theory.rms, THEORY_MARGIN, what="the second-order theory")
 
 
-def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0, limits: work.Limits | None = None) -> tuple:
+def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0, quantiles=montecarlo.QUANTILES, limits: work.Limits | None = None) -> tuple:
     """Monte Carlo of each case from its own child stream of ``rng``.
 
     Parameters
@@ -166,6 +166,10 @@ def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0, limit
     control_degree : int
         0: plain Monte Carlo; else the degree of the control variates of
         :func:`strapdown.analysis.gyrocompass.azimuth.azimuth_monte_carlo`.
+    quantiles : sequence of float
+        Levels in (0, 1) of the sample quantiles of each result (default
+        :data:`strapdown.analysis.core.montecarlo.QUANTILES`); an empty sequence
+        skips them (the draws and every moment stay the same).
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
         Largest estimated memory and run time (default 2 GB, 300 s, on one
         core); a request beyond them raises
@@ -188,7 +192,7 @@ def run_cases(cases, *, n_samples: int, rng=None, control_degree: int = 0, limit
     for i, case in enumerate(cases):
         if not isinstance(case, BoundCase):
             raise TypeError(f"Expected `cases` of BoundCase, got {type(case).__name__}")
-        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, case.rocking(), n_samples, rng=montecarlo.block_seed(root, i), control_degree=control_degree)
+        mc = azimuth_monte_carlo(case.latitude, case.beta0, case.gamma0, case.rocking(), n_samples, rng=montecarlo.block_seed(root, i), control_degree=control_degree, quantiles=quantiles)
         out.append(CaseResult(case, mc))
     return tuple(out)
 

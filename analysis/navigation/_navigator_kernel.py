@@ -25,18 +25,35 @@ def cross(a, b, out):
 
 
 @numba.njit(cache=True)
+def cross_rows(A, i, B, j, out):
+    """``out = A[i] × B[j]`` for rows of ``(W, 3)`` arrays, without making views of the rows."""
+    out[0] = A[i, 1] * B[j, 2] - A[i, 2] * B[j, 1]
+    out[1] = A[i, 2] * B[j, 0] - A[i, 0] * B[j, 2]
+    out[2] = A[i, 0] * B[j, 1] - A[i, 1] * B[j, 0]
+
+
+@numba.njit(cache=True)
 def draw_step(g, N, H, white, phi, c, L, x, out):
-    """Error of one step per axis (sum over its samples) of white noise and the first-order terms; updates x."""
-    sq = math.sqrt(H)
+    """Error of one step per axis (sum over its samples) of white noise and the first-order terms; updates x.
+
+    Each first-order term's pair (level, integral) is drawn with its Cholesky
+    factor ``L``: the level's innovation ``L[0, 0] z₁`` and the integral's
+    ``L[1, 0] z₁ + L[1, 1] z₂``.  The parts that drive no state, the white noise
+    and every ``L[1, 1] z₂``, are independent Gaussians that only add up: one
+    draw of their summed variance gives the same distribution as one draw each.
+    """
+    var = white * white * H
+    for m in range(phi.shape[0]):
+        var += L[m, 1, 1] * L[m, 1, 1]
+    sd = math.sqrt(var)
     for k in range(3):
-        e = white * sq * g.standard_normal() if white > 0.0 else 0.0
+        e = 0.0
         for m in range(phi.shape[0]):
             z1 = g.standard_normal()
-            z2 = g.standard_normal()
-            e1 = L[m, 0, 0] * z1
-            e2 = L[m, 1, 0] * z1 + L[m, 1, 1] * z2
-            e += c[m] * x[m, k] + e2
-            x[m, k] = phi[m] * x[m, k] + e1
+            e += c[m] * x[m, k] + L[m, 1, 0] * z1
+            x[m, k] = phi[m] * x[m, k] + L[m, 0, 0] * z1
+        if sd > 0.0:
+            e += sd * g.standard_normal()
         out[k] = e
 
 
@@ -72,6 +89,16 @@ def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
         rec += 1
     egb = np.zeros(3)
     eab = np.zeros(3)
+    dV = np.zeros(3)
+    dR = np.zeros(3)
+    # whole quanta counted so far per axis (the floor of the residue), carried from sample to sample
+    gfl = np.zeros(3)
+    afl = np.zeros(3)
+    for k in range(3):
+        if gq[k] > 0.0:
+            gfl[k] = math.floor(gres[k] / gq[k])
+        if aq[k] > 0.0:
+            afl[k] = math.floor(ares[k] / aq[k])
     for step in range(steps):
         if step % block == 0:  # the errors of a block of steps, shared evenly among its steps
             draw_step(g, N, H * block, gwhite, gphi, gc, gL, gx, egb)
@@ -89,13 +116,15 @@ def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
                 pv = p0[k] + (gconst[k] * H + eg[k]) / N
                 bv = b0[k] + (aconst[k] * H + ea[k]) / N
                 if gq[k] > 0.0:
-                    before = gq[k] * math.floor(gres[k] / gq[k])
+                    before = gq[k] * gfl[k]
                     gres[k] += pv
-                    pv = gq[k] * math.floor(gres[k] / gq[k]) - before
+                    gfl[k] = math.floor(gres[k] / gq[k])
+                    pv = gq[k] * gfl[k] - before
                 if aq[k] > 0.0:
-                    before = aq[k] * math.floor(ares[k] / aq[k])
+                    before = aq[k] * afl[k]
                     ares[k] += bv
-                    bv = aq[k] * math.floor(ares[k] / aq[k]) - before
+                    afl[k] = math.floor(ares[k] / aq[k])
+                    bv = aq[k] * afl[k] - before
                 P[hist + j, k] = pv
                 B[hist + j, k] = bv
         if mode == 0:  # alignment: sums of the increments only
@@ -116,11 +145,11 @@ def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
                 phid[k] += B[hist + j, k]
                 S[k] += h * sw[j] * B[hist + j, k]
         for m in range(pi.shape[0]):
-            cross(P[pi[m]], P[pj[m]], tmp)
+            cross_rows(P, pi[m], P, pj[m], tmp)
             for k in range(3):
                 phi[k] += pc[m] * tmp[k]
-            cross(P[pi[m]], B[pj[m]], tmp)
-            cross(B[pi[m]], P[pj[m]], tmp2)
+            cross_rows(P, pi[m], B, pj[m], tmp)
+            cross_rows(B, pi[m], P, pj[m], tmp2)
             for k in range(3):
                 phid[k] += pc[m] * (tmp[k] + tmp2[k])
         for i in range(N):
@@ -129,7 +158,9 @@ def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
             for j in range(N):
                 for k in range(3):
                     tmp2[k] += dw[i, j] * B[hist + j, k]
-            cross(P[hist + i], tmp2, tmp)
+            tmp[0] = P[hist + i, 1] * tmp2[2] - P[hist + i, 2] * tmp2[1]
+            tmp[1] = P[hist + i, 2] * tmp2[0] - P[hist + i, 0] * tmp2[2]
+            tmp[2] = P[hist + i, 0] * tmp2[1] - P[hist + i, 1] * tmp2[0]
             for k in range(3):
                 D[k] += h * tmp[k]
         t2 = phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]
@@ -142,8 +173,6 @@ def run(g, mode, steps, block, N, hist, h, p0, b0, pi, pj, pc, sw, dw,
             ja = (1.0 - math.cos(th)) / t2
             jb = (th - math.sin(th)) / (t2 * th)
             jc = (0.5 * t2 + math.cos(th) - 1.0) / (t2 * t2)
-        dV = np.zeros(3)
-        dR = np.zeros(3)
         cross(phi, phid, tmp)
         cross(phi, tmp, tmp2)
         for k in range(3):

@@ -29,6 +29,7 @@ unless ``overwrite_modified`` (:mod:`.output`).
 
 from __future__ import annotations
 
+import gc
 import importlib
 import io
 import pkgutil
@@ -254,7 +255,10 @@ class Context:
         The figure is saved at its own size, drawn once: its layout is fixed
         when it is built (:func:`.rendering.fixed_layout`), because a layout
         engine or ``bbox_inches="tight"`` measures every text in extra passes
-        that cost more than the drawing itself.
+        that cost more than the drawing itself.  The cycle collector is paused
+        while the figure is drawn and encoded (it would otherwise walk the heap
+        many times over the drawing's short-lived objects); the figure's
+        reference cycles are collected by a later pass, after it is closed.
 
         Parameters
         ----------
@@ -282,7 +286,13 @@ class Context:
             metadata = {"Software": None}
         quantise(fig)
         buf = io.BytesIO()
-        fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata)
+        collecting = gc.isenabled()
+        gc.disable()  # drawing allocates thousands of small objects: no cycle collection passes while it runs
+        try:
+            fig.savefig(buf, format=suffix.lstrip("."), dpi=dpi, metadata=metadata)
+        finally:
+            if collecting:
+                gc.enable()
         p.write_bytes(buf.getvalue())
         self._record(relpath)
         if self.figure_check is not None:

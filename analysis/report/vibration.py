@@ -18,6 +18,7 @@ import sympy as sp
 from ...derivations.coning.drift import X, optimal_coning_algorithm
 from ...derivations.coning.registry import get
 from ...derivations.coning.tuned import RHO, lowpass_null_coefficient, two_sample_null_coefficient
+from ..core.cache import derived
 from ..core.units import DEG, DEG_PER_RT_H_TO_RAD_PER_RT_S, RAD_PER_S_TO_DEG_PER_H
 from ..vibration.drift import environment_drift
 from ..vibration.environment import Environment, VibrationLine, coning_line, load_environment
@@ -92,10 +93,18 @@ def _vector(v, scale: float = K, *, reference: float = 0.0) -> str:
     return "(" + ", ".join("0" if abs(x) <= 1e-9 * top else f"{x * scale:+.3g}" for x in v) + ")"
 
 
+def _null_coefficient_formulas() -> tuple:
+    """LaTeX of the two-sample null coefficient k(x, ρ), of its limit at x → 0 for ρ = 1, and of that behind a first-order low-pass."""
+    k2 = two_sample_null_coefficient()
+    c2 = lowpass_null_coefficient()
+    return sp.latex(k2), sp.latex(sp.limit(k2.subs(RHO, 1), X, 0)), sp.latex(sp.expand(sp.limit(c2, X, 0)))
+
+
 def warm_up() -> None:
-    """Compile the Monte Carlo kernels :func:`build` runs: one per classical algorithm, the first with its velocity part."""
+    """Derive the null coefficients' formulas and compile the Monte Carlo kernels :func:`build` runs (one per classical algorithm, the first with its velocity part)."""
     from ..vibration.monte_carlo import monte_carlo_drift
 
+    derived("vibration-report:null-coefficient-formulas:v1", _null_coefficient_formulas)
     env = load_environment(QUALIFICATION)
     for i, name in enumerate(CLASSICAL):
         monte_carlo_drift(get(name), env, H, pairs=2, duration=0.01, rng=0, velocity=(i == 0))
@@ -233,8 +242,7 @@ def build(ctx) -> None:
     ]
 
     # ------------------------------------------------------------ 3. tuned against classical
-    k2 = two_sample_null_coefficient()
-    c2 = lowpass_null_coefficient()
+    k2_latex, k2_limit_latex, c2_limit_latex = derived("vibration-report:null-coefficient-formulas:v1", _null_coefficient_formulas)
     coeff = lambda t: ", ".join(f"c{key} = {v:.8g}" for key, v in t.coefficients.items())  # noqa: E731
     lines += [
         "## Algorithms tuned to the environment",
@@ -244,10 +252,10 @@ def build(ctx) -> None:
         "conditions (the second-order condition first). For N = 2 and one line the coefficient has a closed form",
         "(`strapdown.derivations.coning.tuned`), with ρ the fraction of the line's coning the sensors pass:",
         "",
-        f"$$k(x, \\rho) = {sp.latex(k2)},\\qquad \\lim_{{x\\to0}} k(x, 1) = {sp.latex(sp.limit(k2.subs(RHO, 1), X, 0))},$$",
+        f"$$k(x, \\rho) = {k2_latex},\\qquad \\lim_{{x\\to0}} k(x, 1) = {k2_limit_latex},$$",
         "",
         "and behind a first-order low-pass (ρ = 1/(1 + x²/c²), c = ω_c h) it tends to "
-        f"${sp.latex(sp.expand(sp.limit(c2, X, 0)))}$ as x → 0: the tuned algorithm also compensates the filter's pseudo-coning.",
+        f"${c2_limit_latex}$ as x → 0: the tuned algorithm also compensates the filter's pseudo-coning.",
         "",
         "| tuned algorithm | coefficients | nulled | tuned error magnitude | classical error magnitude |",
         "|---|---|---|---|---|",

@@ -61,6 +61,7 @@ import numpy as np
 from ...derivations.coning.algorithms import Algorithm, Term
 from ...derivations.coning.drift import lag_sums, optimal_coning_algorithm
 from ...derivations.coning.registry import get, names
+from ..coning.drift_theory import coning_drift_function
 from ..core.validation import as_array, as_int, positive
 from .aliasing import alias_response
 from .drift import environment_drift, response_integrals
@@ -541,6 +542,23 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     else:
         lines = tuple(coning_line(v, half_angle) for v in f)
     env = Environment(lines, (), environment.gyro, environment.accelerometer, environment.name)
+    algorithms = tuple(algorithms)
+    for a in algorithms:
+        if not isinstance(a, Algorithm):
+            raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(a).__name__}")
+    if algorithms and env.has_motion:
+        # Each line is read alone, so the pairs of lines that alias with the step rate (which
+        # environment_drift also lists) are not needed: one pass of the response integrals, the
+        # algorithms' drift functions side by side, gives every part.
+        r = response_integrals(env, sample_interval, [coning_drift_function(a) for a in algorithms])
+        primary = r.true[:, 0].sum(axis=0)
+        norm = float(np.linalg.norm(primary))
+        if norm > 0.0:  # the cone axis of environment_drift (its fallback, the total, is never needed for coning lines)
+            axis = primary / norm
+            parts = [i for i, part in enumerate(r.parts) if part[0] == "line"]
+            sensor = np.array([(r.true[i, 0] - r.sensed[i, 0]) @ axis for i in parts])
+            totals = [[((r.true[i, 0] - r.sensed[i, 0]) + r.algorithm[j, i, 0]) @ axis for i in parts] for j in range(len(algorithms))]
+            return BandDrift(f, float(half_angle), tuple(a.name for a in algorithms), np.array(totals), sensor)
     totals, sensor = [], None
     for a in algorithms:
         d = environment_drift(a, env, sample_interval)

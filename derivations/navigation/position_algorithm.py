@@ -161,8 +161,13 @@ def _exact_weights(samples: int) -> tuple:
     """``(s_j, e_ij)`` as SymPy rationals."""
     n = samples
     L, A = _basis(n)
-    s = tuple(sp.integrate(Aj, (_U, 0, n)) for Aj in A)
-    e = tuple(tuple(sp.integrate(sp.expand((n - _U) * A[i] * L[j]), (_U, 0, n)) for j in range(n)) for i in range(n))
+
+    def definite(expr):  # ∫_0^n of a polynomial in u, exactly (as sp.integrate, without its general machinery)
+        antiderivative = sp.Poly(expr, _U).integrate()
+        return antiderivative.eval(n) - antiderivative.eval(0)
+
+    s = tuple(definite(Aj) for Aj in A)
+    e = tuple(tuple(definite(sp.expand((n - _U) * A[i] * L[j])) for j in range(n)) for i in range(n))
     return s, e
 
 
