@@ -294,6 +294,15 @@ def build(ctx) -> None:
     ctx.write_text("integrators-in-the-wild.md", "\n".join(lines))
 
 
+def warm_up() -> None:
+    """Compile the peers' numba code into its disk cache (:mod:`strapdown.analysis.coning.integrators.peers`): pyins's loop and smsfusion's helpers."""
+    from ..coning.integrators.interface import step_increments
+    from ..coning.integrators.peers import pyins_integrator, smsfusion_ins
+
+    pyins_integrator(sample_interval=SAMPLE_INTERVAL)  # runs its loop at rest: compiled
+    step_increments(smsfusion_ins(sample_interval=SAMPLE_INTERVAL), np.zeros((2, 3)), 1, np.zeros((2, 3)))
+
+
 def _ratio(peers, label: str, reference: str) -> str:
     a = next(p for p in peers if p.label == label)
     b = next(p for p in peers if p.label.startswith(reference))

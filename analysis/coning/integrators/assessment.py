@@ -61,7 +61,8 @@ from ....derivations.coning import series as S
 from ....derivations.coning.algorithms import Algorithm, second_order_defect
 from ....derivations.coning.drift import ConingDrift
 from ...core import budget
-from ..drift_theory import coning_drift
+from ...core.cache import derived
+from ..drift_theory import algorithm_key, coning_drift
 from .anisotropy import Isotropy, axis_corrections
 from .assumptions import LONGEST_MEMORY, Linearity, Memory, Precision, TimeInvariance, TimeInvarianceRun, linearity_range, memory_length, precision
 from .identification import DEFAULT_MAX_PREVIOUS, DEFAULT_SEED, PROBE_AMPLITUDE, TOLERANCE, Identification, Remainder, identify, probe_samples
@@ -561,12 +562,26 @@ def _check(check: Check | None):
 
 
 def _order(algorithm: Algorithm) -> int | None:
-    """ρ of the series, through weight 5 first (the parts are computed on demand and kept), then the default weight."""
-    for weight in (5, S.DEFAULT_MAX_WEIGHT):
-        order = S.local_error(algorithm, weight).order
-        if order is not None:
-            return order
-    return None
+    """ρ of the series, through weight 5 first (the parts are computed on demand and kept), then the default weight.
+
+    Derived once per algorithm content and kept in the cache of derived
+    results (:func:`~strapdown.analysis.core.cache.derived`), as
+    :func:`~strapdown.analysis.coning.drift_theory.coning_drift` is.
+    """
+
+    def derive():
+        for weight in (5, S.DEFAULT_MAX_WEIGHT):
+            order = S.local_error(algorithm, weight).order
+            if order is not None:
+                return order
+        return None
+
+    return derived(f"integrators:accuracy-order:v1:{algorithm_key(algorithm)}", derive)
+
+
+def _error_coefficients(algorithm: Algorithm) -> S.ErrorCoefficients:
+    """:func:`strapdown.derivations.coning.series.error_coefficients`, derived once per algorithm content (cache of derived results)."""
+    return derived(f"integrators:error-coefficients:v1:{algorithm_key(algorithm)}", lambda: S.error_coefficients(algorithm))
 
 
 def verification_samples(samples: int, history: int, *, omega_h=OMEGA_H, velocity: bool = False, axes: int = 1) -> int:
@@ -864,7 +879,7 @@ def assess(
         order = weight - 1 if order is None else min(order, weight - 1)
     isotropic = ident.isotropic
     coning = coning_drift(alg) if weight is None and consistency.linear_tensor_is_sum and isotropic else None
-    series = S.error_coefficients(alg) if weight is None and order is not None else None
+    series = _error_coefficients(alg) if weight is None and order is not None else None
     history = max(ident.history, ident.max_previous)  # warm-up: steady state for any memory probed
     angles = verification_cone_angles(lin.range, _largest(ident), omega_h)
     check = exponent = None

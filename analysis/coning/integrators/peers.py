@@ -10,10 +10,15 @@ pyins (``python-ins`` on the package index)
     rest at the equator (no specific force, ``with_altitude=False``), the
     transport rate is zero and its frame is inertial: its matrices are our Λ
     (E → I), multiplied on the right by each step, as ours.  Setting the rate
-    changes pyins's module in this process; its loop is compiled with that rate
-    once per process (about 4.5 s) and never cached to disk, so that other
-    processes and other users of the installation see pyins unchanged.  Its
-    "before" sample is zero (the record starts from rest).  The attitude after
+    changes pyins's module in this process only.  Its loop, compiled with that
+    rate, is kept in numba's disk cache in the package's own cache directory
+    (:func:`~strapdown.analysis.core.cache.cache_directory`, under
+    ``numba-pyins-earth-rate-zero``): later processes load it instead of
+    compiling again (about 3 s), and nothing is written into pyins's
+    installation or numba's user-wide cache, so that other users of the
+    installation see pyins unchanged.  Where that directory cannot be written
+    the loop is compiled in memory, as before.  Its "before" sample is zero
+    (the record starts from rest).  The attitude after
     every N-th sample is its output.
     :func:`pyins_increments` is its increment function alone
     (``compute_increments_from_imu``, one sample per step): rotation vector
@@ -26,7 +31,9 @@ smsfusion
     and specific forces, not increments: it is given the mean rate and the
     mean specific force of each sample (``p/h``, ``b/h``), which over its
     sample period integrate back to the same increments.  Its attitude and
-    velocity after every N-th sample are its output.
+    velocity after every N-th sample are its output.  Its numba helpers are
+    kept in numba's disk cache under ``numba-smsfusion`` in the package's
+    cache directory, as pyins's loop is.
 
 Every adapter gives its peer exactly the increments the package's own
 algorithms get; the errors are measured against the same exact solution by
@@ -39,6 +46,8 @@ Public API
 
 from __future__ import annotations
 
+import os
+import sys
 import warnings
 
 import numpy as np
@@ -58,11 +67,13 @@ def _pyins(sample_interval: float):
     except ImportError:
         raise ImportError("pyins is not installed: it is a dependency of strapdown-analysis (the package index name is python-ins)") from None
     # pyins's loop reads the Earth rate when numba compiles it, once per process: zero then gives an inertial
-    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); it is never
-    # cached to disk, so other processes and other users of the installation see pyins unchanged.
+    # navigation frame.  The compiled loop keeps it for the rest of the process (the adapters say so); its disk cache
+    # is the package's own (_disk_cache), so other processes and other users of the installation see pyins unchanged.
     pyins.earth.RATE = 0.0
     import pandas as pd
     from pyins import strapdown
+
+    _disk_cache(strapdown.integrate, _PYINS_CACHE)  # its compiled loop, as pyins.strapdown imports it
 
     def imu(gyro, accel):
         rows = np.hstack([gyro, accel])
@@ -70,6 +81,69 @@ def _pyins(sample_interval: float):
         return pd.DataFrame(rows, index=np.arange(rows.shape[0]) * sample_interval, columns=_GYRO + _ACCEL)
 
     return pd, strapdown, imu
+
+
+#: Subdirectory of the package's cache directory holding pyins's loop compiled with a zero Earth rate.
+_PYINS_CACHE = "numba-pyins-earth-rate-zero"
+#: Subdirectory of the package's cache directory holding smsfusion's compiled helpers.
+_SMSFUSION_CACHE = "numba-smsfusion"
+
+
+def _disk_cache(dispatcher, subdirectory: str) -> None:
+    """Keep ``dispatcher``'s machine code in numba's disk cache, in the package's own cache directory.
+
+    The peers compile their numba functions without ``cache=True``, so every
+    process would compile them again (seconds).  numba's cache is keyed by
+    the function's source (a hash of its file) and the argument types, not by
+    the module globals it froze at compile time (pyins's Earth rate): so the
+    entries go to a directory only this module uses, in which pyins's loop is
+    always compiled with the rate at zero, and nothing is written into the
+    peer's installation (which may be read-only) or numba's user-wide cache.
+    :func:`pyins_integrator` still checks the compiled loop at rest.  A
+    dispatcher already caching, or a directory that cannot be written, leaves
+    the dispatcher as it was (compiled in memory).
+
+    Parameters
+    ----------
+    dispatcher : numba.core.registry.CPUDispatcher
+        A ``numba.njit`` function of a peer.
+    subdirectory : str
+        Its directory under :func:`~strapdown.analysis.core.cache.cache_directory`.
+    """
+    from numba.core import caching
+
+    from ...core.cache import cache_directory
+
+    # numba's cache classes (numba.core.caching; older numba releases spell the locator with a leading underscore): without them, compiled in memory
+    UserProvidedCacheLocator = getattr(caching, "UserProvidedCacheLocator", None) or getattr(caching, "_UserProvidedCacheLocator", None)
+    CompileResultCacheImpl, FunctionCache, NullCache = (getattr(caching, name, None) for name in ("CompileResultCacheImpl", "FunctionCache", "NullCache"))
+    if None in (UserProvidedCacheLocator, CompileResultCacheImpl, FunctionCache, NullCache):
+        return
+
+    if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
+        return  # already caching (an earlier call in this process)
+    root = str(cache_directory() / subdirectory)
+
+    class _Locator(UserProvidedCacheLocator):
+        def __init__(self, py_func, py_file):  # noqa: D107 - numba's locator, with our directory
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = os.path.join(root, self.get_suitable_cache_subpath(py_file))
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            return super(UserProvidedCacheLocator, cls).from_function(py_func, py_file)
+
+    class _Impl(CompileResultCacheImpl):
+        _locator_classes = [_Locator]
+
+    class _Cache(FunctionCache):
+        _impl_class = _Impl
+
+    try:
+        dispatcher._cache = _Cache(dispatcher.py_func)
+    except (RuntimeError, OSError):  # numba found no writable location: compile in memory
+        pass
 
 
 def pyins_integrator(*, sample_interval: float = 0.0025) -> Integrator:
@@ -170,14 +244,20 @@ def smsfusion_ins(*, sample_interval: float = 0.0025) -> Integrator:
         from smsfusion import StrapdownINS
     except ImportError:
         raise ImportError("smsfusion is not installed: it is a dependency of strapdown-analysis") from None
+    from numba.core.registry import CPUDispatcher
+
+    for value in vars(sys.modules[StrapdownINS.__module__]).values():  # the compiled helpers its update calls
+        if isinstance(value, CPUDispatcher):
+            _disk_cache(value, _SMSFUSION_CACHE)
     x0 = np.r_[np.zeros(6), 1.0, 0.0, 0.0, 0.0, np.zeros(6)]
 
     def run(gyro, samples_per_step, accel):
         ins = StrapdownINS(1.0 / h, x0, g=0.0)
         q, v = [], []
-        for k in range(gyro.shape[0]):
-            ins.update(accel[k] / h, gyro[k] / h)
-            if (k + 1) % samples_per_step == 0:
+        # the mean specific force and rate of every sample, divided once (the same floats as row by row)
+        for k, (f, w) in enumerate(zip(accel / h, gyro / h), start=1):
+            ins.update(f, w)
+            if k % samples_per_step == 0:
                 q.append(ins.quaternion())
                 v.append(ins.velocity())
         return np.array(q), np.array(v)

@@ -64,6 +64,7 @@ Lebedev & Panov (1989), eqs. (2.1), (4.1), (4.4); Savage (1998), part 2.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -580,6 +581,33 @@ def sculling_check(
     return Check("rectification error rate / (θ₀ A) along e_r × e_a, exact minus integrator", tuple(points), tuple(angle_amplitudes))
 
 
+@functools.lru_cache(maxsize=64)
+def _tumbling_rotations(n: int, warm: int, steps: tuple, times: tuple) -> tuple:
+    """The records and exact rotations of :func:`local_error_exponent`, per step middle and step H.
+
+    They depend on N, the warm-up and the grid only, not on the integrator:
+    computed once per process and shared by every integrator checked (the
+    callers pass copies to the integrators).
+    """
+    motion = TumblingMotion()
+    out = []
+    for t_mid in times:
+        per_time = []
+        for big_h in steps:
+            h = big_h / n
+            t0 = t_mid - 0.5 * big_h
+            record = motion.increments(t0 - warm * big_h, h, (warm + 1) * n)
+            exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + big_h)), validate=False)
+            per_time.append((_frozen(record), _frozen(exact)))
+        out.append(tuple(per_time))
+    return tuple(out)
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
 def local_error_exponent(integrator: Integrator, samples_per_step, *, history: int = 0, steps=(0.05, 0.025, 0.0125, 0.00625), times=(0.3, 1.1, 2.4)) -> float:
     """Exponent of the integrator's one-step error against the step H on :class:`TumblingMotion`.
 
@@ -608,16 +636,12 @@ def local_error_exponent(integrator: Integrator, samples_per_step, *, history: i
     """
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     warm = _warmup(history, n)
-    motion = TumblingMotion()
+    references = _tumbling_rotations(n, warm, tuple(float(x) for x in steps), tuple(float(x) for x in times))
     exps = []
-    for t_mid in times:
+    for per_time in references:
         errs = []
-        for big_h in steps:
-            h = big_h / n
-            t0 = t_mid - 0.5 * big_h
-            record = motion.increments(t0 - warm * big_h, h, (warm + 1) * n)
-            got = step_increments(integrator, record, n).rotation[-1]
-            exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + big_h)), validate=False)
+        for record, exact in per_time:
+            got = step_increments(integrator, record.copy(), n).rotation[-1]
             errs.append(float(np.linalg.norm(exact - got)))
         keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
         if len(keep) >= 2:
@@ -642,6 +666,38 @@ def _gauss(t0, t1, f):
     half = (t1 - t0) / 2
     t = (t0 + t1)[..., None] / 2 + half[..., None] * x
     return np.einsum("...m,...mk->...k", w, f(t)) * half[..., None]
+
+
+@functools.lru_cache(maxsize=64)
+def _tumbling_velocities(n: int, warm: int, steps: tuple, times: tuple) -> tuple:
+    """The records (gyro, accelerometer) and exact velocity increments of :func:`velocity_error_exponent`.
+
+    Per step middle and step H; shared by every integrator checked, as
+    :func:`_tumbling_rotations`.
+    """
+    motion = TumblingMotion()
+    out = []
+    for t_mid in times:
+        per_time = []
+        for big_h in steps:
+            h = big_h / n
+            t0 = t_mid - 0.5 * big_h
+            start = t0 - warm * big_h
+            count = (warm + 1) * n
+            gyro = motion.increments(start, h, count)
+            edges = start + h * np.arange(count + 1)
+            accel = _gauss(edges[:-1], edges[1:], _specific_force)
+            ref = motion.attitude(t0)
+
+            def turned(t, ref=ref):
+                q = quat.multiply(quat.conjugate(ref), motion.attitude(t))
+                return quat.rotate(q, _specific_force(t))
+
+            sub = t0 + h * np.arange(n + 1)
+            exact = _gauss(sub[:-1], sub[1:], turned).sum(axis=0)
+            per_time.append((_frozen(gyro), _frozen(accel), _frozen(exact)))
+        out.append(tuple(per_time))
+    return tuple(out)
 
 
 def velocity_error_exponent(integrator: Integrator, samples_per_step, *, history: int = 0, steps=(0.05, 0.025, 0.0125, 0.00625), times=(0.3, 1.1, 2.4)) -> float:
@@ -679,27 +735,12 @@ def velocity_error_exponent(integrator: Integrator, samples_per_step, *, history
     if not integrator.velocity:
         raise ValueError(f"Expected an integrator with velocity output, got {integrator.name!r} (coning only)")
     warm = _warmup(history, n)
-    motion = TumblingMotion()
+    references = _tumbling_velocities(n, warm, tuple(float(x) for x in steps), tuple(float(x) for x in times))
     exps = []
-    for t_mid in times:
+    for per_time in references:
         errs = []
-        for big_h in steps:
-            h = big_h / n
-            t0 = t_mid - 0.5 * big_h
-            start = t0 - warm * big_h
-            count = (warm + 1) * n
-            gyro = motion.increments(start, h, count)
-            edges = start + h * np.arange(count + 1)
-            accel = _gauss(edges[:-1], edges[1:], _specific_force)
-            got = step_increments(integrator, gyro, n, accel).velocity[-1]
-            ref = motion.attitude(t0)
-
-            def turned(t, ref=ref):
-                q = quat.multiply(quat.conjugate(ref), motion.attitude(t))
-                return quat.rotate(q, _specific_force(t))
-
-            sub = t0 + h * np.arange(n + 1)
-            exact = _gauss(sub[:-1], sub[1:], turned).sum(axis=0)
+        for gyro, accel, exact in per_time:
+            got = step_increments(integrator, gyro.copy(), n, accel.copy()).velocity[-1]
             errs.append(float(np.linalg.norm(exact - got)))
         keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
         if len(keep) >= 2:
