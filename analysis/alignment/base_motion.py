@@ -181,7 +181,20 @@ class UnitDraw:
         return self.kept(("points", indices.dtype.str, indices.tobytes(), int(d)), compute)
 
     def kept(self, key: tuple, compute) -> np.ndarray:
-        """The array of ``key``, made by ``compute()`` at the first call and kept read-only."""
+        """The array of ``key``, made by ``compute()`` at the first call and kept read-only.
+
+        Parameters
+        ----------
+        key : tuple
+            Hashable identity of the evaluation.
+        compute : callable
+            Makes the array when ``key`` is not yet kept.
+
+        Returns
+        -------
+        ndarray
+            Read-only.
+        """
         if key not in self._evaluations:
             x = compute()
             x.flags.writeable = False
