@@ -110,3 +110,21 @@ def test_summary_order_equals_series_order(name):
 @pytest.mark.parametrize(("name", "weight"), [("two-sample", 5), ("panov-4s-3", 7)])
 def test_small_cone_limit_cached_equals_derived(name, weight):
     assert _small_cone_limit(get(name), weight) == small_cone_limit(get(name), weight)
+
+
+def test_per_sample_fit_grid_search_equals_point_by_point_sums():
+    from strapdown.analysis.coning.computational_load import operation_count
+    from strapdown.analysis.coning.papers import budennyi_loads as L
+    from strapdown.analysis.coning.papers.budennyi_table3 import table3_conditions
+    from strapdown.derivations.coning import published as P
+
+    conditions = table3_conditions()
+    m = P.BUDENNYI_CONDITIONS.multiplication_cost
+    cells = L._cells(conditions, 20.0)
+    fits = L.per_sample_fit()
+    for fit, eps in zip(fits, sorted({c.row.eps for c in cells})):
+        data = [(c.printed, conditions.samples * operation_count(get(f"panov-4s-{c.row.algorithm}")).cost(m), c.step) for c in cells if c.row.eps == eps]
+        grid = np.arange(0.0, 3000.0, 1.0)
+        err = [sum((np.log((cost + q) / H / 1e3) - np.log(b)) ** 2 for b, cost, H in data) for q in grid]
+        assert fit.eps == eps
+        assert fit.sigma_q == float(grid[int(np.argmin(err))])
