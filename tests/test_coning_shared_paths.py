@@ -128,3 +128,17 @@ def test_per_sample_fit_grid_search_equals_point_by_point_sums():
         err = [sum((np.log((cost + q) / H / 1e3) - np.log(b)) ** 2 for b, cost, H in data) for q in grid]
         assert fit.eps == eps
         assert fit.sigma_q == float(grid[int(np.argmin(err))])
+
+
+@pytest.mark.parametrize("name", ["panov-4s-3", "two-sample"])
+def test_drift_terms_of_one_motion_kept_equal_evaluated_ones(name):
+    alg = get(name)
+    for eps, nutation in ((-1.0, 0.02), (0.5, 0.3), (-1.0, 0.02)):
+        vals, mags = T.drift_terms(alg, eps, nutation)
+        ref_vals, ref_mags = T._evaluate_drift_terms(alg, np.asarray(eps), np.asarray(nutation), T.DEFAULT_MAX_WEIGHT)
+        np.testing.assert_array_equal(vals, ref_vals)
+        np.testing.assert_array_equal(mags, ref_mags)
+        vals[...] = 0.0  # the caller's copy: the kept terms are untouched
+    np.testing.assert_array_equal(T.drift_terms(alg, 0.5, 0.3)[0], T._evaluate_drift_terms(alg, np.asarray(0.5), np.asarray(0.3), T.DEFAULT_MAX_WEIGHT)[0])
+    with pytest.raises(ValueError, match="nutation"):
+        T.drift_terms(alg, -1.0, 4.0)

@@ -59,6 +59,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import sympy as sp
@@ -201,12 +202,26 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
     check_max_weight(max_weight)
     budget.check(budget.series_derivation(max_weight, what=f"`max_weight` = {max_weight}"), limits)
     eps, nutation = _check_params(eps, nutation)
+    if eps.ndim == 0 and nutation.ndim == 0 and eps.dtype == nutation.dtype == np.float64:
+        # one motion, as the design searches ask again and again: kept per algorithm, motion and weight
+        vals, mags = _motion_drift_terms(algorithm, float(eps), float(nutation), max_weight)
+        return vals.copy(), mags.copy()
+    return _evaluate_drift_terms(algorithm, eps, nutation, max_weight)
+
+
+def _evaluate_drift_terms(algorithm: Algorithm, eps, nutation, max_weight: int):
     eps, nutation = np.broadcast_arrays(eps, nutation)
     s, c = np.sin(nutation), np.cos(nutation)
     out = _drift_functions(algorithm, max_weight)(eps, s, c)
     columns = [np.broadcast_to(np.asarray(v, dtype=float), eps.shape) for v in out]
     n = max_weight + 1
     return np.stack(columns[:n], axis=-1), np.stack(columns[n:], axis=-1)
+
+
+@lru_cache(maxsize=4096)
+def _motion_drift_terms(algorithm: Algorithm, eps: float, nutation: float, max_weight: int):
+    """:func:`_evaluate_drift_terms` at one (ε, ϑ), the same 0-d float arrays evaluated."""
+    return _evaluate_drift_terms(algorithm, np.asarray(eps, dtype=float), np.asarray(nutation, dtype=float), max_weight)
 
 
 def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
