@@ -437,6 +437,42 @@ def test_explicit_draws_give_the_trials_of_the_stream_at_any_amplitude():
         alignment_monte_carlo(replace(sc, motion=replace(sc.motion, period=5.0)), e, method="analytic", n_trials=6, draws=alignment_draws(sc, e, method="analytic", n_trials=6, rng=3))
 
 
+@pytest.mark.parametrize("motion", [NarrowbandMotion(R(np.array([0.0, 1.0, 1.0])), 8.0, 0.1), SineMotion(R(np.array([0.5, 1.0, 1.0])), 8.0)], ids=["narrowband", "sine"])
+def test_kept_noise_terms_and_truth_points_equal_the_products_made_again(motion):
+    """The noise terms and the truth at the ends kept with the draws give, at every amplitude and at every call,
+    the values made from the numbers again, bit for bit; another noise density makes them anew."""
+    from dataclasses import replace
+
+    from strapdown.analysis.alignment.base_motion import MotionRealisation
+    from strapdown.analysis.alignment.imu import draw_imu
+
+    sc = Scenario(R(60.0), heading=R(30.0), motion=motion, lever_arm=[0.5, 0.3, 1.0], sample_rate=10.0, duration=10.0)
+    e = SensorErrors(gyro_bias_sigma=B_001, gyro_noise=R(0.002) / 60.0, accel_noise=1e-4)
+    draws = draw_imu(sc, e, n_trials=4, rng=5)
+    N, dt = sc.n_samples, sc.dt
+    for sensor, density, numbers in (("gyro", e.gyro_noise, draws.gyro_noise), ("accel", e.accel_noise, draws.accel_noise)):
+        term = draws.noise_term(sensor, density * math.sqrt(dt))
+        assert np.array_equal(term, (density * math.sqrt(dt)) * numbers) and not term.flags.writeable
+        assert draws.noise_term(sensor, density * math.sqrt(dt)) is term  # kept
+        other = draws.noise_term(sensor, 2.0 * density * math.sqrt(dt))
+        assert np.array_equal(other, (2.0 * density * math.sqrt(dt)) * numbers)
+    idx = np.array([0, N])
+    for k in (0.5, 1.0, 3.0):
+        sc_k = replace(sc, motion=replace(motion, amplitude=k * motion.amplitude))
+        scaled = draws.rocking.rescaled(sc_k.motion)
+        # the reference: the unit coefficients evaluated afresh, then scaled per axis
+        unit = MotionRealisation(draws.rocking.unit.spectrum, draws.rocking.unit.coefficients, draws.rocking.dt)
+        fresh = unit.evaluate_points(idx, derivatives=1)
+        for _ in range(2):  # made, then kept
+            for got, ref in zip(scaled.evaluate_points(idx, derivatives=1), fresh):
+                assert np.array_equal(got, scaled.scale * ref)
+        a, b = simulate_imu(sc_k, e, draws=draws), simulate_imu(sc_k, e, draws=draws)
+        assert np.array_equal(a.dtheta, b.dtheta) and np.array_equal(a.dv, b.dv) and np.array_equal(a.truth_angles, b.truth_angles)
+    ideal = simulate_imu(sc_k, SensorErrors(gyro_bias_sigma=B_001), draws=draw_imu(sc, SensorErrors(gyro_bias_sigma=B_001), n_trials=4, rng=5))
+    noise = simulate_imu(sc_k, e, draws=draws).dtheta - ideal.dtheta
+    assert np.allclose(noise, (e.gyro_noise * math.sqrt(dt)) * draws.gyro_noise, rtol=0, atol=1e-15)  # the noise is the one added
+
+
 @pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
 def test_unscored_filter_gives_the_same_estimates_without_nees_and_nis(compiled):
     from strapdown.analysis.alignment import kernels as k

@@ -160,7 +160,28 @@ class UnitDraw:
         -------
         ndarray
         """
-        key = (int(n), float(offset), int(d), tuple(axes))
+        return self.kept((int(n), float(offset), int(d), tuple(axes)), compute)
+
+    def points(self, indices: np.ndarray, d: int, compute) -> np.ndarray:
+        """The d-th derivative at the sample instants of ``indices``, made by ``compute()`` once (read-only).
+
+        Parameters
+        ----------
+        indices : ndarray
+            ``(K,)`` integer sample indices.
+        d : int
+            Derivative.
+        compute : callable
+            Makes the ``(n_trials, K, 3)`` evaluation.
+
+        Returns
+        -------
+        ndarray
+        """
+        return self.kept(("points", indices.dtype.str, indices.tobytes(), int(d)), compute)
+
+    def kept(self, key: tuple, compute) -> np.ndarray:
+        """The array of ``key``, made by ``compute()`` at the first call and kept read-only."""
         if key not in self._evaluations:
             x = compute()
             x.flags.writeable = False
@@ -345,15 +366,17 @@ class MotionRealisation:
         c, scale = (self.unit.coefficients, self.scale) if self.unit is not None else (self.coefficients, None)
         t = k * self.dt
         w = self.spectrum.omega
-        out = []
-        for d in range(d_max + 1):
+
+        def series(d):
             cd = c * ((1j * w) ** d * np.exp(1j * w * 0.0))
             if self.spectrum.n_fft is not None:
-                x = np.real(np.einsum("nam,km->nka", cd, np.exp(1j * np.outer(t, w))))
-            else:
-                x = self._sinusoids(cd, t)
-            out.append(x if scale is None else scale * x)
-        return tuple(out)
+                return np.real(np.einsum("nam,km->nka", cd, np.exp(1j * np.outer(t, w))))
+            return self._sinusoids(cd, t)
+
+        if scale is None:
+            return tuple(series(d) for d in range(d_max + 1))
+        # a scaled draw: the unit evaluation at these instants is kept with the draw, as the records are
+        return tuple(scale * self.unit.points(k, d, lambda d=d: series(d)) for d in range(d_max + 1))
 
     def _axes_series(self, axes, n, offset, d):
         """:meth:`_series` of the unit coefficients on ``axes`` only, zero on the others (each axis's transform is its own)."""

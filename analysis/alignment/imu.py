@@ -343,11 +343,41 @@ class ImuDraws:
     accel_noise: np.ndarray | None
     gyro_start: np.ndarray | None
     accel_start: np.ndarray | None
+    _noise: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def n_trials(self) -> int:
         """Trials."""
         return self.gyro_bias.shape[0]
+
+    def noise_term(self, sensor: str, factor: float) -> np.ndarray:
+        """``factor`` times the white-noise numbers of ``sensor``, read-only and kept for the next call.
+
+        A search over the rocking amplitude evaluates the same draws many times
+        with the same noise density: the product is made once per factor (the
+        last one per sensor is kept), and its values are those of the product
+        made again.
+
+        Parameters
+        ----------
+        sensor : str
+            ``"gyro"`` or ``"accel"``.
+        factor : float
+            Noise density times √dt [rad or m/s per unit normal number].
+
+        Returns
+        -------
+        ndarray
+            ``(n, N, 3)``.
+        """
+        numbers = self.gyro_noise if sensor == "gyro" else self.accel_noise
+        factor = float(factor)
+        kept = self._noise.get(sensor)
+        if kept is None or kept[0] != factor or kept[1] is not numbers:
+            term = factor * numbers
+            term.flags.writeable = False
+            kept = self._noise[sensor] = (factor, numbers, term)
+        return kept[2]
 
 
 def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, limits: budget.Limits | None = None) -> ImuDraws:
@@ -496,9 +526,9 @@ def simulate_imu(
     dtheta += gb[:, None, :] * dt
     dv += ab[:, None, :] * dt
     if e.gyro_noise:
-        dtheta += (e.gyro_noise * math.sqrt(dt)) * draws.gyro_noise
+        dtheta += draws.noise_term("gyro", e.gyro_noise * math.sqrt(dt))
     if e.accel_noise:
-        dv += (e.accel_noise * math.sqrt(dt)) * draws.accel_noise
+        dv += draws.noise_term("accel", e.accel_noise * math.sqrt(dt))
     if e.gyro_quantum > 0:
         dtheta = _quantise(dtheta, e.gyro_quantum, draws.gyro_start * e.gyro_quantum)
     if e.accel_quantum > 0:

@@ -292,5 +292,10 @@ def configure_matplotlib() -> None:
             "font.size": 9,
             "axes.titlesize": 10,
             "legend.fontsize": 8,
+            # Titles sit at the top of their axes.  Left to matplotlib (None), every draw
+            # measures the tick labels of each axes to see whether a title must move up: about
+            # a fifth of the report's drawing time.  No figure of the report has ticks on top,
+            # and every one is byte-identical with either setting.
+            "axes.titley": 1.0,
         }
     )
