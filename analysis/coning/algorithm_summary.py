@@ -22,7 +22,8 @@ import numpy as np
 from ...derivations.coning import series as S
 from ...derivations.coning.algorithms import Algorithm, second_order_defect
 from ..core import quaternion as quat
-from .drift_theory import coning_drift
+from ..core.cache import derived
+from .drift_theory import algorithm_key, coning_drift
 from .evaluation import increment
 from .local_error import TumblingMotion
 
@@ -154,7 +155,7 @@ def summarize(algorithm: Algorithm) -> AlgorithmSummary:
     """
     if not isinstance(algorithm, Algorithm):
         raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(algorithm).__name__}")
-    order = S.local_error(algorithm).order
+    order = derived(f"coning:local-error-order:v1:{algorithm_key(algorithm)}", lambda: S.local_error(algorithm).order)
     try:
         coning = coning_drift(algorithm).order
     except ValueError:  # no finite order through (ωh)^60

@@ -59,6 +59,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import sympy as sp
@@ -89,6 +90,7 @@ __all__ = [
     "SERIES_RTOL",
     "SERIES_MAX_WEIGHT",
     "coning_drift",
+    "optimal_coning_algorithm",
     "coning_drift_function",
     "coning_drift_rate",
     "AccumulatedError",
@@ -200,12 +202,26 @@ def drift_terms(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAUL
     check_max_weight(max_weight)
     budget.check(budget.series_derivation(max_weight, what=f"`max_weight` = {max_weight}"), limits)
     eps, nutation = _check_params(eps, nutation)
+    if eps.ndim == 0 and nutation.ndim == 0 and eps.dtype == nutation.dtype == np.float64:
+        # one motion, as the design searches ask again and again: kept per algorithm, motion and weight
+        vals, mags = _motion_drift_terms(algorithm, float(eps), float(nutation), max_weight)
+        return vals.copy(), mags.copy()
+    return _evaluate_drift_terms(algorithm, eps, nutation, max_weight)
+
+
+def _evaluate_drift_terms(algorithm: Algorithm, eps, nutation, max_weight: int):
     eps, nutation = np.broadcast_arrays(eps, nutation)
     s, c = np.sin(nutation), np.cos(nutation)
     out = _drift_functions(algorithm, max_weight)(eps, s, c)
     columns = [np.broadcast_to(np.asarray(v, dtype=float), eps.shape) for v in out]
     n = max_weight + 1
     return np.stack(columns[:n], axis=-1), np.stack(columns[n:], axis=-1)
+
+
+@lru_cache(maxsize=4096)
+def _motion_drift_terms(algorithm: Algorithm, eps: float, nutation: float, max_weight: int):
+    """:func:`_evaluate_drift_terms` at one (ε, ϑ), the same 0-d float arrays evaluated."""
+    return _evaluate_drift_terms(algorithm, np.asarray(eps, dtype=float), np.asarray(nutation, dtype=float), max_weight)
 
 
 def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = DEFAULT_MAX_WEIGHT, limits: budget.Limits | None = None):
@@ -239,7 +255,11 @@ def asymptotic_order(algorithm: Algorithm, eps, nutation, *, max_weight: int = D
     >>> int(asymptotic_order(get("panov-4s-3"), 0.5, np.radians(1.0)))
     4
     """
-    vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
+    return _order_of_terms(*drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits))
+
+
+def _order_of_terms(vals, mags):
+    """ρ from the coefficients and majorants of :func:`drift_terms` (−1 where all vanish)."""
     nonzero = np.abs(vals) > ZERO_TOLERANCE * np.maximum(mags, np.finfo(float).tiny)
     first = np.argmax(nonzero, axis=-1)
     return np.where(nonzero.any(axis=-1), first - 1, -1)
@@ -292,7 +312,7 @@ def _signed_asymptotic_drift(algorithm, eps, nu, nutation, step, max_weight, lim
     nu = _check_positive(nu, "nu")
     step = _check_positive(step, "step")
     vals, mags = drift_terms(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
-    rho = asymptotic_order(algorithm, eps, nutation, max_weight=max_weight, limits=limits)
+    rho = _order_of_terms(vals, mags)  # asymptotic_order, from the same terms
     vals, rho, nu, step = np.broadcast_arrays(vals, rho[..., None], nu[..., None], step[..., None])
     w = rho[..., 0] + 1
     lead = np.take_along_axis(vals, np.clip(w, 0, vals.shape[-1] - 1)[..., None], axis=-1)[..., 0]
@@ -740,6 +760,33 @@ def coning_drift(algorithm: Algorithm) -> sym.ConingDrift:
         The derivation's object itself.
     """
     return derived(f"coning:coning-drift:v1:{algorithm_key(algorithm)}", lambda: sym.coning_drift(algorithm))
+
+
+def optimal_coning_algorithm(samples: int, *, history: int = 0) -> Algorithm:
+    """The optimal coning algorithm of :func:`strapdown.derivations.coning.drift.optimal_coning_algorithm`, derived once.
+
+    The derivation (an exact linear system in the lag sums) is kept in the
+    cache of derived results (:func:`strapdown.analysis.core.cache.derived`),
+    per ``(samples, history)`` and source version.
+
+    Parameters
+    ----------
+    samples : int
+        N ≥ 1.
+    history : int, keyword-only
+        Samples of earlier steps used (≥ 0); N + history ≥ 2.
+
+    Returns
+    -------
+    Algorithm
+        Equal to the derivation's algorithm.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`strapdown.derivations.coning.drift.optimal_coning_algorithm`.
+    """
+    return derived(f"coning:optimal-coning-algorithm:v1:{samples!r}:{history!r}", lambda: sym.optimal_coning_algorithm(samples, history=history))
 
 
 def coning_drift_function(algorithm: Algorithm):

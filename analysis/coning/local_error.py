@@ -18,6 +18,7 @@ are ``δ4 · k``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -144,9 +145,27 @@ def local_error(algorithm: Algorithm, motion: TumblingMotion, t_mid, step):
     """
     step = positive(step, "step")
     t0 = as_float(t_mid, "t_mid") - 0.5 * step
-    p = motion.increments(t0, step / algorithm.samples, algorithm.samples)
-    exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + step)), validate=False)
+    if type(motion) is TumblingMotion:  # the step's increments and exact rotation do not depend on the algorithm: shared
+        p, exact = _step_terms(motion, t0, step, algorithm.samples)
+    else:
+        p, exact = _compute_step_terms(motion, t0, step, algorithm.samples)
     return exact - increment(algorithm, p)
+
+
+def _compute_step_terms(motion, t0: float, step: float, samples: int):
+    """The increments ``p_j`` (N, 3) and the exact rotation vector (3,) of the step ``[t0, t0 + step]``."""
+    p = motion.increments(t0, step / samples, samples)
+    exact = quat.quat_to_rotvec(quat.multiply(quat.conjugate(motion.attitude(t0)), motion.attitude(t0 + step)), validate=False)
+    return p, exact
+
+
+@lru_cache(maxsize=4096)
+def _step_terms(motion: TumblingMotion, t0: float, step: float, samples: int):
+    """:func:`_compute_step_terms`, kept per motion and step (read-only arrays), for the many algorithms run on the same steps."""
+    p, exact = _compute_step_terms(motion, t0, step, samples)
+    p.flags.writeable = False
+    exact.flags.writeable = False
+    return p, exact
 
 
 def _rate_derivatives(motion: TumblingMotion, t, order: int = 3, radius: float = 0.05):
@@ -162,6 +181,20 @@ def _rate_derivatives(motion: TumblingMotion, t, order: int = 3, radius: float =
 
 
 def _budennyi_basis(motion, t):
+    """The basis vectors of eq. (2) at ``t``, shape (3, 5); kept per motion and time for a :class:`TumblingMotion` (read-only)."""
+    if type(motion) is TumblingMotion:
+        return _shared_budennyi_basis(motion, float(t))
+    return _compute_budennyi_basis(motion, t)
+
+
+@lru_cache(maxsize=1024)
+def _shared_budennyi_basis(motion: TumblingMotion, t: float):
+    out = _compute_budennyi_basis(motion, t)
+    out.flags.writeable = False
+    return out
+
+
+def _compute_budennyi_basis(motion, t):
     w0, w1, w2, w3 = _rate_derivatives(motion, t)
     cr = np.cross
     return np.stack([cr(w0, w3), cr(w1, w2), cr(w0, cr(w0, w2)), cr(w1, cr(w1, w0)), cr(w0, cr(w0, cr(w0, w1)))], axis=-1)

@@ -465,13 +465,20 @@ def rectification_error(algorithm: Algorithm, motion: ScullingMotion, sample_int
         raise ValueError(f"Expected ν H not a multiple of π, got ν H = {motion.nu * big_h:g}")
     with mpmath.workdps(RECTIFICATION_DIGITS):
         hm = mpmath.mpf(h)
-        cur = [_phasors(motion, hm, j) for j in range(1, n + 1)]
+        phasors = {}  # by sample index: each is needed by several pairs
+
+        def at(index):
+            if index not in phasors:
+                phasors[index] = _phasors(motion, hm, index)
+            return phasors[index]
+
+        cur = [at(j) for j in range(1, n + 1)]
         p_sum, b_sum = sum(p for p, _ in cur), sum(b for _, b in cur)
         theta_k = motion.angle_amplitude * mpmath.expj(motion.angle_phase)
         total = _mean(theta_k, b_sum) + _mean(p_sum, b_sum) / 2
         for (i, j), c in algorithm.pairwise.items():
-            pi, bi = _phasors(motion, hm, i)
-            pj, bj = _phasors(motion, hm, j)
+            pi, bi = at(i)
+            pj, bj = at(j)
             total += mpmath.mpf(c.numerator) / c.denominator * (_mean(pi, bj) - _mean(bi, pj))
         exact_rate = mpmath.mpf(motion.angle_amplitude) * motion.accel_amplitude * mpmath.cos(mpmath.mpf(motion.accel_phase) - motion.angle_phase) / 2
         rate = exact_rate - total / (n * hm)

@@ -115,11 +115,19 @@ def _controls_text(n) -> list:
 
 
 # ---------------------------------------------------------------- 1. derivation
+def _linear_parts():
+    """:func:`strapdown.derivations.gyrocompass.azimuth_error.linear_parts`, kept with the derived results (SymPy)."""
+    from ...derivations.gyrocompass import azimuth_error as g
+    from ..core.cache import derived
+
+    return derived("gyrocompass:linear-parts:v1", g.linear_parts)
+
+
 def _derivation_lines(checks) -> list:
     from ...derivations.gyrocompass import azimuth_error as g
     from ..core.cache import derived
 
-    p = g.linear_parts()
+    p = _linear_parts()
     mse = derived("gyrocompass:mse-at-zero-tilt:v1", g.mse_at_zero_tilt)
     reduces = "reduces symbolically to (15)" if derived("gyrocompass:bound14-reduces-to-15:v1", g.bound14_reduces_to_15) else "does NOT reduce to (15)"
     lines = [
@@ -533,13 +541,14 @@ def _design_lines(curves, check, freqs) -> list:
 
 # ---------------------------------------------------------------- build
 def warm_up() -> None:
-    """Derive what :func:`build` needs into the caches: the mean square at zero tilt, the printed-formula checks, the second-order theory."""
+    """Derive what :func:`build` needs into the caches: the linear parts, the mean square at zero tilt, the printed-formula checks, the second-order theory."""
     from ...derivations.gyrocompass import azimuth_error as g
     from ..core.cache import derived
     from ..gyrocompass.azimuth import second_order_theory
 
     derived("gyrocompass:mse-at-zero-tilt:v1", g.mse_at_zero_tilt)
     derived("gyrocompass:bound14-reduces-to-15:v1", g.bound14_reduces_to_15)
+    _linear_parts()
     _formula_checks()
     second_order_theory(rad(45.0), rad(1.0), rad(0.5), rad(1.0), rad(1.0))
 
@@ -606,10 +615,9 @@ def errata(ctx) -> list:
     -------
     list of Erratum
     """
-    from ...derivations.gyrocompass import azimuth_error as g
 
     rows = {c.label: c for c in _formula_checks()}
-    p = g.linear_parts()
+    p = _linear_parts()
     out = [
         Erratum(
             "Hrechka & Koroliov, definition of A after eq. (2)",

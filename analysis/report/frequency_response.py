@@ -12,9 +12,9 @@ import math
 import numpy as np
 import sympy as sp
 
-from ...derivations.coning.drift import X, optimal_coning_algorithm
+from ...derivations.coning.drift import X
 from ...derivations.coning.registry import get, names
-from ..coning.drift_theory import coning_drift
+from ..coning.drift_theory import coning_drift, optimal_coning_algorithm
 from ..coning.frequency_response import CHECK_CONE_ANGLE, QUARTIC_WEIGHT, ROUND_OFF_MARGIN, coning_frequency_response, finite_angle_check
 from ..core.units import DEG
 from . import Section

@@ -209,13 +209,18 @@ def _sculling_figure(plt, curves, points):
 
 
 def warm_up() -> None:
-    """Derive what :func:`build` needs into the caches: the exact residual coning coefficient of each published algorithm."""
-    from ...derivations.coning.published import PUBLISHED_ALGORITHM_ERRORS
-    from ...derivations.coning.registry import get
+    """Derive what :func:`build` needs into the caches: the exact residual coning coefficient of each published algorithm,
+    each library algorithm's accuracy order, and the optimal algorithms whose coefficients are checked."""
+    from ...derivations.coning.published import PUBLISHED_ALGORITHM_COEFFICIENTS, PUBLISHED_ALGORITHM_ERRORS
+    from ..coning.drift_theory import optimal_coning_algorithm
     from ..coning.papers.published_check import coning_coefficient
 
     for fig in PUBLISHED_ALGORITHM_ERRORS:
         coning_coefficient(get(fig.algorithm))
+    for n in sorted(set(PUBLISHED_ALGORITHM_COEFFICIENTS) | {6}):
+        optimal_coning_algorithm(n)
+    for name in names(library=True):
+        summarize(get(name))
 
 
 def build(ctx) -> None:

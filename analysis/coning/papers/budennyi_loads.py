@@ -533,7 +533,9 @@ def per_sample_fit(*, conditions: Table3Conditions | None = None, simulation_dur
     for eps in sorted({c.row.eps for c in cells}):
         data = [(c.row.algorithm, c.column, c.printed, conditions.samples * operation_count(get(f"panov-4s-{c.row.algorithm}")).cost(m), c.step) for c in cells if c.row.eps == eps]
         grid = np.arange(0.0, 3000.0, 1.0)
-        err = [sum((np.log((cost + q) / H / 1e3) - np.log(b)) ** 2 for _, _, b, cost, H in data) for q in grid]
+        err = np.zeros_like(grid)
+        for _, _, b, cost, H in data:  # summed cell by cell, in the order of the cells, for every σ_q of the grid at once
+            err += (np.log((cost + grid) / H / 1e3) - np.log(b)) ** 2
         q = float(grid[int(np.argmin(err))])
         out.append(PerSampleFit(eps, q, tuple(FittedLoad(k, col, b, (cost + q) / H / 1e3) for k, col, b, cost, H in data), conditions.samples))
     return tuple(out)

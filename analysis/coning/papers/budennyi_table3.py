@@ -33,9 +33,10 @@ from ....derivations.coning import published as P
 from ....derivations.coning.algorithms import Algorithm
 from ....derivations.coning.leading_drift import leading_drift, small_cone_limit
 from ....derivations.coning.registry import get
+from ...core.cache import derived
 from ...core.units import deg_per_h, rad
 from ...core.validation import positive
-from ..drift_theory import asymptotic_drift, asymptotic_order, drift_series
+from ..drift_theory import algorithm_key, asymptotic_drift, asymptotic_order, drift_series
 from ..precession import RegularPrecession
 from ..simulator import simulate
 
@@ -519,6 +520,12 @@ def leading_estimates(*, conditions: Table3Conditions | None = None, simulation_
         est = leading_drift(alg, 7)
         scale = m.nu**7 * c.step**6
         mid, full = (float(e.subs({D.EPS: m.eps, D.THETA: m.nutation})) * scale for e in (est.mid_step, est.full))
-        small = float(small_cone_limit(alg, 7)) * m.nutation**2 * scale if m.eps == -1.0 else math.nan
+        small = float(_small_cone_limit(alg, 7)) * m.nutation**2 * scale if m.eps == -1.0 else math.nan
         out.append(LeadingEstimates(r.printed, mid, full, full - mid, r.simulated, small))
     return tuple(out)
+
+
+def _small_cone_limit(algorithm: Algorithm, weight: int):
+    """:func:`strapdown.derivations.coning.leading_drift.small_cone_limit` (an exact rational), derived once per algorithm content and weight."""
+    key = f"{small_cone_limit.__module__}:{small_cone_limit.__qualname__}:v1:{algorithm_key(algorithm)}:{weight!r}"
+    return derived(key, lambda: small_cone_limit(algorithm, weight))

@@ -33,7 +33,7 @@ from ....derivations.coning.published import PSINS_TABLE_10_1_N6, PUBLISHED_ALGO
 from ....derivations.coning.registry import get
 from ...core.cache import derived
 from ...core.validation import positive
-from ..drift_theory import algorithm_key
+from ..drift_theory import algorithm_key, optimal_coning_algorithm
 from ..precession import RegularPrecession
 from ..sculling_motion import ScullingMotion, rectification_error
 from ..simulator import simulate
@@ -194,11 +194,11 @@ def coefficient_checks() -> tuple:
     """
     out = []
     for n, (ks, source) in PUBLISHED_ALGORITHM_COEFFICIENTS.items():
-        derived = tuple(reversed(D.lag_sums(D.optimal_coning_algorithm(n))))  # k_1 … k_{N−1}: lags N−1 … 1
+        derived = tuple(reversed(D.lag_sums(optimal_coning_algorithm(n))))  # k_1 … k_{N−1}: lags N−1 … 1
         for i, (k, ours) in enumerate(zip(ks, derived), start=1):
             out.append(FigureCheck(f"k{i}-N{n}", f"compressed-{n}", f"k_{i}", k, ours, None, k == ours, source))
     printed, source = PSINS_TABLE_10_1_N6
-    derived = tuple(reversed(D.lag_sums(D.optimal_coning_algorithm(6))))
+    derived = tuple(reversed(D.lag_sums(optimal_coning_algorithm(6))))
     for i, (k, ours) in enumerate(zip(printed, derived), start=1):
         if k != ours:
             weights = sum((c * (6 - j) for j, c in enumerate(printed, start=1)), Fraction(0))
