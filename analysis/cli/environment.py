@@ -318,11 +318,13 @@ def rates_command(args) -> Result:
     if hi <= lo:
         raise ValueError(f"Expected `--max-rate-hz` above `--min-rate-hz`, got {hi:g} and {lo:g}")
     budget = positive(args.budget_deg_per_h, "--budget-deg-per-h") / K
+    if not 0.0 <= args.margin < 1.0:  # checked again by rate_design; here before the heavy imports
+        raise ValueError(f"Expected `--margin` in [0, 1) (the frequencies are scaled by 1 ± margin), got {args.margin:g}")
+    env = _environment(args)
     from ...derivations.coning.registry import get
 
     algorithms = [get(n.strip()) for n in args.algorithms.split(",") if n.strip()]
     tuned = [(n, 0) for n in range(2, args.tuned_up_to + 1)]
-    env = _environment(args)
     from ..vibration.drift import theory_warnings
     from ..vibration.rate_design import rate_design
 

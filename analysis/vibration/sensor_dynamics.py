@@ -57,7 +57,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy import signal
 
 from ..core.validation import as_array, as_int, positive
 
@@ -144,6 +143,8 @@ class AnalogFilter:
         w = np.asarray(omega, dtype=float)
         if self.order == 0:
             return np.full(w.shape, self.num[-1] / self.den[-1], dtype=complex)
+        from scipy import signal
+
         _, h = signal.freqs(self.num, self.den, worN=w.ravel())
         return h.reshape(w.shape)
 
@@ -155,6 +156,8 @@ class AnalogFilter:
         tuple of ndarray
             Shapes (n, n), (n, 1), (1, n), (1, 1) with n = :attr:`order`.
         """
+        from scipy import signal
+
         return signal.tf2ss(self.num, self.den)
 
     @property
@@ -168,6 +171,8 @@ class AnalogFilter:
 @lru_cache(maxsize=256)
 def _butterworth(order: int, cutoff_hz: float, sensor_interval: float) -> tuple:
     """``scipy.signal.butter`` at the sensor rate, designed once per (order, cut-off, interval)."""
+    from scipy import signal
+
     b, a = signal.butter(order, cutoff_hz, fs=1.0 / sensor_interval)
     b, a = b / a[0], a / a[0]
     b.setflags(write=False)
@@ -280,6 +285,8 @@ class DigitalFilter:
         if self.kind == "none":
             return np.ones(w.shape, dtype=complex)
         b, a = self.coefficients(sensor_interval)
+        from scipy import signal
+
         _, h = signal.freqz(b, a, worN=(w * sensor_interval).ravel())
         return h.reshape(w.shape)
 
@@ -458,6 +465,8 @@ def analog_filter(kind: str = "none", *, cutoff_hz: float | None = None, order: 
     n = 2 if order is None else as_int(order, "order", minimum=1)
     if n > MAX_ORDER:
         raise ValueError(f"Expected `order` ≤ {MAX_ORDER}, got {n}")
+    from scipy import signal  # imported where it is used: it takes longer to import than a command's checks
+
     if kind == "butterworth":
         b, a = signal.butter(n, wc, analog=True)
         text = f"Butterworth order {n}, {fc:g} Hz"
