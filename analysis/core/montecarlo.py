@@ -302,6 +302,8 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
     list
         The results, in the order of ``tasks`` (whatever order they finish in).
     """
+    if executor is None and not progress:  # here and silent: no bar to keep (a Monte Carlo of many small runs calls this per run)
+        return [task() for task in tasks]
     from .progress import bar as progress_bar
 
     bar = progress_bar(total=len(tasks), desc=desc, enabled=progress)
@@ -471,8 +473,9 @@ def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: i
     rows, aux_rows = zip(*(_block_rows(e, a) for e, a in blocks))
     rows = np.array(rows)
     sums = [math.fsum(rows[:, k]) for k in range(rows.shape[1])]
-    u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)
-    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+    u = errors.ravel() * (n_bins / (2.0 * half_width * scale))
+    u += n_bins / 2.0 + 1.0
+    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0, out=u).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
     aux_mean, aux_se = (), ()
     if aux_rows[0] is not None:
         aux = np.array(aux_rows)
@@ -718,7 +721,7 @@ def _products(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _solve(gram: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Solve the normal equations; a control without spread (a zero column) gets a zero coefficient."""
     gram = gram.copy()
-    gram[np.diag_indices_from(gram)] += 1e-300
+    gram.flat[:: gram.shape[0] + 1] += 1e-300  # the diagonal
     return np.linalg.solve(gram, rhs)
 
 

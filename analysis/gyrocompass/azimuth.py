@@ -89,8 +89,10 @@ def _cos_from_sin(angle, sine):
     c = sine * sine
     np.subtract(1.0, c, out=c)
     np.sqrt(c, out=c)
-    wide = np.abs(angle) > _QUARTER_PI
-    if wide.any():
+    # two reductions decide the common case (no wide tilt) without a mask; a NaN makes the test
+    # fail and takes the masked path, where it is not wide
+    if angle.size and not (-_QUARTER_PI <= angle.min() and angle.max() <= _QUARTER_PI):
+        wide = np.abs(angle) > _QUARTER_PI
         c[wide] = np.cos(angle[wide])
     return c
 
