@@ -205,10 +205,11 @@ def test_cos_from_sin_equals_the_masked_computation_bit_for_bit():
 
 
 def test_histogram_scaled_in_place_equals_the_previous_counts():
-    """summarise's histogram (scaled, shifted and clipped in place) has the counts of the out-of-place expression."""
+    """summarise's histogram (binned in place, in passes over a long run) has the counts of the one-pass expression."""
     rng = np.random.default_rng(3)
-    errors = rng.standard_normal((40, 64)) * 0.3
+    errors = rng.standard_normal((3 * 1024 + 5, 64)) * 0.3  # three passes and a part
     errors[0, :3] = (-1e9, 1e9, 0.0)  # underflow, overflow
+    errors[1024, :2] = (-1e9, 1e9)  # at the start of the second pass
     scale, half_width, n_bins = 0.1, 20.0, 8000
     result = montecarlo.summarise([(errors[:20], None), (errors[20:], None)], scale=scale, half_width=half_width, n_bins=n_bins, quantiles=())
     u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)

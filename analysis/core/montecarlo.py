@@ -473,9 +473,7 @@ def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: i
     rows, aux_rows = zip(*(_block_rows(e, a) for e, a in blocks))
     rows = np.array(rows)
     sums = [math.fsum(rows[:, k]) for k in range(rows.shape[1])]
-    u = errors.ravel() * (n_bins / (2.0 * half_width * scale))
-    u += n_bins / 2.0 + 1.0
-    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0, out=u).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+    counts = _histogram_counts(errors.ravel(), n_bins / (2.0 * half_width * scale), n_bins / 2.0 + 1.0, n_bins)
     aux_mean, aux_se = (), ()
     if aux_rows[0] is not None:
         aux = np.array(aux_rows)
@@ -485,6 +483,25 @@ def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: i
     q = sample_quantiles(errors, quantiles)
     summary = _summarise(n_trials, sums, counts, float(errors.min()), float(errors.max()), scale, half_width, n_bins, aux_mean)
     return replace(summary, aux_std_error=aux_se, quantiles={x.level: x.value for x in q}, quantile_intervals={x.level: (x.low, x.high) for x in q})
+
+
+#: errors binned per pass of the histogram: the temporaries stay in cache (a long run bins many passes)
+_HISTOGRAM_CHUNK = 1 << 16
+
+
+def _histogram_counts(errors: np.ndarray, factor: float, offset: float, n_bins: int) -> np.ndarray:
+    """Counts of ``errors · factor + offset`` clipped to ``[0, n_bins + 1]`` and truncated: underflow, ``n_bins`` bins, overflow.
+
+    The errors are binned in passes of ``_HISTOGRAM_CHUNK`` (integer counts: the
+    same for any passes).
+    """
+    counts = None
+    for i in range(0, max(errors.size, 1), _HISTOGRAM_CHUNK):
+        u = errors[i : i + _HISTOGRAM_CHUNK] * factor
+        u += offset
+        part = np.bincount(np.clip(u, 0.0, n_bins + 1.0, out=u).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+        counts = part if counts is None else counts + part
+    return counts
 
 
 @dataclass(frozen=True)
