@@ -162,3 +162,20 @@ def test_skipping_quantiles_keeps_the_draws_and_every_moment():
     case = BoundCase("c", "normal", 1.2, 0.0, 0.0, 0.03)
     (a,), (b,) = run_cases([case], n_samples=8192, rng=2), run_cases([case], n_samples=8192, rng=2, quantiles=())
     assert a.mc.result.rms_ci == b.mc.result.rms_ci and a.mc.result.mean == b.mc.result.mean and not b.mc.result.quantiles
+
+
+def test_moments_at_python_floats_equal_those_at_numpy_scalars():
+    """second_order_theory evaluates the generated moments with Python floats: NumPy's values, bit for bit."""
+    import numpy as np
+
+    from strapdown.analysis.gyrocompass import azimuth as az
+
+    rng = np.random.default_rng(11)
+    for _ in range(2000):
+        lat, b0, g0 = rng.uniform(-1.5, 1.5), *(rng.uniform(-0.3, 0.3, 2) * (rng.random() < 0.7))
+        sx, se = 10.0 ** rng.uniform(-6, 0, 2) * (rng.random(2) < 0.9)
+        args = (*az._coefficients()(lat, b0, g0), sx * sx, se * se, *rng.choice([1.5, 3.0, rng.uniform(1.0, 5.0)], 2))
+        reference = tuple(float(v) for v in az._moments()(*(np.float64(a) for a in args)))
+        got = az._scalar_moments(args)
+        assert all(type(v) is float for v in got)
+        assert got == reference or all(a == b or (math.isnan(a) and math.isnan(b)) for a, b in zip(got, reference))

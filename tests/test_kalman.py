@@ -106,3 +106,25 @@ def test_filter_sequence_refuses_shapes_that_do_not_fit():
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 3)), np.eye(1), np.eye(2), 3)
     with pytest.raises(ValueError, match="`n_steps` >= 0"):
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 2)), np.eye(1), np.eye(2), -1)
+
+
+def test_nees_of_one_state_is_filterpy_nees_to_the_bit():
+    """The one-state fast path against filterpy's loop (which inverts each 1×1 covariance)."""
+    from filterpy.stats import NEES
+
+    rng = np.random.default_rng(4)
+    k = 3000
+    e = rng.standard_normal((k, 1)) * 10.0 ** rng.uniform(-9, 4, (k, 1))
+    e[:3, 0] = (0.0, -0.0, np.nan)
+    p = rng.standard_normal(k) * 10.0 ** rng.uniform(-20, 8, k)  # negative variances too: the arithmetic is the same
+    P = p[:, None, None]
+    reference = np.asarray(NEES(np.zeros_like(e), e, P), dtype=float)
+    np.testing.assert_array_equal(kalman.nees(e, P), reference)
+    shared = np.broadcast_to(np.array([[2.5e-7]]), (k, 1, 1))  # as the estimator comparison passes them
+    np.testing.assert_array_equal(kalman.nees(e, shared), np.asarray(NEES(np.zeros_like(e), e, shared), dtype=float))
+
+
+def test_nees_of_one_state_with_a_zero_variance_fails_as_filterpy():
+    e, P = np.ones((2, 1)), np.array([[[1.0]], [[0.0]]])
+    with pytest.raises(np.linalg.LinAlgError):
+        kalman.nees(e, P)

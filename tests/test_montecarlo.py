@@ -179,3 +179,63 @@ def test_one_partial_sort_gives_the_order_statistics_of_a_full_sort():
         assert q.value == s[math.ceil(q.level * x.size - 1e-12) - 1]
         assert q.low == (s[lo - 1] if lo >= 1 else q.low) and q.high == (s[hi - 1] if hi <= x.size else q.high)
     assert sample_quantiles(x[:, None], ()) == ()
+
+
+def test_cos_from_sin_equals_the_masked_computation_bit_for_bit():
+    """The wide-tilt test by two reductions gives the cosines of the masked test, NaN and wide tilts included."""
+    from strapdown.analysis.gyrocompass.azimuth import _QUARTER_PI, _cos_from_sin
+
+    def masked(angle, sine):  # the computation before the reductions decided the common case
+        c = np.sqrt(1.0 - sine * sine)
+        wide = np.abs(angle) > _QUARTER_PI
+        if wide.any():
+            c[wide] = np.cos(angle[wide])
+        return c
+
+    rng = np.random.default_rng(7)
+    narrow = rng.uniform(-0.7, 0.7, (64, 33))
+    wide = rng.uniform(-1.5, 1.5, (64, 33))
+    with_nan = wide.copy()
+    with_nan[3, 4] = np.nan
+    only_nan = np.full(5, np.nan)
+    edge = np.array([-_QUARTER_PI, _QUARTER_PI, np.nextafter(_QUARTER_PI, 1.0), 0.0])
+    for angle in (narrow, wide, with_nan, only_nan, edge, np.empty(0)):
+        got, want = _cos_from_sin(angle, np.sin(angle)), masked(angle, np.sin(angle))
+        np.testing.assert_array_equal(got, want)
+
+
+def test_histogram_scaled_in_place_equals_the_previous_counts():
+    """summarise's histogram (binned in place, in passes over a long run) has the counts of the one-pass expression."""
+    rng = np.random.default_rng(3)
+    errors = rng.standard_normal((3 * 1024 + 5, 64)) * 0.3  # three passes and a part
+    errors[0, :3] = (-1e9, 1e9, 0.0)  # underflow, overflow
+    errors[1024, :2] = (-1e9, 1e9)  # at the start of the second pass
+    scale, half_width, n_bins = 0.1, 20.0, 8000
+    result = montecarlo.summarise([(errors[:20], None), (errors[20:], None)], scale=scale, half_width=half_width, n_bins=n_bins, quantiles=())
+    u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)
+    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+    edges, inner, under, over = result.histogram
+    np.testing.assert_array_equal(inner, counts[1:-1])
+    assert (under, over) == (int(counts[0]), int(counts[-1]))
+
+
+def test_solve_adds_the_tiny_ridge_on_the_diagonal_only():
+    """The ridge by stride is the ridge of diag_indices_from: the same solution bit for bit."""
+    rng = np.random.default_rng(5)
+    a = rng.standard_normal((50, 4))
+    a[:, 2] = 0.0  # a control without spread
+    gram, rhs = a.T @ a, a.T @ rng.standard_normal((50, 2))
+    ridged = gram.copy()
+    ridged[np.diag_indices_from(ridged)] += 1e-300
+    np.testing.assert_array_equal(montecarlo._solve(gram, rhs), np.linalg.solve(ridged, rhs))
+
+
+def test_silent_serial_map_tasks_runs_every_task_in_order():
+    calls = []
+
+    def task(i):
+        return lambda: calls.append(i) or i * i
+
+    assert montecarlo.map_tasks(None, [task(i) for i in range(5)]) == [0, 1, 4, 9, 16]
+    assert calls == [0, 1, 2, 3, 4]
+    assert montecarlo.map_tasks(None, [task(i) for i in range(3)], progress=True) == [0, 1, 4]

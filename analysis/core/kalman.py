@@ -154,6 +154,10 @@ def filterpy_batch(F, Q, H, R, x0, P0, zs):
 def nees(errors, covariances):
     """Normalised estimation error squared ``eᵀ P⁻¹ e`` by ``filterpy.stats.NEES``.
 
+    For a single state (``n = 1``) with finite, non-zero variances the same
+    products are taken for all estimates at once (filterpy loops over them):
+    the values are filterpy's, bit for bit.
+
     Parameters
     ----------
     errors : array_like, shape (k, n)
@@ -168,7 +172,16 @@ def nees(errors, covariances):
     from filterpy.stats import NEES
 
     errors = np.asarray(errors, dtype=float)
-    return np.asarray(NEES(np.zeros_like(errors), errors, np.asarray(covariances, dtype=float)), dtype=float)
+    covariances = np.asarray(covariances, dtype=float)
+    if errors.ndim == 2 and errors.shape[1] == 1 and covariances.shape == (errors.shape[0], 1, 1):
+        p = covariances[:, 0, 0]
+        if np.all(np.isfinite(p)) and np.all(p != 0.0):
+            # One state: filterpy's loop computes ((0 − e) P⁻¹)(0 − e) per estimate, with LAPACK's inverse
+            # of a 1×1 matrix, 1/P: the same products for all estimates at once, bit for bit.
+            # (A zero or non-finite variance takes filterpy's loop, which raises as it does.)
+            x = -errors[:, 0]
+            return (x * (1.0 / p)) * x
+    return np.asarray(NEES(np.zeros_like(errors), errors, covariances), dtype=float)
 
 
 class FilterSequence(NamedTuple):

@@ -302,6 +302,8 @@ def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, de
     list
         The results, in the order of ``tasks`` (whatever order they finish in).
     """
+    if executor is None and not progress:  # here and silent: no bar to keep (a Monte Carlo of many small runs calls this per run)
+        return [task() for task in tasks]
     from .progress import bar as progress_bar
 
     bar = progress_bar(total=len(tasks), desc=desc, enabled=progress)
@@ -471,8 +473,7 @@ def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: i
     rows, aux_rows = zip(*(_block_rows(e, a) for e, a in blocks))
     rows = np.array(rows)
     sums = [math.fsum(rows[:, k]) for k in range(rows.shape[1])]
-    u = errors.ravel() * (n_bins / (2.0 * half_width * scale)) + (n_bins / 2.0 + 1.0)
-    counts = np.bincount(np.clip(u, 0.0, n_bins + 1.0).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+    counts = _histogram_counts(errors.ravel(), n_bins / (2.0 * half_width * scale), n_bins / 2.0 + 1.0, n_bins)
     aux_mean, aux_se = (), ()
     if aux_rows[0] is not None:
         aux = np.array(aux_rows)
@@ -482,6 +483,25 @@ def summarise(blocks, *, scale: float = 1.0, half_width: float = 20.0, n_bins: i
     q = sample_quantiles(errors, quantiles)
     summary = _summarise(n_trials, sums, counts, float(errors.min()), float(errors.max()), scale, half_width, n_bins, aux_mean)
     return replace(summary, aux_std_error=aux_se, quantiles={x.level: x.value for x in q}, quantile_intervals={x.level: (x.low, x.high) for x in q})
+
+
+#: errors binned per pass of the histogram: the temporaries stay in cache (a long run bins many passes)
+_HISTOGRAM_CHUNK = 1 << 16
+
+
+def _histogram_counts(errors: np.ndarray, factor: float, offset: float, n_bins: int) -> np.ndarray:
+    """Counts of ``errors · factor + offset`` clipped to ``[0, n_bins + 1]`` and truncated: underflow, ``n_bins`` bins, overflow.
+
+    The errors are binned in passes of ``_HISTOGRAM_CHUNK`` (integer counts: the
+    same for any passes).
+    """
+    counts = None
+    for i in range(0, max(errors.size, 1), _HISTOGRAM_CHUNK):
+        u = errors[i : i + _HISTOGRAM_CHUNK] * factor
+        u += offset
+        part = np.bincount(np.clip(u, 0.0, n_bins + 1.0, out=u).astype(np.int64), minlength=n_bins + 2)[: n_bins + 2]
+        counts = part if counts is None else counts + part
+    return counts
 
 
 @dataclass(frozen=True)
@@ -718,7 +738,7 @@ def _products(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _solve(gram: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Solve the normal equations; a control without spread (a zero column) gets a zero coefficient."""
     gram = gram.copy()
-    gram[np.diag_indices_from(gram)] += 1e-300
+    gram.flat[:: gram.shape[0] + 1] += 1e-300  # the diagonal
     return np.linalg.solve(gram, rhs)
 
 

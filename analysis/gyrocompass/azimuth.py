@@ -89,8 +89,10 @@ def _cos_from_sin(angle, sine):
     c = sine * sine
     np.subtract(1.0, c, out=c)
     np.sqrt(c, out=c)
-    wide = np.abs(angle) > _QUARTER_PI
-    if wide.any():
+    # two reductions decide the common case (no wide tilt) without a mask; a NaN makes the test
+    # fail and takes the masked path, where it is not wide
+    if angle.size and not (-_QUARTER_PI <= angle.min() and angle.max() <= _QUARTER_PI):
+        wide = np.abs(angle) > _QUARTER_PI
         c[wide] = np.cos(angle[wide])
     return c
 
@@ -248,6 +250,21 @@ def _moments():
     return compiled("gyrocompass:error-moments:v1", build)
 
 
+def _scalar_moments(args) -> tuple:
+    """``(m1, bias, m4)`` of :func:`_moments` at scalar arguments, as Python floats.
+
+    The generated code is scalar arithmetic and integer powers: with Python
+    floats it takes the same IEEE operations (and the same ``pow``) as with
+    NumPy scalars, without NumPy's scalar dispatch, a third of the time.  Where
+    Python raises instead of returning ``inf`` or ``nan`` (a zero to a negative
+    power, an overflowing power) the NumPy scalars give NumPy's values.
+    """
+    try:
+        return tuple(float(v) for v in _moments()(*(float(a) for a in args)))
+    except (ZeroDivisionError, OverflowError):
+        return tuple(float(v) for v in _moments()(*(np.float64(a) for a in args)))
+
+
 def _bound14_squared():
     """Bound (14) on δ² as a function of (φ, β0, γ0, Dξ, Dη)."""
 
@@ -403,7 +420,7 @@ def second_order_theory(latitude, beta0, gamma0, sigma_xi, sigma_eta, *, kappa_x
     sx, se = _sigmas(sigma_xi, sigma_eta)
     coefficients = _coefficients()(latitude, beta0, gamma0)
     args = (*coefficients, sx * sx, se * se, as_float(kappa_xi, "kappa_xi"), as_float(kappa_eta, "kappa_eta"))
-    m1, bias, m4 = (float(v) for v in _moments()(*args))
+    m1, bias, m4 = _scalar_moments(args)
     return SecondOrderTheory(math.sqrt(max(m1, 0.0)), bias, math.sqrt(max(m4, 0.0)), m1, m4)
 
 
