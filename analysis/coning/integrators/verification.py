@@ -637,12 +637,18 @@ def local_error_exponent(integrator: Integrator, samples_per_step, *, history: i
     n = as_int(samples_per_step, "samples_per_step", minimum=1)
     warm = _warmup(history, n)
     references = _tumbling_rotations(n, warm, tuple(float(x) for x in steps), tuple(float(x) for x in times))
+    errors = [[float(np.linalg.norm(exact - step_increments(integrator, record.copy(), n).rotation[-1])) for record, exact in per_time] for per_time in references]
+    return _mean_slope(steps, errors)
+
+
+def _mean_slope(steps, errors) -> float:
+    """Mean over the step middles of the slope of log error against log H.
+
+    Each slope is fitted through the last three errors above round-off (1e-13), over at least
+    two; a step middle without two such errors is left out (nan when every one is).
+    """
     exps = []
-    for per_time in references:
-        errs = []
-        for record, exact in per_time:
-            got = step_increments(integrator, record.copy(), n).rotation[-1]
-            errs.append(float(np.linalg.norm(exact - got)))
+    for errs in errors:
         keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
         if len(keep) >= 2:
             exps.append(np.polyfit(np.log(np.array(steps)[keep]), np.log(np.array(errs)[keep]), 1)[0])
@@ -736,13 +742,5 @@ def velocity_error_exponent(integrator: Integrator, samples_per_step, *, history
         raise ValueError(f"Expected an integrator with velocity output, got {integrator.name!r} (coning only)")
     warm = _warmup(history, n)
     references = _tumbling_velocities(n, warm, tuple(float(x) for x in steps), tuple(float(x) for x in times))
-    exps = []
-    for per_time in references:
-        errs = []
-        for gyro, accel, exact in per_time:
-            got = step_increments(integrator, gyro.copy(), n, accel.copy()).velocity[-1]
-            errs.append(float(np.linalg.norm(exact - got)))
-        keep = [k for k, e in enumerate(errs) if e > 1e-13][-3:]
-        if len(keep) >= 2:
-            exps.append(np.polyfit(np.log(np.array(steps)[keep]), np.log(np.array(errs)[keep]), 1)[0])
-    return float(np.mean(exps)) if exps else math.nan
+    errors = [[float(np.linalg.norm(exact - step_increments(integrator, gyro.copy(), n, accel.copy()).velocity[-1])) for gyro, accel, exact in per_time] for per_time in references]
+    return _mean_slope(steps, errors)
