@@ -15,9 +15,10 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ...derivations.coning.drift import X, optimal_coning_algorithm
+from ...derivations.coning.drift import X
 from ...derivations.coning.registry import get
 from ...derivations.coning.tuned import RHO, lowpass_null_coefficient, two_sample_null_coefficient
+from ..coning.drift_theory import optimal_coning_algorithm
 from ..core.cache import derived
 from ..core.units import DEG, DEG_PER_RT_H_TO_RAD_PER_RT_S, RAD_PER_S_TO_DEG_PER_H
 from ..vibration.drift import environment_drift

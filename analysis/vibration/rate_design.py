@@ -49,9 +49,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm, Term
-from ...derivations.coning.drift import lag_sums, optimal_coning_algorithm
+from ...derivations.coning.drift import lag_sums
 from ..coning.computational_load import LoadModel, operation_count, quaternion_update_count, series_terms
-from ..coning.drift_theory import coning_drift_function
+from ..coning.drift_theory import coning_drift_function, optimal_coning_algorithm
 from ..core.budget import RESPONSE_EVALUATION, SPECTRUM_SEGMENT, Estimate, Limits, check
 from ..core.validation import as_array, nonnegative, positive
 from .aliasing import alias_response

@@ -59,9 +59,9 @@ from fractions import Fraction
 import numpy as np
 
 from ...derivations.coning.algorithms import Algorithm, Term
-from ...derivations.coning.drift import lag_sums, optimal_coning_algorithm
+from ...derivations.coning.drift import lag_sums
 from ...derivations.coning.registry import get, names
-from ..coning.drift_theory import coning_drift_function
+from ..coning.drift_theory import coning_drift_function, optimal_coning_algorithm
 from ..core.validation import as_array, as_int, positive
 from .aliasing import alias_response
 from .drift import environment_drift, response_integrals
