@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 from strapdown.analysis.vibration.drift import environment_drift
 from strapdown.analysis.vibration.environment import Environment, coning_line
@@ -39,3 +40,8 @@ def test_band_drift_is_each_line_of_environment_drift_bit_for_bit():
         assert np.array_equal(band.total[j], [p.total @ d.coning_axis for p in lines])
         assert np.array_equal(band.sensor, [p.sensor @ d.coning_axis for p in lines])
     assert d.near_aliases  # the sweep does hold pairs near an alias, which the band leaves out
+
+
+def test_band_drift_refuses_what_is_not_an_algorithm_naming_the_argument():
+    with pytest.raises(TypeError, match=r"`algorithms` of Algorithm, got a str"):
+        drift_across_band([get("two-sample"), "optimal-3"], Environment(name="s"), 1e-3, [10.0], half_angle=0.01)

@@ -527,6 +527,8 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     ------
     ValueError
         An empty or non-positive ``frequency``.
+    TypeError
+        An element of ``algorithms`` that is not an :class:`~strapdown.derivations.coning.algorithms.Algorithm`.
     """
     f = as_array(frequency, "frequency", nonempty=True).ravel()
     if np.any(f <= 0):
@@ -545,7 +547,7 @@ def drift_across_band(algorithms, environment: Environment, sample_interval: flo
     algorithms = tuple(algorithms)
     for a in algorithms:
         if not isinstance(a, Algorithm):
-            raise TypeError(f"Expected `algorithm` to be an Algorithm, got {type(a).__name__}")
+            raise TypeError(f"Expected `algorithms` of Algorithm, got a {type(a).__name__}")
     if algorithms and env.has_motion:
         # Each line is read alone, so the pairs of lines that alias with the step rate (which
         # environment_drift also lists) are not needed: one pass of the response integrals, the
