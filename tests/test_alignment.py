@@ -692,3 +692,17 @@ def test_compiled_loops_refuse_wrong_shapes_and_outputs():
         )  # fmt: skip
     with pytest.raises(TypeError, match="`motion` to be a MotionRealisation"):
         ideal_increments(Scenario(R(45.0), duration=1.0), np.zeros((1, 10, 3)))
+
+
+def test_noise_terms_refuse_another_sensor_a_missing_noise_and_a_bad_factor():
+    from strapdown.analysis.alignment.imu import draw_imu
+
+    sc = Scenario(R(60.0), sample_rate=10.0, duration=2.0)
+    draws = draw_imu(sc, SensorErrors(gyro_noise=R(0.002) / 60.0), n_trials=2, rng=1)
+    assert draws.noise_term("gyro", 1e-4).shape == (2, sc.n_samples, 3)
+    with pytest.raises(ValueError, match="`sensor` 'gyro' or 'accel', got 'mag'"):
+        draws.noise_term("mag", 1e-4)
+    with pytest.raises(ValueError, match="accel noise numbers"):
+        draws.noise_term("accel", 1e-4)  # drawn without accelerometer noise
+    with pytest.raises(ValueError, match="`factor` to be finite"):
+        draws.noise_term("gyro", math.nan)

@@ -2,6 +2,7 @@
 
 import math
 import os
+import re
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
@@ -239,3 +240,22 @@ def test_silent_serial_map_tasks_runs_every_task_in_order():
     assert montecarlo.map_tasks(None, [task(i) for i in range(5)]) == [0, 1, 4, 9, 16]
     assert calls == [0, 1, 2, 3, 4]
     assert montecarlo.map_tasks(None, [task(i) for i in range(3)], progress=True) == [0, 1, 4]
+
+
+@pytest.mark.parametrize(
+    ("quantiles", "error", "words"),
+    [
+        (0.5, TypeError, "sequence of levels"),
+        (None, TypeError, "sequence of levels"),
+        ("0.5", TypeError, "sequence of levels"),
+        ((float("nan"),), ValueError, "finite"),
+        ((0.5, 1.5), ValueError, "levels in (0, 1), got 1.5"),
+    ],
+)
+def test_quantile_levels_are_refused_naming_the_argument(quantiles, error, words):
+    with pytest.raises(error, match=re.escape(words)) as run_error:
+        montecarlo.run(_normal_kernel, 4, rng=1, quantiles=quantiles)
+    assert "`quantiles`" in str(run_error.value)
+    with pytest.raises(error, match=re.escape(words)):
+        azimuth_monte_carlo(0.8, 0.01, 0.01, GaussianRocking(0.01, 0.01), 4096, rng=0, quantiles=quantiles)
+    assert montecarlo.run(_normal_kernel, 4, rng=1, quantiles=[]).quantiles == {}  # none asked: none computed

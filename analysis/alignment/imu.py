@@ -369,9 +369,18 @@ class ImuDraws:
         -------
         ndarray
             ``(n, N, 3)``.
+
+        Raises
+        ------
+        ValueError
+            For another ``sensor``, draws without that sensor's noise numbers, or a non-finite ``factor``.
         """
+        if sensor not in ("gyro", "accel"):
+            raise ValueError(f"Expected `sensor` 'gyro' or 'accel', got {sensor!r}")
         numbers = self.gyro_noise if sensor == "gyro" else self.accel_noise
-        factor = float(factor)
+        if numbers is None:
+            raise ValueError(f"Expected draws with {sensor} noise numbers, got draws without (drawn for errors without {sensor} noise)")
+        factor = as_float(factor, "factor")
         kept = self._noise.get(sensor)
         if kept is None or kept[0] != factor or kept[1] is not numbers:
             term = factor * numbers

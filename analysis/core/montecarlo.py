@@ -29,7 +29,7 @@ import numpy as np
 
 from . import verdicts
 from .quantiles import sample_quantiles
-from .validation import as_array, as_int, positive
+from .validation import as_array, as_int, levels, positive
 from .verdicts import Verdict
 
 __all__ = ["MonteCarloResult", "run", "summarise", "block_output", "collect", "root_seed_sequence", "block_seed", "map_tasks", "process_pool", "ControlFit", "fit_controls", "controlled", "combine"]
@@ -428,9 +428,7 @@ def run(
     n_bins = as_int(n_bins, "n_bins", minimum=2)
     scale = positive(scale, "scale")
     half_width = positive(half_width, "half_width")
-    for level in quantiles:
-        if not 0.0 < float(level) < 1.0:
-            raise ValueError(f"Expected quantile levels in (0, 1), got {level}")
+    quantiles = levels(quantiles, "quantiles")
     root = root_seed_sequence(rng)
     n_blocks = -(-n_trials // trials_per_block)
     tasks = [

@@ -24,6 +24,7 @@ __all__ = [
     "as_int",
     "in_open_interval",
     "in_closed_interval",
+    "levels",
     "positive",
     "nonnegative",
 ]
@@ -232,6 +233,45 @@ def in_closed_interval(x, name: str, low: float, high: float, *, text: str | Non
     ValueError: Expected `tolerance` in [1e-06, 0.5], got 1e-09
     """
     return _in_interval(x, name, low, high, closed=True, text=text)
+
+
+def levels(x, name: str) -> tuple:
+    """Return ``x``, a sequence of probability levels, as a tuple of floats in (0, 1).
+
+    Parameters
+    ----------
+    x : sequence of real number
+        The levels (may be empty).
+    name : str
+        Argument name for the message.
+
+    Returns
+    -------
+    tuple of float
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not a sequence (a single number or a string) or holds a non-number.
+    ValueError
+        If a level is not finite or outside (0, 1).
+
+    Examples
+    --------
+    >>> levels([0.5, 0.95], "quantiles")
+    (0.5, 0.95)
+    >>> levels(0.5, "quantiles")
+    Traceback (most recent call last):
+    ...
+    TypeError: Expected `quantiles` as a sequence of levels in (0, 1), got 0.5
+    """
+    if isinstance(x, (str, bytes)) or not isinstance(x, (list, tuple, np.ndarray, range)):
+        raise TypeError(f"Expected `{name}` as a sequence of levels in (0, 1), got {_describe(x)}")
+    out = tuple(as_float(v, name) for v in np.asarray(x, dtype=object).ravel())
+    for v in out:
+        if not 0.0 < v < 1.0:
+            raise ValueError(f"Expected `{name}` as levels in (0, 1), got {v:g}")
+    return out
 
 
 def _in_interval(x, name: str, low: float, high: float, *, closed: bool, text: str | None) -> float:

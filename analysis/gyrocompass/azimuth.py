@@ -29,7 +29,7 @@ import numpy as np
 
 from ..core import budget, montecarlo
 from ..core.cache import compiled
-from ..core.validation import as_float, as_int, in_open_interval, nonnegative
+from ..core.validation import as_float, as_int, in_open_interval, levels, nonnegative
 from .rocking import GaussianRocking, NarrowbandRocking, SineRocking
 
 __all__ = [
@@ -924,7 +924,7 @@ def azimuth_monte_carlo(
     theory = second_order_theory(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta, kappa_xi=rocking.kappa, kappa_eta=rocking.kappa)
     scale = theory.rms_first_order if theory.rms_first_order > 0 else 1e-12
     bounds = bound14(latitude, kernel.beta0, kernel.gamma0, rocking.sigma_xi, rocking.sigma_eta), bound15(latitude, rocking.sigma_xi)
-    options = dict(blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress, quantiles=tuple(quantiles))
+    options = dict(blocks_per_chunk=blocks_per_chunk, executor=executor, scale=scale, progress=progress, quantiles=levels(quantiles, "quantiles"))
     if control_degree == 0:
         n_trials = max(2, -(-n_samples // steps))
         result = montecarlo.run(kernel, n_trials, rng=rng, trials_per_block=max(1, 65536 // steps), **options)
