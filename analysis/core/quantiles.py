@@ -33,6 +33,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .validation import levels as as_levels
+
 __all__ = ["SampleQuantile", "sample_quantiles"]
 
 #: most ranks taken by one partial sort (``np.partition``); more are read from a full sort (the same order statistics)
@@ -117,10 +119,7 @@ def sample_quantiles(errors, levels: Sequence[float], *, independent: bool | Non
         raise ValueError(f"Expected `errors` of shape (n_trials, n_steps) with at least one sample, got shape {e.shape}")
     if not np.all(np.isfinite(e)):
         raise ValueError("Expected finite `errors`, got NaN or infinity")
-    ps = [float(p) for p in levels]
-    for p in ps:
-        if not 0.0 < p < 1.0:
-            raise ValueError(f"Expected quantile levels in (0, 1), got {p}")
+    ps = list(as_levels(levels, "levels"))
     n_trials, n_steps = e.shape
     m = e.size
     flat = e.ravel()
