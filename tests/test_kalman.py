@@ -108,6 +108,12 @@ def test_filter_sequence_refuses_shapes_that_do_not_fit():
         kalman.filter_sequence(np.eye(2), np.eye(2), np.ones((1, 2)), np.eye(1), np.eye(2), -1)
 
 
+def test_filter_sequence_refuses_a_singular_innovation_covariance_as_numpy_inv_does():
+    """No measurement noise and a measurement that sees nothing: S = 0 cannot be inverted."""
+    with pytest.raises(np.linalg.LinAlgError, match="Singular matrix"):
+        kalman.filter_sequence(np.eye(2), np.eye(2), np.zeros((1, 2)), np.zeros((1, 1)), np.eye(2), 3)
+
+
 def test_nees_of_one_state_is_filterpy_nees_to_the_bit():
     """The one-state fast path against filterpy's loop (which inverts each 1×1 covariance)."""
     from filterpy.stats import NEES
