@@ -163,6 +163,30 @@ def test_unit_evaluation_times_its_scale_is_the_evaluation_and_the_compiled_loop
         k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, True, 0.05, out[0], out[1], scale=[1.0, 2.0])
 
 
+def test_sensor_terms_in_one_pass_are_the_numpy_operations():
+    """Scale factors, bias and noise applied by the compiled pass: the product and the two sums of the numpy form, to the last bit."""
+    from strapdown.analysis.alignment import kernels as k
+
+    rng = np.random.default_rng(4)
+    x, b, s, z = rng.normal(size=(3, 50, 3)), rng.normal(size=(3, 3)) * 1e-3, 1.0 + rng.normal(size=3) * 1e-4, rng.normal(size=(3, 50, 3)) * 1e-2
+    for scale, noise in ((None, None), (s, None), (None, z), (s, z)):
+        ref = x.copy()
+        if scale is not None:
+            ref *= scale
+        ref += b[:, None, :]
+        if noise is not None:
+            ref += noise
+        out = x.copy()
+        k.add_sensor_terms(out, b, scale=scale, noise=noise)
+        assert np.array_equal(out, ref)
+    with pytest.raises(TypeError, match="`increments`"):
+        k.add_sensor_terms(x.astype(np.float32), b)
+    with pytest.raises(ValueError, match="`noise`"):
+        k.add_sensor_terms(x.copy(), b, noise=z[:, :10])
+    with pytest.raises(ValueError, match="`bias`"):
+        k.add_sensor_terms(x.copy(), b[:2])
+
+
 @pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
 def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
     """No rocking (a still base, or a draw at zero amplitude): one trial computed, the same for all, equal to a computation per trial."""

@@ -528,16 +528,22 @@ def simulate_imu(
     e = errors if errors is not None else SensorErrors()
     gb = np.broadcast_to(e.gyro_bias, (n, 3)) + e.gyro_bias_sigma * draws.gyro_bias
     ab = np.broadcast_to(e.accel_bias, (n, 3)) + e.accel_bias_sigma * draws.accel_bias
-    if np.any(e.gyro_scale):
-        dtheta *= 1.0 + e.gyro_scale
-    if np.any(e.accel_scale):
-        dv *= 1.0 + e.accel_scale
-    dtheta += gb[:, None, :] * dt
-    dv += ab[:, None, :] * dt
-    if e.gyro_noise:
-        dtheta += draws.noise_term("gyro", e.gyro_noise * math.sqrt(dt))
-    if e.accel_noise:
-        dv += draws.noise_term("accel", e.accel_noise * math.sqrt(dt))
+    gyro_noise = draws.noise_term("gyro", e.gyro_noise * math.sqrt(dt)) if e.gyro_noise else None
+    accel_noise = draws.noise_term("accel", e.accel_noise * math.sqrt(dt)) if e.accel_noise else None
+    if kernels.use_compiled(None, 0):  # scale, bias and noise in one compiled pass (the work was counted by ideal_increments)
+        kernels.add_sensor_terms(dtheta, gb * dt, scale=1.0 + e.gyro_scale if np.any(e.gyro_scale) else None, noise=gyro_noise)
+        kernels.add_sensor_terms(dv, ab * dt, scale=1.0 + e.accel_scale if np.any(e.accel_scale) else None, noise=accel_noise)
+    else:
+        if np.any(e.gyro_scale):
+            dtheta *= 1.0 + e.gyro_scale
+        if np.any(e.accel_scale):
+            dv *= 1.0 + e.accel_scale
+        dtheta += gb[:, None, :] * dt
+        dv += ab[:, None, :] * dt
+        if gyro_noise is not None:
+            dtheta += gyro_noise
+        if accel_noise is not None:
+            dv += accel_noise
     if e.gyro_quantum > 0:
         dtheta = _quantise(dtheta, e.gyro_quantum, draws.gyro_start * e.gyro_quantum)
     if e.accel_quantum > 0:

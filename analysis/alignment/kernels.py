@@ -7,6 +7,8 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   gyro and accelerometer increments (the rates of :mod:`~strapdown.analysis.alignment.imu`: attitude,
   body rate, Earth rate in body axes, gravity, lever-arm terms), fused in one
   loop over trials and samples;
+* :func:`add_sensor_terms` applies a sensor's scale factors, bias and white noise to those
+  increments in one pass;
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
   (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
@@ -39,7 +41,7 @@ import numpy as np
 
 from ..core.validation import as_array, as_int, as_vector
 
-__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop"]
+__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop"]
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -229,6 +231,53 @@ def accumulate_ideal_increments(angles, rates, accels, stable, earth_rate, gravi
     dtheta, dv = _shaped(dtheta, "dtheta", (n, N, 3), output=True), _shaped(dv, "dv", (n, N, 3), output=True)
     # read-only views, whether or not the arrays are (the kept unit evaluations are): one compiled signature
     _jit(_ideal_loop)(*(_read_only(x) for x in (angles, rates, accels)), *vectors, bool(in_gyros), lever, float(weight), dtheta, dv)
+
+
+def _sensor_terms_loop(x, scale, with_scale, bias, noise, with_noise):
+    n, N = x.shape[0], x.shape[1]
+    for i in range(n):
+        for k in range(N):
+            for a in range(3):
+                y = x[i, k, a]
+                if with_scale:
+                    y = y * scale[a]
+                y = y + bias[i, a]
+                if with_noise:
+                    y = y + noise[i, k, a]
+                x[i, k, a] = y
+
+
+def add_sensor_terms(increments, bias, *, scale=None, noise=None) -> None:
+    """Apply a sensor's scale factors, bias and white noise to its increments, in place and in one pass.
+
+    ``increments ← increments · scale + bias + noise``, element by element in
+    that order: the operations of :func:`strapdown.analysis.alignment.imu.simulate_imu`'s
+    numpy form (a product, then two sums), so the two agree to the last bit.
+
+    Parameters
+    ----------
+    increments : ndarray
+        ``(n, N, 3)`` writable C-contiguous float64 increments [rad or m/s], changed in place.
+    bias : array_like
+        ``(n, 3)`` bias of each trial times the sample interval [rad or m/s].
+    scale : array_like, optional, keyword-only
+        ``(3,)`` factors ``1 + s`` per axis [1] (default: none applied).
+    noise : array_like, optional, keyword-only
+        ``(n, N, 3)`` white-noise increments [rad or m/s] (default: none).
+
+    Raises
+    ------
+    TypeError
+        If ``increments`` is not a writable C-contiguous float64 array.
+    ValueError
+        For a shape that does not fit ``increments``.
+    """
+    x = _shaped(increments, "increments", (None, None, 3), output=True)
+    n, N = x.shape[:2]
+    b = _shaped(bias, "bias", (n, 3))
+    s = np.ones(3) if scale is None else _shaped(scale, "scale", (3,))
+    z = np.zeros((1, 1, 3)) if noise is None else _read_only(_shaped(noise, "noise", (n, N, 3)))
+    _jit(_sensor_terms_loop)(x, s, scale is not None, b, _read_only(z), noise is not None)
 
 
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
