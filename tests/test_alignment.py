@@ -187,6 +187,52 @@ def test_sensor_terms_in_one_pass_are_the_numpy_operations():
         k.add_sensor_terms(x.copy(), b[:2])
 
 
+@pytest.mark.parametrize(
+    "model",
+    [NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.0, 2.0, 1.0])), 7.0), None],
+    ids=["narrowband", "white", "sine", "still"],
+)
+def test_draws_of_several_chunks_as_one_give_the_records_of_their_chunks(model):
+    """Chunks of draws concatenated: one record whose trials are the chunks' records, to the last bit (each trial is its own)."""
+    from dataclasses import replace
+
+    from strapdown.analysis.alignment.imu import ImuDraws, draw_imu
+
+    sc = Scenario(R(60.0), heading=0.5, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
+    sc = sc if model is None else replace(sc, motion=model)
+    e = SensorErrors(gyro_bias=[1e-6, 0.0, -2e-6], gyro_bias_sigma=1e-6, accel_scale=[1e-4, 0.0, 0.0], gyro_noise=1e-5, accel_noise=1e-4, gyro_quantum=1e-6, accel_quantum=1e-4)
+    g = np.random.default_rng(6)
+    chunks = [draw_imu(sc, e, n_trials=n, rng=g) for n in (3, 1, 2)]
+    whole = ImuDraws.concatenate(chunks)
+    assert whole.n_trials == 6 and ImuDraws.concatenate(chunks[:1]) is chunks[0]
+    for at in (sc, replace(sc, motion=replace(model, amplitude=0.5 * model.amplitude)) if model is not None else sc):  # the drawn amplitudes and others
+        rec = simulate_imu(at, e, draws=whole, truth_stride=5)
+        parts = [simulate_imu(at, e, draws=c, truth_stride=5) for c in chunks]
+        for name in ("dtheta", "dv", "truth_angles", "truth_velocity", "truth_rates", "gyro_bias", "accel_bias"):
+            assert np.array_equal(getattr(rec, name), np.concatenate([getattr(p, name) for p in parts])), name
+    with pytest.raises(ValueError, match="one set of sensor errors"):
+        ImuDraws.concatenate([chunks[0], draw_imu(sc, SensorErrors(), n_trials=2, rng=1)])
+    if model is not None:
+        with pytest.raises(ValueError, match="one model"):
+            ImuDraws.concatenate([chunks[0], draw_imu(replace(sc, motion=replace(model, amplitude=2.0 * model.amplitude)), e, n_trials=2, rng=1)])
+
+
+@pytest.mark.parametrize("method", ["analytic", "inertial", "kalman"])
+def test_kernel_simulates_its_chunks_together_without_changing_a_trial(method, monkeypatch):
+    """The Monte Carlo kernel draws in chunks and simulates consecutive chunks at once: the trials of a chunk at a time."""
+    from strapdown.analysis.alignment import monte_carlo as mc
+
+    sc = Scenario(R(60.0), heading=0.5, motion=NarrowbandMotion(R(np.array([0.3, 1.0, 1.0])), 8.0, 0.1), lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
+    e = SensorErrors(gyro_bias_sigma=1e-6, accel_bias_sigma=1e-4, gyro_noise=1e-5, accel_noise=1e-4)
+    kernel = AlignmentKernel(sc, e, method, AlignmentOptions(), (0, 10), chunk=3)
+    together = kernel.draw(8, np.random.default_rng(2))
+    monkeypatch.setattr(mc, "SIMULATED_AT_ONCE", 0)  # a chunk at a time
+    apart = kernel.draw(8, np.random.default_rng(2))
+    assert (len(together.imu), len(apart.imu)) == (1, 3)
+    for a, b in zip(kernel.evaluate(together), kernel.evaluate(apart)):
+        assert np.array_equal(a, b, equal_nan=True)
+
+
 @pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
 def test_increments_without_rocking_are_the_first_trial_for_all(compiled):
     """No rocking (a still base, or a draw at zero amplitude): one trial computed, the same for all, equal to a computation per trial."""

@@ -260,6 +260,49 @@ class MotionRealisation:
         power = self.unit.spectrum.power * (a * a)[:, None]
         return MotionRealisation(replace(self.unit.spectrum, power=power), self.unit.coefficients * a[:, None], self.dt, self.unit, a.copy())
 
+    @classmethod
+    def concatenate(cls, realisations) -> MotionRealisation:
+        """The trials of several realisations of one model as one realisation, in order.
+
+        Every trial's evaluations are its own (the inverse FFT and the sum of
+        sinusoids transform trial by trial), so the trials of the whole are
+        those of the parts to the last bit; their kept unit evaluations are not
+        carried over.
+
+        Parameters
+        ----------
+        realisations : sequence of MotionRealisation
+            Draws of one model at the same amplitudes (the same spectrum and sampling).
+
+        Returns
+        -------
+        MotionRealisation
+
+        Raises
+        ------
+        ValueError
+            For no realisation, or realisations of different models, amplitudes or sampling.
+        """
+        parts = tuple(realisations)
+        if not parts:
+            raise ValueError("Expected at least one realisation, got none")
+        first = parts[0]
+        if len(parts) == 1:
+            return first
+        for p in parts[1:]:
+            same = p.dt == first.dt and p.spectrum.gaussian == first.spectrum.gaussian and p.spectrum.n_fft == first.spectrum.n_fft
+            same = same and np.array_equal(p.spectrum.omega, first.spectrum.omega) and np.array_equal(p.spectrum.power, first.spectrum.power)
+            same = same and (p.unit is None) == (first.unit is None)
+            if same and first.unit is not None:
+                same = _same_model(p.unit.model, first.unit.model) and np.array_equal(p.scale, first.scale)
+            if not same:
+                raise ValueError("Expected realisations of one model at the same amplitudes and sampling, got different ones")
+        coefficients = np.concatenate([p.coefficients for p in parts])
+        if first.unit is None:
+            return cls(first.spectrum, coefficients, first.dt)
+        unit = UnitDraw(first.unit.model, first.unit.spectrum, np.concatenate([p.unit.coefficients for p in parts]), first.dt)
+        return cls(first.spectrum, coefficients, first.dt, unit, first.scale.copy())
+
     def evaluate(self, n_samples: int, offset: float = 0.0, *, derivatives: int = 2, limits: budget.Limits | None = None):
         """Angles, rates and angular accelerations at ``t_k = offset + k dt``, ``k < n_samples``.
 

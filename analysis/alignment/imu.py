@@ -37,7 +37,7 @@ from ..core.validation import as_array, as_float, as_int, nonnegative, positive
 from ..gyrocompass.azimuth import check_latitude
 from ..gyrocompass.rocking import as_generator
 from . import kernels
-from .base_motion import StillBase
+from .base_motion import MotionRealisation, Spectrum, StillBase
 from .earth import earth_rate_ned, gravity_ned
 from .tilt_attitude import attitude_matrix, body_acceleration, body_rate
 
@@ -273,8 +273,6 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     TypeError
         If ``scenario`` is not a Scenario or ``motion`` not a MotionRealisation.
     """
-    from .base_motion import MotionRealisation, Spectrum
-
     if not isinstance(scenario, Scenario):
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
     if not isinstance(motion, MotionRealisation):
@@ -349,6 +347,40 @@ class ImuDraws:
     def n_trials(self) -> int:
         """Trials."""
         return self.gyro_bias.shape[0]
+
+    @classmethod
+    def concatenate(cls, draws) -> ImuDraws:
+        """The trials of several draws of one scenario as one draw, in order (their records are the parts' records).
+
+        Parameters
+        ----------
+        draws : sequence of ImuDraws
+            Draws of one scenario and one set of sensor errors (the chunks of :func:`strapdown.analysis.alignment.fine.draw_epoch_record`).
+
+        Returns
+        -------
+        ImuDraws
+
+        Raises
+        ------
+        ValueError
+            For no draws, or draws of different scenarios or sensor errors.
+        """
+        parts = tuple(draws)
+        if not parts:
+            raise ValueError("Expected at least one draw, got none")
+        if len(parts) == 1:
+            return parts[0]
+        out = {}
+        for name in ("gyro_bias", "accel_bias", "gyro_noise", "accel_noise", "gyro_start", "accel_start"):
+            arrays = [getattr(p, name) for p in parts]
+            if any(a is None for a in arrays):
+                if not all(a is None for a in arrays):
+                    raise ValueError(f"Expected draws for one set of sensor errors, got some with `{name}` and some without")
+                out[name] = None
+            else:
+                out[name] = np.concatenate(arrays)
+        return cls(MotionRealisation.concatenate([p.rocking for p in parts]), **out)
 
     def noise_term(self, sensor: str, factor: float) -> np.ndarray:
         """``factor`` times the white-noise numbers of ``sensor``, read-only and kept for the next call.

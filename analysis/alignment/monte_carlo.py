@@ -37,13 +37,16 @@ from ..core.verdicts import Verdict, all_of, in_band
 from ..gyrocompass.rocking import as_generator
 from .analytic import analytic_alignment
 from .fine import FilterDraws, FilterTuning, draw_epoch_record, draw_filter, filter_model, fine_alignment, simulate_epoch_record
-from .imu import Scenario, SensorErrors, simulate_imu
+from .imu import ImuDraws, Scenario, SensorErrors, simulate_imu
 from .inertial import inertial_alignment
 from .theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
 
 __all__ = ["METHODS", "AlignmentOptions", "AlignmentKernel", "AlignmentDraws", "alignment_draws", "KalmanConsistency", "AlignmentMonteCarlo", "alignment_monte_carlo"]
 
 METHODS = ("analytic", "inertial", "kalman")
+
+#: Trial-samples the Monte Carlo kernel simulates at once (memory): its chunks of draws are merged up to this size.
+SIMULATED_AT_ONCE = 1 << 18
 
 
 @dataclass(frozen=True)
@@ -90,7 +93,9 @@ class AlignmentKernel:
     sequence : object
         Kalman: the filter's gains and covariances (computed once).
     chunk : int
-        Trials simulated at once (memory).
+        Trials drawn at once (the unit in which the random stream is consumed);
+        consecutive chunks are simulated together up to :data:`SIMULATED_AT_ONCE`
+        trial-samples (memory), which does not change a trial.
     model : FineAlignmentModel or None
         Kalman: ``filter_model(scenario, options.tuning)``, computed once (None: at each call).
     score : bool
@@ -132,7 +137,10 @@ class AlignmentKernel:
         AlignmentDraws
         """
         g = as_generator(rng)
-        imu = draw_epoch_record(self.scenario, self.errors, n_trials=n_trials, rng=g, chunk=self.chunk)
+        chunks = draw_epoch_record(self.scenario, self.errors, n_trials=n_trials, rng=g, chunk=self.chunk)
+        # consecutive chunks as one draw, simulated at once (a trial's record does not depend on its neighbours)
+        per_group = max(1, SIMULATED_AT_ONCE // ((self.scenario.n_samples + 1) * self.chunk))
+        imu = tuple(ImuDraws.concatenate(chunks[k : k + per_group]) for k in range(0, len(chunks), per_group))
         filt = None
         if self.method == "kalman":
             filt = draw_filter(n_trials, self.scenario.n_samples // self._model().samples_per_epoch, g)
@@ -186,7 +194,7 @@ class AlignmentDraws:
     Parameters
     ----------
     imu : tuple of ImuDraws
-        The sensor records' numbers, chunk by chunk.
+        The sensor records' numbers, in groups of trials simulated at once.
     filter : FilterDraws or None
         The Kalman filter's numbers.
     """
