@@ -192,29 +192,35 @@ def test_sensor_terms_in_one_pass_are_the_numpy_operations():
     [NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.0, 2.0, 1.0])), 7.0), None],
     ids=["narrowband", "white", "sine", "still"],
 )
-def test_draws_of_several_chunks_as_one_give_the_records_of_their_chunks(model):
-    """Chunks of draws concatenated: one record whose trials are the chunks' records, to the last bit (each trial is its own)."""
+def test_one_draw_in_chunks_gives_the_records_of_separate_draws(model):
+    """Draws made chunk after chunk into one draw: the numbers of separate draws of the chunks, and records whose
+    trials are the chunks' records, to the last bit (each trial is its own)."""
     from dataclasses import replace
 
-    from strapdown.analysis.alignment.imu import ImuDraws, draw_imu
+    from strapdown.analysis.alignment.base_motion import MotionRealisation
+    from strapdown.analysis.alignment.imu import draw_imu
 
     sc = Scenario(R(60.0), heading=0.5, lever_arm=[0.5, -0.3, 1.0], sample_rate=10.0, duration=20.0)
     sc = sc if model is None else replace(sc, motion=model)
     e = SensorErrors(gyro_bias=[1e-6, 0.0, -2e-6], gyro_bias_sigma=1e-6, accel_scale=[1e-4, 0.0, 0.0], gyro_noise=1e-5, accel_noise=1e-4, gyro_quantum=1e-6, accel_quantum=1e-4)
+    whole = draw_imu(sc, e, n_trials=7, rng=np.random.default_rng(6), chunk=3)
     g = np.random.default_rng(6)
-    chunks = [draw_imu(sc, e, n_trials=n, rng=g) for n in (3, 1, 2)]
-    whole = ImuDraws.concatenate(chunks)
-    assert whole.n_trials == 6 and ImuDraws.concatenate(chunks[:1]) is chunks[0]
+    chunks = [draw_imu(sc, e, n_trials=n, rng=g) for n in (3, 3, 1)]
+    for name in ("gyro_bias", "accel_bias", "gyro_noise", "accel_noise", "gyro_start", "accel_start"):
+        assert np.array_equal(getattr(whole, name), np.concatenate([getattr(c, name) for c in chunks])), name
+    assert np.array_equal(whole.rocking.coefficients, np.concatenate([c.rocking.coefficients for c in chunks]))
     for at in (sc, replace(sc, motion=replace(model, amplitude=0.5 * model.amplitude)) if model is not None else sc):  # the drawn amplitudes and others
         rec = simulate_imu(at, e, draws=whole, truth_stride=5)
         parts = [simulate_imu(at, e, draws=c, truth_stride=5) for c in chunks]
         for name in ("dtheta", "dv", "truth_angles", "truth_velocity", "truth_rates", "gyro_bias", "accel_bias"):
             assert np.array_equal(getattr(rec, name), np.concatenate([getattr(p, name) for p in parts])), name
-    with pytest.raises(ValueError, match="one set of sensor errors"):
-        ImuDraws.concatenate([chunks[0], draw_imu(sc, SensorErrors(), n_trials=2, rng=1)])
+    assert MotionRealisation.concatenate([chunks[0].rocking]) is chunks[0].rocking
     if model is not None:
+        other = draw_imu(replace(sc, motion=replace(model, amplitude=2.0 * model.amplitude)), e, n_trials=2, rng=1)
         with pytest.raises(ValueError, match="one model"):
-            ImuDraws.concatenate([chunks[0], draw_imu(replace(sc, motion=replace(model, amplitude=2.0 * model.amplitude)), e, n_trials=2, rng=1)])
+            MotionRealisation.concatenate([chunks[0].rocking, other.rocking])
+    with pytest.raises(ValueError, match="`chunk`"):
+        draw_imu(sc, e, n_trials=2, rng=1, chunk=0)
 
 
 @pytest.mark.parametrize("method", ["analytic", "inertial", "kalman"])

@@ -348,40 +348,6 @@ class ImuDraws:
         """Trials."""
         return self.gyro_bias.shape[0]
 
-    @classmethod
-    def concatenate(cls, draws) -> ImuDraws:
-        """The trials of several draws of one scenario as one draw, in order (their records are the parts' records).
-
-        Parameters
-        ----------
-        draws : sequence of ImuDraws
-            Draws of one scenario and one set of sensor errors (the chunks of :func:`strapdown.analysis.alignment.fine.draw_epoch_record`).
-
-        Returns
-        -------
-        ImuDraws
-
-        Raises
-        ------
-        ValueError
-            For no draws, or draws of different scenarios or sensor errors.
-        """
-        parts = tuple(draws)
-        if not parts:
-            raise ValueError("Expected at least one draw, got none")
-        if len(parts) == 1:
-            return parts[0]
-        out = {}
-        for name in ("gyro_bias", "accel_bias", "gyro_noise", "accel_noise", "gyro_start", "accel_start"):
-            arrays = [getattr(p, name) for p in parts]
-            if any(a is None for a in arrays):
-                if not all(a is None for a in arrays):
-                    raise ValueError(f"Expected draws for one set of sensor errors, got some with `{name}` and some without")
-                out[name] = None
-            else:
-                out[name] = np.concatenate(arrays)
-        return cls(MotionRealisation.concatenate([p.rocking for p in parts]), **out)
-
     def noise_term(self, sensor: str, factor: float) -> np.ndarray:
         """``factor`` times the white-noise numbers of ``sensor``, read-only and kept for the next call.
 
@@ -421,7 +387,7 @@ class ImuDraws:
         return kept[2]
 
 
-def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, limits: budget.Limits | None = None) -> ImuDraws:
+def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials: int, rng=None, chunk: int | None = None, limits: budget.Limits | None = None) -> ImuDraws:
     """Draw the random numbers of ``n_trials`` records of ``scenario`` with ``errors``.
 
     The stream is consumed as :func:`simulate_imu` consumes it: the rocking,
@@ -437,6 +403,10 @@ def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials
         Trials.
     rng : Generator | SeedSequence | int | None
         Random stream.
+    chunk : int, keyword-only, optional
+        Consume the stream ``chunk`` trials at a time, as that many separate
+        draws of ``chunk`` trials would (one draw of them all, the same numbers);
+        default all the trials at once.
     limits : strapdown.analysis.core.budget.Limits, keyword-only, optional
         Largest estimated memory and run time (default 2 GB, 300 s); a request
         beyond them raises :class:`~strapdown.analysis.core.budget.BudgetExceeded`.
@@ -461,13 +431,34 @@ def draw_imu(scenario: Scenario, errors: SensorErrors | None = None, *, n_trials
     what = f"`n_trials` = {n:.3g} records of {N + 1:.3g} samples (`duration` = {scenario.duration:.3g} s of the scenario)"
     budget.check(budget.imu_record(n, N + 1, what=what), limits)
     g = as_generator(rng)
-    rocking = scenario.motion.draw(g, n, N + 1, dt, limits=limits)
-    gb, ab = g.standard_normal((n, 3)), g.standard_normal((n, 3))
-    gn = g.standard_normal((n, N, 3)) if e.gyro_noise else None
-    an = g.standard_normal((n, N, 3)) if e.accel_noise else None
-    gs = g.random((n, 1, 3)) if e.gyro_quantum > 0 else None
-    as_ = g.random((n, 1, 3)) if e.accel_quantum > 0 else None
-    return ImuDraws(rocking, gb, ab, gn, an, gs, as_)
+    size = n if chunk is None else as_int(chunk, "chunk", minimum=1)
+    if size >= n:
+        rocking = scenario.motion.draw(g, n, N + 1, dt, limits=limits)
+        gb, ab = g.standard_normal((n, 3)), g.standard_normal((n, 3))
+        gn = g.standard_normal((n, N, 3)) if e.gyro_noise else None
+        an = g.standard_normal((n, N, 3)) if e.accel_noise else None
+        gs = g.random((n, 1, 3)) if e.gyro_quantum > 0 else None
+        as_ = g.random((n, 1, 3)) if e.accel_quantum > 0 else None
+        return ImuDraws(rocking, gb, ab, gn, an, gs, as_)
+    # chunk after chunk, each chunk's numbers written into its rows (the values of a separate draw)
+    gb, ab = np.empty((n, 3)), np.empty((n, 3))
+    gn = np.empty((n, N, 3)) if e.gyro_noise else None
+    an = np.empty((n, N, 3)) if e.accel_noise else None
+    gs = np.empty((n, 1, 3)) if e.gyro_quantum > 0 else None
+    as_ = np.empty((n, 1, 3)) if e.accel_quantum > 0 else None
+    rockings = []
+    for k in range(0, n, size):
+        rows = slice(k, min(k + size, n))
+        rockings.append(scenario.motion.draw(g, rows.stop - k, N + 1, dt, limits=limits))
+        g.standard_normal(out=gb[rows])
+        g.standard_normal(out=ab[rows])
+        for normal in (gn, an):
+            if normal is not None:
+                g.standard_normal(out=normal[rows])
+        for uniform in (gs, as_):
+            if uniform is not None:
+                g.random(out=uniform[rows])
+    return ImuDraws(MotionRealisation.concatenate(rockings), gb, ab, gn, an, gs, as_)
 
 
 def simulate_imu(

@@ -36,8 +36,8 @@ from ..core.validation import as_int
 from ..core.verdicts import Verdict, all_of, in_band
 from ..gyrocompass.rocking import as_generator
 from .analytic import analytic_alignment
-from .fine import FilterDraws, FilterTuning, draw_epoch_record, draw_filter, filter_model, fine_alignment, simulate_epoch_record
-from .imu import ImuDraws, Scenario, SensorErrors, simulate_imu
+from .fine import FilterDraws, FilterTuning, draw_filter, filter_model, fine_alignment, simulate_epoch_record
+from .imu import Scenario, SensorErrors, draw_imu, simulate_imu
 from .inertial import inertial_alignment
 from .theory import AnalyticTheory, KalmanTheory, analytic_theory, bias_floor, kalman_theory
 
@@ -137,10 +137,10 @@ class AlignmentKernel:
         AlignmentDraws
         """
         g = as_generator(rng)
-        chunks = draw_epoch_record(self.scenario, self.errors, n_trials=n_trials, rng=g, chunk=self.chunk)
-        # consecutive chunks as one draw, simulated at once (a trial's record does not depend on its neighbours)
-        per_group = max(1, SIMULATED_AT_ONCE // ((self.scenario.n_samples + 1) * self.chunk))
-        imu = tuple(ImuDraws.concatenate(chunks[k : k + per_group]) for k in range(0, len(chunks), per_group))
+        # consecutive chunks drawn as one draw and simulated at once (a trial's record does not depend on its neighbours)
+        n = as_int(n_trials, "n_trials", minimum=1)
+        group = self.chunk * max(1, SIMULATED_AT_ONCE // ((self.scenario.n_samples + 1) * self.chunk))
+        imu = tuple(draw_imu(self.scenario, self.errors, n_trials=min(group, n - k), rng=g, chunk=self.chunk) for k in range(0, n, group))
         filt = None
         if self.method == "kalman":
             filt = draw_filter(n_trials, self.scenario.n_samples // self._model().samples_per_epoch, g)
