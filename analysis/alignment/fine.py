@@ -410,9 +410,13 @@ def lever_velocity_sigma(motion, scenario: Scenario) -> np.ndarray:
     ndarray
         ``(3,)``.
     """
-    rate_var = motion.rate_variance(scenario.dt)
+    return _lever_sigma(scenario, motion.rate_variance(scenario.dt))
+
+
+def _lever_sigma(scenario: Scenario, rate_variance) -> np.ndarray:
+    """:func:`lever_velocity_sigma` from the rate variances ``(3,)`` of the rocking [rad²/s²]."""
     L = lever_matrix(scenario)
-    return np.sqrt((L * L) @ rate_var)
+    return np.sqrt((L * L) @ rate_variance)
 
 
 def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") -> Disturbance:
@@ -434,10 +438,13 @@ def assumed_disturbance(motion, scenario: Scenario, *, kind: str = "shaping") ->
     -------
     Disturbance
     """
-    if kind == "none" or not np.any(lever_velocity_sigma(motion, scenario)):
+    if kind == "none":
+        return Disturbance("none")
+    rate_var = motion.rate_variance(scenario.dt)  # one quadrature of the density for both uses
+    if not np.any(_lever_sigma(scenario, rate_var)):
         return Disturbance("none")
     sigma = motion.sigma
-    rate = np.sqrt(motion.rate_variance(scenario.dt))
+    rate = np.sqrt(rate_var)
     # the period whose oscillator has the rate variance of the rocking
     period = 2.0 * math.pi * float(np.max(sigma)) / float(np.max(rate)) if motion.name in ("white",) else getattr(motion, "period", 8.0)
     damping = {"sine": MIN_DAMPING, "white": 0.7}.get(motion.name, getattr(motion, "damping", MIN_DAMPING))
