@@ -61,12 +61,15 @@ def as_float(x, name: str) -> float:
     >>> as_float(2, "eps")
     2.0
     """
-    if isinstance(x, bool) or not isinstance(x, (numbers.Real, np.floating, np.integer)):
-        if isinstance(x, np.ndarray) and x.shape == () and np.issubdtype(x.dtype, np.number):
-            x = x.item()
-        else:
-            raise TypeError(f"Expected `{name}` to be a real number, got {type(x).__name__} {_describe(x)}")
-    value = float(x)
+    if type(x) is float or type(x) is np.float64:  # the common cases, decided without the abstract-base-class checks
+        value = float(x)
+    else:
+        if isinstance(x, bool) or not isinstance(x, (numbers.Real, np.floating, np.integer)):
+            if isinstance(x, np.ndarray) and x.shape == () and np.issubdtype(x.dtype, np.number):
+                x = x.item()
+            else:
+                raise TypeError(f"Expected `{name}` to be a real number, got {type(x).__name__} {_describe(x)}")
+        value = float(x)
     if not math.isfinite(value):
         raise ValueError(f"Expected `{name}` to be finite, got {value}")
     return value
@@ -100,12 +103,15 @@ def as_int(x, name: str, *, minimum: int | None = None) -> int:
     >>> as_int(1e6, "samples", minimum=2)
     1000000
     """
-    if isinstance(x, bool) or not isinstance(x, (numbers.Integral, np.integer)):
-        if isinstance(x, (float, np.floating)) and math.isfinite(x) and float(x).is_integer():
-            x = int(x)
-        else:
-            raise TypeError(f"Expected `{name}` to be an integer, got {type(x).__name__} {_describe(x)}")
-    value = int(x)
+    if type(x) is int:  # the common case, decided without the abstract-base-class checks
+        value = x
+    else:
+        if isinstance(x, bool) or not isinstance(x, (numbers.Integral, np.integer)):
+            if isinstance(x, (float, np.floating)) and math.isfinite(x) and float(x).is_integer():
+                x = int(x)
+            else:
+                raise TypeError(f"Expected `{name}` to be an integer, got {type(x).__name__} {_describe(x)}")
+        value = int(x)
     if minimum is not None and value < minimum:
         raise ValueError(f"Expected `{name}` >= {minimum}, got {value}")
     return value

@@ -163,17 +163,38 @@ def corrupt(data: SensorData, errors: SensorErrors, *, rng=None) -> SensorData:
         raise TypeError(f"Expected `errors` to be a SensorErrors, got {type(errors).__name__}")
     h = data.step
     gyro_rng, accel_rng = np.random.default_rng(rng).spawn(2)
-    # in place, in the order of Δφ_meas = (1 + s_g) Δφ + d h + N_g √h n (the same roundings as written out)
-    gyro = (1.0 + np.asarray(errors.gyro_scale)) * data.gyro
-    gyro += np.asarray(errors.gyro_drift) * h
-    if errors.gyro_noise > 0.0:
-        noise = gyro_rng.standard_normal(gyro.shape)
-        noise *= errors.gyro_noise * np.sqrt(h)
-        gyro += noise
-    accel = (1.0 + np.asarray(errors.accel_scale)) * data.accel
-    accel += np.asarray(errors.accel_bias)
-    if errors.accel_noise > 0.0:
-        noise = accel_rng.standard_normal(accel.shape)
-        noise *= errors.accel_noise / np.sqrt(h)
-        accel += noise
+    # Δφ_meas = (1 + s_g) Δφ + d h + N_g √h n and f_meas = (1 + s_a) f + b + N_a/√h n, in one pass per triad
+    gyro = _measured(data.gyro, errors.gyro_scale, np.asarray(errors.gyro_drift) * h, gyro_rng, errors.gyro_noise * np.sqrt(h) if errors.gyro_noise > 0.0 else None, "gyro")
+    accel = _measured(data.accel, errors.accel_scale, np.asarray(errors.accel_bias), accel_rng, errors.accel_noise / np.sqrt(h) if errors.accel_noise > 0.0 else None, "accel")
     return replace(data, gyro=gyro, accel=accel)
+
+
+_compiled: dict = {}
+
+
+def _measured(signal, scale, offset, rng, noise, name: str) -> np.ndarray:
+    """``(1 + scale) · signal + offset + noise · n`` per axis, n standard normal from ``rng`` (no noise term for ``noise=None``)."""
+    signal = np.ascontiguousarray(signal, dtype=float)
+    if signal.ndim != 2 or signal.shape[1] != 3:
+        raise ValueError(f"Expected `data.{name}` with shape (N, 3), got shape {signal.shape}")
+    if "measure" not in _compiled:
+        import numba
+
+        _compiled["measure"] = numba.njit(cache=True, nogil=True)(_measure)
+    factor = 1.0 + np.asarray(scale, dtype=float)
+    if noise is None:
+        return _compiled["measure"](signal, factor, offset, np.empty((0, 3)), 0.0, np.empty_like(signal))
+    n = rng.standard_normal(signal.shape)
+    return _compiled["measure"](signal, factor, offset, n, float(noise), n)
+
+
+def _measure(signal, factor, offset, normals, noise, out):
+    """``factor · signal + offset`` per axis, plus ``normals · noise`` unless ``normals`` is empty, into ``out`` (in this order of roundings)."""
+    noisy = normals.shape[0] > 0
+    for i in range(signal.shape[0]):
+        for k in range(3):
+            x = factor[k] * signal[i, k] + offset[k]
+            if noisy:
+                x += normals[i, k] * noise
+            out[i, k] = x
+    return out

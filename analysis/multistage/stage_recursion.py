@@ -186,7 +186,7 @@ def _stage_loop(nu0, dq, ref_start, ref_end, mask, kinematic, seg_start, maps, g
 _compiled: dict = {}
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_flow", "_correct", "_renormalise", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_matrix", "_clip1", "_below", "_wrap", "_record")
+_HELPERS = ("_flow", "_correct", "_renormalise", "_switch", "_rotvec_quat", "_tilt_quat", "_qmul", "_half_quat", "_matrix", "_clip1", "_limit", "_wrap", "_record")
 
 
 def _jit(fn):
@@ -409,11 +409,6 @@ def _clip1(x):
     return min(max(x, -1.0), 1.0)
 
 
-def _below(sin2, cos_positive, q):
-    """Whether an angle with this squared sine (and cos > 0) is certainly at most q [rad]: sin² a <= q²(1 − q²/3) <= sin² q."""
-    return cos_positive and q > 0.0 and q < 1.0 and sin2 <= q * q * (1.0 - q * q / 3.0)
-
-
 def _wrap(a):
     """:func:`strapdown.analysis.multistage.ship_angles.wrap_angle`: ``π − ((π − a) mod 2π)``, the same operations [rad]."""
     x = math.pi - a
@@ -422,11 +417,20 @@ def _wrap(a):
     return math.pi - x
 
 
-def _record(i, prev, truth, attitude, bounds, peaks, nus, comps, errors, store):
+def _limit(peak):
+    """Largest squared sine of an angle (with cos > 0) that is certainly at most ``peak − BOUND_MARGIN``: q²(1 − q²/3) <= sin² q; −1 if none."""
+    q = peak - BOUND_MARGIN
+    if q > 0.0 and q < 1.0:
+        return q * q * (1.0 - q * q / 3.0)
+    return -1.0
+
+
+def _record(i, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store):
     """Composite (2.6), angle errors and running peaks at grid point ``i``; False if the composite is not finite or zero.
 
     With ``bounds`` an error whose bound from the true attitude (:data:`BOUND_MARGIN` below
-    its running peak) shows it cannot raise the peak is not evaluated (module docstring).
+    its running peak) shows it cannot raise the peak is not evaluated (module docstring);
+    ``limits`` holds the squared-sine bounds of the yaw, pitch and roll peaks (:func:`_limit`).
     """
     m = prev.shape[0]
     p0, p1, p2, p3 = prev[0, 0], prev[0, 1], prev[0, 2], prev[0, 3]
@@ -446,31 +450,36 @@ def _record(i, prev, truth, attitude, bounds, peaks, nus, comps, errors, store):
         yaw_exact = pr_exact = True
         e0 = e1 = e2 = 0.0
         if bounds:
-            # yaw and roll: sin and cos of the difference of two plane angles, scaled by both radii
+            # yaw and roll: sin and cos of the difference of two plane angles, scaled by both radii (sin² = cross²/rr)
             rr = (a11 * a11 + a13 * a13) * yaw_t
             cross = t13 * a11 - a13 * t11
-            yaw_exact = not (rr > 0.01 and _below(cross * cross / rr, a11 * t11 + a13 * t13 > 0.0, peaks[j, 0] - BOUND_MARGIN))
+            yaw_exact = not (rr > 0.01 and a11 * t11 + a13 * t13 > 0.0 and cross * cross <= limits[j, 0] * rr)
             x = _clip1(a12)
             if abs(x) <= 0.9 and abs(xt) <= 0.9:
                 cx = math.sqrt(1.0 - x * x)
                 s1 = x * ct - cx * xt
-                c1 = cx * ct + x * xt > 0.0
-                rr = (a22 * a22 + a32 * a32) * roll_t
-                cross = t32 * a22 - a32 * t22
-                s2 = cross * cross / rr if rr > 0.01 else 1.0
-                c2 = a22 * t22 + a32 * t32 > 0.0
                 q = peaks[j, 3] - BOUND_MARGIN
-                if _below(s1 * s1, c1, peaks[j, 1] - BOUND_MARGIN) and _below(s2, c2, peaks[j, 2] - BOUND_MARGIN) and q > 0.0:
-                    # |e| <= tan|e| = |sin e|/√(1 − sin² e) for |e| < π/2
-                    pr_exact = s1 * s1 / (1.0 - s1 * s1) + s2 / (1.0 - s2) > q * q
+                if q > 0.0 and cx * ct + x * xt > 0.0 and s1 * s1 <= limits[j, 1]:
+                    rr = (a22 * a22 + a32 * a32) * roll_t
+                    cross = t32 * a22 - a32 * t22
+                    if rr > 0.01 and a22 * t22 + a32 * t32 > 0.0 and cross * cross <= limits[j, 2] * rr:
+                        # |e| <= tan|e| = |sin e|/√(1 − sin² e) for |e| < π/2
+                        s2 = cross * cross / rr
+                        pr_exact = s1 * s1 / (1.0 - s1 * s1) + s2 / (1.0 - s2) > q * q
         if yaw_exact or store:
             e0 = _wrap(math.atan2(-a13, a11) - truth[i, 0])
-            peaks[j, 0] = max(peaks[j, 0], abs(e0))
+            if abs(e0) > peaks[j, 0]:
+                peaks[j, 0] = abs(e0)
+                limits[j, 0] = _limit(peaks[j, 0])
         if pr_exact or store:
             e1 = _wrap(math.asin(_clip1(a12)) - truth[i, 1])
             e2 = _wrap(math.atan2(-a32, a22) - truth[i, 2])
-            peaks[j, 1] = max(peaks[j, 1], abs(e1))
-            peaks[j, 2] = max(peaks[j, 2], abs(e2))
+            if abs(e1) > peaks[j, 1]:
+                peaks[j, 1] = abs(e1)
+                limits[j, 1] = _limit(peaks[j, 1])
+            if abs(e2) > peaks[j, 2]:
+                peaks[j, 2] = abs(e2)
+                limits[j, 2] = _limit(peaks[j, 2])
             peaks[j, 3] = max(peaks[j, 3], math.sqrt(e1 * e1 + e2 * e2))
         if store:
             nus[j, i, 0], nus[j, i, 1], nus[j, i, 2], nus[j, i, 3] = prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3]
@@ -487,13 +496,14 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
     prev = np.empty((m, 4))
     seg = np.zeros(m, dtype=np.int64)
     grow = np.empty(m)
+    limits = np.full((m, 3), -1.0)
     for j in range(m):
         grow[j] = math.exp(rhos[j] * step * 0.5)
         n = math.sqrt(nu0[j, 0] * nu0[j, 0] + nu0[j, 1] * nu0[j, 1] + nu0[j, 2] * nu0[j, 2] + nu0[j, 3] * nu0[j, 3])
         for k in range(4):
             v[j, k] = nu0[j, k]
             prev[j, k] = nu0[j, k] / n
-    ok = _record(0, prev, truth, attitude, bounds, peaks, nus, comps, errors, store)
+    ok = _record(0, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store)
     for i in range(n_steps):
         b0, b1, b2, b3 = _rotvec_quat(gyro[i, 0], gyro[i, 1], gyro[i, 2])
         f0, f1, f2 = accel[i, 0], accel[i, 1], accel[i, 2]
@@ -528,7 +538,7 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
                 w0, w1, w2, w3 = _qmul(p0, p1, p2, p3, b0, b1, b2, b3)
                 b0, b1, b2, b3 = _qmul(w0, w1, w2, w3, c0, -c1, -c2, -c3)
             prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3] = c0, c1, c2, c3
-        if not _record(i + 1, prev, truth, attitude, bounds, peaks, nus, comps, errors, store):
+        if not _record(i + 1, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store):
             ok = False
     return ok
 
