@@ -363,4 +363,3 @@ def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float, *
         dth += 0.5 * dt * st.gyro
         dv += 0.5 * dt * st.accel
     return dth, dv, sol
-

@@ -339,7 +339,6 @@ class ChannelFilter:
         return " + ".join(parts) or "ideal"
 
 
-
 #: Sensor responses kept in this process (the closed forms of several algorithms, the tunings and the rate search
 #: evaluate one triad at the same quadrature nodes and interval again) [count].
 RESPONSES_KEPT = 128
