@@ -209,6 +209,18 @@ def _solution_estimate(man: Manoeuvre, duration: float, what: str) -> budget.Est
     return budget.TRAJECTORY_STEP.estimate(math.ceil(duration / _max_step(man)) + 1.0, what=what)
 
 
+def _speed_and_heading(man: Manoeuvre, t: float) -> tuple:
+    """``(s, ψ)`` at one time t [m/s, rad]: :meth:`Manoeuvre.speed_profile` and :meth:`Manoeuvre.heading_profile`
+    on a float, with the same operations in the same order (hence the same bits), without numpy's per-call cost."""
+    if t < man.run_up:
+        arg = math.pi * min(t, man.run_up) / man.run_up
+        s = man.speed + 0.5 * (man.start_speed - man.speed) * (1.0 + math.cos(arg))
+    else:
+        s = man.speed
+    w = 2.0 * math.pi / man.weave_period
+    return s, man.heading + man.weave_amplitude * math.sin(w * t)
+
+
 def position_solution(man: Manoeuvre, duration: float, *, limits: budget.Limits | None = None):
     """Dense DOP853 solution (rtol 1e-12) of the latitude and longitude ``(φ, λ)`` over ``[0, duration]``.
 
@@ -239,8 +251,7 @@ def position_solution(man: Manoeuvre, duration: float, *, limits: budget.Limits 
     from scipy.integrate import solve_ivp
 
     def rhs(t, y):
-        s, _ = man.speed_profile(t)
-        psi = man.heading_profile(t)[0]
+        s, psi = _speed_and_heading(man, float(t))
         RN, RE = radii(y[0])
         return [s * math.cos(psi) / (RN + man.height), s * math.sin(psi) / ((RE + man.height) * math.cos(y[0]))]
 
@@ -352,4 +363,3 @@ def trajectory_increments(man: Manoeuvre, sample_rate: float, duration: float, *
         dth += 0.5 * dt * st.gyro
         dv += 0.5 * dt * st.accel
     return dth, dv, sol
-

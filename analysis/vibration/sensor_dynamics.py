@@ -53,6 +53,7 @@ part 1", on sensor filtering and pseudo-coning; Mark & Tazartes (1996),
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -338,6 +339,20 @@ class ChannelFilter:
         return " + ".join(parts) or "ideal"
 
 
+#: Sensor responses kept in this process (the closed forms of several algorithms, the tunings and the rate search
+#: evaluate one triad at the same quadrature nodes and interval again) [count].
+RESPONSES_KEPT = 128
+_RESPONSES: OrderedDict = OrderedDict()
+
+
+def _response_key(sensor, omega, sensor_interval: float):
+    """Key of :data:`_RESPONSES` for a triad at real frequencies, or None (other inputs are not kept)."""
+    w = np.asarray(omega)
+    if w.dtype != np.float64:
+        return None
+    return sensor, sensor_interval, w.shape, w.tobytes()
+
+
 @dataclass(frozen=True)
 class Sensor:
     """A sensor triad: the filters of its x, y and z axes, and the decimation.
@@ -387,11 +402,21 @@ class Sensor:
         ndarray of complex
         """
         hs = self.sensor_interval(sample_interval)
+        key = _response_key(self, omega, hs)
+        if key is not None and key in _RESPONSES:
+            _RESPONSES.move_to_end(key)
+            return _RESPONSES[key]
         seen: dict = {}
         for a in self.axes:  # identical axes are evaluated once
             if a not in seen:
                 seen[a] = a.response(omega, hs)
-        return np.stack([seen[a] for a in self.axes], axis=-1)
+        out = np.stack([seen[a] for a in self.axes], axis=-1)
+        if key is not None:
+            out.setflags(write=False)
+            _RESPONSES[key] = out
+            if len(_RESPONSES) > RESPONSES_KEPT:
+                _RESPONSES.popitem(last=False)
+        return out
 
     @property
     def is_ideal(self) -> bool:

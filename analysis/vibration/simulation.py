@@ -285,9 +285,15 @@ def filtered_coning_check(algorithm: Algorithm, gyro: Sensor, sample_interval: f
     rate_scale = omega * math.sin(alpha)
     drift_rate = (1.0 - math.cos(alpha)) * omega * cw
 
+    cu0, cu1, cu2 = cu.tolist()
+    cv0, cv1, cv2 = cv.tolist()
+    dr0, dr1, dr2 = drift_rate.tolist()
+
     def rhs(t, y):
-        psi = omega * np.asarray(t, dtype=float)[..., None] + 0.0
-        om = rate_scale * (-np.sin(psi) * cu + np.cos(psi) * cv) - drift_rate
+        # cone_rate on a float: its operations in its order, without a numpy call per component
+        psi = omega * float(t) + 0.0
+        s, c = -math.sin(psi), math.cos(psi)
+        om = np.array([rate_scale * (s * cu0 + c * cv0) - dr0, rate_scale * (s * cu1 + c * cv1) - dr1, rate_scale * (s * cu2 + c * cv2) - dr2])
         x = y[8 : 8 + n]
         out = C @ x + D * om
         dy = np.empty(y.shape)
