@@ -41,7 +41,7 @@ from typing import Any
 
 from ...derivations.reproducible import reproducible
 from . import output, warm_up
-from .rendering import configure_matplotlib, quantise
+from .rendering import agg_canvas, configure_matplotlib, quantise
 
 __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
 
@@ -285,6 +285,8 @@ class Context:
         else:
             metadata = {"Software": None}
         quantise(fig)
+        if suffix == ".png":
+            agg_canvas(fig)
         buf = io.BytesIO()
         collecting = gc.isenabled()
         gc.disable()  # drawing allocates thousands of small objects: no cycle collection passes while it runs
