@@ -17,7 +17,7 @@ from strapdown.analysis.coning.papers.published_check import coefficient_checks,
 from strapdown.analysis.coning.precession import RegularPrecession
 from strapdown.analysis.coning.simulator import sample_increments, simulate, step_windows, window_index
 from strapdown.analysis.core import quaternion as quat
-from strapdown.derivations.coning.algorithms import Algorithm, load_toml, second_order_defect
+from strapdown.derivations.coning.algorithms import Algorithm, Term, load_toml, second_order_defect
 from strapdown.derivations.coning.polynomial_fit import polynomial_fit_coefficients
 from strapdown.derivations.coning.published import PSINS_TABLE_10_1_N6, PUBLISHED_ALGORITHM_COEFFICIENTS, PUBLISHED_ALGORITHM_ERRORS
 from strapdown.derivations.coning.registry import COMPRESSED_TABLE, get, names
@@ -57,6 +57,10 @@ def test_polynomial_fits():
     assert get("polynomial-3").pairwise == polynomial_fit_coefficients(3)  # Ignagni's Algorithm D as printed
     # the cubic fit is the four-sample algorithm 5 of Budennyi et al. Table 1
     assert get("polynomial-4").pairwise == get("panov-4s-5").pairwise
+    for n in (5, 6, 7, 8):  # exact rationals at every N (from N = 7 on, a numerical reconstruction of them failed)
+        coefficients = polynomial_fit_coefficients(n)
+        assert coefficients and all(isinstance(c, Fraction) for c in coefficients.values()), n
+        assert second_order_defect(Algorithm(f"polynomial-{n}", n, tuple(Term(c, pair) for pair, c in coefficients.items()), "", "")) == 0, n
     with pytest.raises(ValueError, match="samples"):
         polynomial_fit_coefficients(1)
 

@@ -4,6 +4,7 @@ The output-directory safety rules (foreign files, locks, crashes) are in test_re
 """
 
 import hashlib
+import io
 from pathlib import Path
 
 import pytest
@@ -152,3 +153,30 @@ def test_savefig_hands_each_figure_to_the_check_before_closing(tmp_path):
     assert seen == [("figures/x.png", True)]
     assert not plt.fignum_exists(fig.number)
     assert (tmp_path / "figures" / "x.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_agg_canvas_draws_the_same_png_as_matplotlibs_own_with_one_parser():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import agg_canvas
+
+    def figure():
+        fig, ax = plt.subplots(figsize=(3, 2))
+        ax.loglog([1e-3, 1e2], [1e1, 1e-4], label="$H^4$ and $\\omega$")
+        ax.legend()
+        return fig
+
+    def png(fig):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+        plt.close(fig)
+        return buf.getvalue()
+
+    own = png(figure())
+    first, second = figure(), figure()
+    agg_canvas(first), agg_canvas(second)
+    assert first.canvas.get_renderer().mathtext_parser is second.canvas.get_renderer().mathtext_parser
+    assert png(first) == own and png(second) == own

@@ -20,9 +20,11 @@ matplotlib version (recorded in the report manifest).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "configure_matplotlib", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps"]
+__all__ = ["MANTISSA_BITS", "configure_matplotlib", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps", "agg_canvas"]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -299,3 +301,44 @@ def configure_matplotlib() -> None:
             "axes.titley": 1.0,
         }
     )
+
+
+def agg_canvas(fig):
+    """Give ``fig`` an Agg canvas whose renderers share one mathtext parser with every other figure's.
+
+    matplotlib gives each renderer a parser of its own, and its cache of parsed
+    expressions is keyed by the parser: every figure parses its mathtext again,
+    although most of it is the same few tick labels of log axes
+    (``$\\mathdefault{10^{-3}}$``), about a tenth of the drawing time.  A parse
+    depends only on the expression, the dpi and the font, so one parser gives
+    the same pixels.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; its canvas is replaced.
+
+    Returns
+    -------
+    matplotlib.backends.backend_agg.FigureCanvasAgg
+        The new canvas of ``fig``.
+    """
+    return _canvas_class()(fig)
+
+
+@functools.cache
+def _canvas_class():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.mathtext import MathTextParser
+
+    parser = MathTextParser("path")  # the output type RendererAgg parses to
+
+    class SharedParserCanvas(FigureCanvasAgg):
+        """Agg canvas whose renderers parse mathtext with one parser shared by every figure."""
+
+        def get_renderer(self):
+            renderer = super().get_renderer()
+            renderer.mathtext_parser = parser
+            return renderer
+
+    return SharedParserCanvas

@@ -67,8 +67,7 @@ def polynomial_fit_coefficients(samples: int) -> dict:
     out = {}
     for i in range(n):
         for j in range(i + 1, n):
-            c = sum((ckl * (inv[k, i] * inv[l, j] - inv[k, j] * inv[l, i]) for (k, l), ckl in coeff.items()), sp.Integer(0))
-            c = sp.nsimplify(c)
+            c = sum((ckl * (inv[k, i] * inv[l, j] - inv[k, j] * inv[l, i]) for (k, l), ckl in coeff.items()), sp.Integer(0))  # exact: a Rational
             if c != 0:
                 out[(i + 1, j + 1)] = Fraction(int(c.p), int(c.q))
     return out
