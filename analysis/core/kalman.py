@@ -258,36 +258,27 @@ def filter_sequence(F, Q, H, R, P0, n_steps: int, *, reference: bool = False) ->
             raise ValueError(f"Expected `{name}` with shape {shape}, got shape {np.shape(a)}")
     if reference:
         return _filterpy_sequence(F, Q, H, R, P0, n_steps)
-    from numpy.linalg import _umath_linalg
-
     # filterpy's covariance arithmetic, call for call (KalmanFilter.predict, then update with
     # fading factor 1 and numpy.linalg.inv), without its per-step state, copies and bookkeeping:
-    # the products are written where they are kept, the factor 1.0 (exact) is left out, and the
-    # inverse is numpy.linalg.inv's own LAPACK routine under inv's error state, entered once
+    # the products are written where they are kept and the factor 1.0 (exact) is left out
     Q = np.atleast_2d(np.asarray(Q, dtype=float)).copy()
     R = np.atleast_2d(np.asarray(R, dtype=float)).copy()
     F, H = F.copy(), H.copy()
     P = np.atleast_2d(np.asarray(P0, dtype=float)).copy()
-    eye, dot, add, inv = np.eye(n), np.dot, np.add, _umath_linalg.inv
+    eye, dot, add, inv = np.eye(n), np.dot, np.add, np.linalg.inv
     FT, HT = F.T, H.T
     gains = np.empty((n_steps, n, m))
     prior = np.empty((n_steps, n, n))
     post = np.empty((n_steps, n, n))
     innov = np.empty((n_steps, m, m))
-    with np.errstate(call=_singular, invalid="call", over="ignore", divide="ignore", under="ignore"):
-        for k in range(n_steps):
-            P = add(dot(dot(F, P), FT), Q, out=prior[k])
-            PHT = dot(P, HT)
-            S = add(dot(H, PHT), R, out=innov[k])
-            K = dot(PHT, inv(S, signature="d->d"), out=gains[k])
-            I_KH = eye - dot(K, H)
-            P = add(dot(dot(I_KH, P), I_KH.T), dot(dot(K, R), K.T), out=post[k])
+    for k in range(n_steps):
+        P = add(dot(dot(F, P), FT), Q, out=prior[k])
+        PHT = dot(P, HT)
+        S = add(dot(H, PHT), R, out=innov[k])
+        K = dot(PHT, inv(S), out=gains[k])
+        I_KH = eye - dot(K, H)
+        P = add(dot(dot(I_KH, P), I_KH.T), dot(dot(K, R), K.T), out=post[k])
     return FilterSequence(gains, prior, post, innov)
-
-
-def _singular(err, flag):
-    """The error of a singular innovation covariance, as :func:`numpy.linalg.inv` raises it."""
-    raise np.linalg.LinAlgError("Singular matrix")
 
 
 def _filterpy_sequence(F, Q, H, R, P0, n_steps: int) -> FilterSequence:
