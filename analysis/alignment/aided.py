@@ -42,8 +42,8 @@ aided_monte_carlo, time_to_align, navigator_step, ned_offset
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import expm
@@ -207,11 +207,6 @@ def _prior(tuning: AidedTuning) -> np.ndarray:
     return np.diag(np.square([t.prior_tilt, t.prior_tilt, t.prior_heading] + [t.prior_velocity] * 3 + [t.prior_position] * 3 + [t.gyro_bias] * 3 + [t.accel_bias] * 3))
 
 
-#: Filter sequences kept in this process (a study at another IMU rate with the same epoch linearises the same drive) [count].
-SEQUENCES_KEPT = 16
-_SEQUENCES: OrderedDict = OrderedDict()
-
-
 def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, duration: float, limits: budget.Limits | None = None) -> AidedSequence:
     """Linearise the error model along the true trajectory and run filterpy's covariances through it.
 
@@ -248,11 +243,14 @@ def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, d
     E = U * K
     what = f"`duration` = {T:.3g} s ({U:.3g} GNSS fixes and {E:.3g} epochs of the filter)"
     budget.check(budget.AIDED_FIX.estimate(U, what=what, extra_bytes=8.0 * (E + 1)), limits)
-    # the sequence depends on the rate only through the epoch D: another rate with the same epoch gets the same one
-    key = (man, tuning, D, K, U, limits)
-    if key in _SEQUENCES:
-        _SEQUENCES.move_to_end(key)
-        return _SEQUENCES[key]
+    # the sequence depends on the rate only through the epoch D: another rate with the same epoch gets the kept one
+    return _sequence(man, tuning, D, K, U, limits)
+
+
+@lru_cache(maxsize=16)
+def _sequence(man: Manoeuvre, tuning: AidedTuning, D: float, K: int, U: int, limits) -> AidedSequence:
+    """:func:`aided_sequence` for an epoch D [s], K epochs per fix and U fixes, its arrays read-only."""
+    E = U * K
     times = D * np.arange(E + 1)
     step = K * D
     mid = trajectory_state(man, step * (np.arange(U) + 0.5), limits=limits)
@@ -289,9 +287,6 @@ def aided_sequence(man: Manoeuvre, tuning: AidedTuning, *, sample_rate: float, d
     seq = AidedSequence(times, F, updates, np.array(gains), np.array(post), np.array(innov), m0.H, R, P0, m0.names)
     for a in (seq.times, seq.F, seq.updates, seq.gains, seq.posterior, seq.innovation, seq.H, seq.R, seq.P0):
         a.flags.writeable = False
-    _SEQUENCES[key] = seq
-    if len(_SEQUENCES) > SEQUENCES_KEPT:
-        _SEQUENCES.popitem(last=False)
     return seq
 
 

@@ -53,7 +53,6 @@ part 1", on sensor filtering and pseudo-coning; Mark & Tazartes (1996),
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -339,18 +338,21 @@ class ChannelFilter:
         return " + ".join(parts) or "ideal"
 
 
-#: Sensor responses kept in this process (the closed forms of several algorithms, the tunings and the rate search
-#: evaluate one triad at the same quadrature nodes and interval again) [count].
-RESPONSES_KEPT = 128
-_RESPONSES: OrderedDict = OrderedDict()
+def _triad_response(sensor, omega, sensor_interval: float) -> np.ndarray:
+    """:meth:`Sensor.response` at the sensor interval [s]; identical axes are evaluated once."""
+    seen: dict = {}
+    for a in sensor.axes:
+        if a not in seen:
+            seen[a] = a.response(omega, sensor_interval)
+    return np.stack([seen[a] for a in sensor.axes], axis=-1)
 
 
-def _response_key(sensor, omega, sensor_interval: float):
-    """Key of :data:`_RESPONSES` for a triad at real frequencies, or None (other inputs are not kept)."""
-    w = np.asarray(omega)
-    if w.dtype != np.float64:
-        return None
-    return sensor, sensor_interval, w.shape, w.tobytes()
+@lru_cache(maxsize=128)
+def _kept_response(sensor, sensor_interval: float, shape: tuple, omega_bytes: bytes) -> np.ndarray:
+    """:func:`_triad_response` at float64 frequencies given by their bytes, kept read-only."""
+    out = _triad_response(sensor, np.frombuffer(omega_bytes).reshape(shape), sensor_interval)
+    out.setflags(write=False)
+    return out
 
 
 @dataclass(frozen=True)
@@ -402,21 +404,10 @@ class Sensor:
         ndarray of complex
         """
         hs = self.sensor_interval(sample_interval)
-        key = _response_key(self, omega, hs)
-        if key is not None and key in _RESPONSES:
-            _RESPONSES.move_to_end(key)
-            return _RESPONSES[key]
-        seen: dict = {}
-        for a in self.axes:  # identical axes are evaluated once
-            if a not in seen:
-                seen[a] = a.response(omega, hs)
-        out = np.stack([seen[a] for a in self.axes], axis=-1)
-        if key is not None:
-            out.setflags(write=False)
-            _RESPONSES[key] = out
-            if len(_RESPONSES) > RESPONSES_KEPT:
-                _RESPONSES.popitem(last=False)
-        return out
+        w = np.asarray(omega)
+        if w.dtype == np.float64:  # real frequencies: kept for the run (several algorithms, tunings and rate searches ask again)
+            return _kept_response(self, hs, w.shape, w.tobytes())
+        return _triad_response(self, omega, hs)
 
     @property
     def is_ideal(self) -> bool:
