@@ -63,6 +63,9 @@ from ..gyrocompass.rocking import as_generator
 
 __all__ = ["Spectrum", "UnitDraw", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS", "mean_transfer", "mean_variance"]
 
+#: Trials inverse-transformed at once by the FFT form of a realisation (the work arrays of a block stay in cache).
+FFT_BLOCK = 8
+
 
 @dataclass(frozen=True)
 class Spectrum:
@@ -461,15 +464,26 @@ class MotionRealisation:
         return out
 
     def _fft(self, c, n):
+        """The first ``n`` samples of the inverse FFT of the grid coefficients ``c``, ``(n_trials, n, axes)``.
+
+        The trials are transformed :data:`FFT_BLOCK` at a time, so that the
+        spectrum and the transform (``n_fft`` points per row, of which ``n``
+        are kept) stay in cache; each row's transform is its own, so the
+        blocks give the bits of one call over all rows.
+        """
         nfft = self.spectrum.n_fft
-        m = c.shape[-1]  # the grid ω_m = 2π m/(n_fft dt), m = 0 … M − 1
-        X = np.zeros(c.shape[:-1] + (nfft // 2 + 1,), dtype=complex)
-        X[..., :m] = c * (nfft / 2.0)
-        X[..., 0] *= 2.0  # irfft halves the zero and Nyquist bins (and keeps their real parts: Re c)
-        if m == nfft // 2 + 1:
-            X[..., -1] *= 2.0
-        x = np.fft.irfft(X, n=nfft, axis=-1)[..., :n]
-        return np.ascontiguousarray(np.swapaxes(x, 1, 2))
+        trials, axes, m = c.shape  # the grid ω_m = 2π m/(n_fft dt), m = 0 … M − 1
+        out = np.empty((trials, n, axes))
+        X = np.zeros((min(trials, FFT_BLOCK), axes, nfft // 2 + 1), dtype=complex)
+        for i in range(0, trials, FFT_BLOCK):
+            k = min(FFT_BLOCK, trials - i)
+            Xb = X[:k]
+            np.multiply(c[i : i + k], nfft / 2.0, out=Xb[..., :m])
+            Xb[..., 0] *= 2.0  # irfft halves the zero and Nyquist bins (and keeps their real parts: Re c)
+            if m == nfft // 2 + 1:
+                Xb[..., -1] *= 2.0
+            out[i : i + k] = np.swapaxes(np.fft.irfft(Xb, n=nfft, axis=-1)[..., :n], 1, 2)
+        return out
 
 
 def _unit_model(model):
