@@ -827,8 +827,8 @@ def _convergence(ctx) -> list:
 
 # ---------------------------------------------------------------------------
 def warm_up() -> None:
-    """Derive and compile what :func:`build` needs into the caches: (3.2)–(3.4), the Schuler linearisation, the composition, the stage loops."""
-    from ...derivations.multistage import composition, lyapunov_function, schuler
+    """Derive and compile what :func:`build` needs into the caches: (3.2)–(3.4), the Schuler linearisation, the composition, the tilt quaternion (1.10), the stage loops."""
+    from ...derivations.multistage import composition, lyapunov_function, schuler, tilt_quaternion
     from ..core.cache import derived
     from ..multistage.decay_rates import simulated_rate
     from ..multistage.stages import simulate
@@ -841,6 +841,7 @@ def warm_up() -> None:
     StageLoop(0.01, 5e-5).summary()
     derived("multistage:lyapunov:v1", lyapunov_function.derive)
     derived("multistage:composition:v1", composition.derive)
+    derived("multistage:tilt-quaternion:v1", tilt_quaternion.derive)
 
 
 def build(ctx) -> None:
@@ -899,6 +900,7 @@ def errata(ctx) -> list:
     list of Erratum
     """
     from ...derivations.multistage.tilt_quaternion import derive as derive_tilt
+    from ..core.cache import derived
     from ..multistage.formula_checks import check_printed_formulas
     from ..multistage.gain_design import static_tilt_estimate
     from ..multistage.stages import Stage
@@ -909,7 +911,7 @@ def errata(ctx) -> list:
     c = check_printed_formulas(rng=seeds[_FORMULA_STREAM])
     every = _all_readings(ctx)
     default, printed_env, slow_env, accel2, accel2_pure, printed_c, all_four, rescale, bumpless = (every[i] for i in (0, 1, 2, 3, 5, 6, 7, 9, 10))
-    tilt = derive_tilt()
+    tilt = derived("multistage:tilt-quaternion:v1", derive_tilt)  # (1.10) simplified once, as the other derivations
     sc = Scenario()
     g, r = sc.gravity, sc.earth_radius
     schuler_l = StageLoop.schuler(g, r).l
