@@ -9,6 +9,8 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   loop over trials and samples;
 * :func:`add_sensor_terms` applies a sensor's scale factors, bias and white noise to those
   increments in one pass;
+* :func:`sensor_increments` does both for the two Gauss nodes in a single pass that writes
+  each record once (the same operations, so the same bits, as the separate passes);
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
   (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
@@ -41,7 +43,10 @@ import numpy as np
 
 from ..core.validation import as_array, as_int, as_vector
 
-__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop"]
+__all__ = [
+    "START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "sensor_increments",
+    "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop",
+]  # fmt: skip
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -104,7 +109,10 @@ def use_compiled(compiled: bool | None, work: int) -> bool:
 
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_rodrigues3", "_quat_mul", "_quat_rotate", "_rotvec_quat")
+_HELPERS = ("_node_rates", "_rodrigues3", "_quat_mul", "_quat_rotate", "_rotvec_quat")
+
+#: Helpers inlined into their callers by numba itself: called per sample with many arguments, a call would cost as much as their body.
+_INLINED = ("_node_rates",)
 
 
 def _jit(fn):
@@ -116,64 +124,79 @@ def _jit(fn):
         g = globals()
         for helper in _HELPERS:
             if not isinstance(g[helper], numba.core.registry.CPUDispatcher):
-                g[helper] = numba.njit(cache=True, nogil=True)(g[helper])
+                g[helper] = numba.njit(cache=True, nogil=True, inline="always" if helper in _INLINED else "never")(g[helper])
         _compiled[name] = numba.njit(cache=True, nogil=True)(fn)
     return _compiled[name]
 
 
+def _node_rates(ang, rate, acc, scale, stable, yaw, cp, sp, W, g, r, lever, in_gyros, fixed_gyro):
+    """Ideal gyro rate and specific force at one point of one node: ``(ωx, ωy, ωz, fx, fy, fz)``.
+
+    Every argument is a number or a tuple of three (no array: a compiled caller
+    passes them without reference counting); ``ang``, ``rate`` and ``acc`` are
+    the unit rocking at the point (``acc`` read only with a lever arm), ``cp``
+    and ``sp`` the cosine and sine of the stable heading (used without yaw rocking).
+    """
+    s0, s1, s2 = scale
+    # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
+    beta = s1 * ang[1] + stable[1]
+    gam = s2 * ang[2] + stable[2]
+    if yaw:
+        psi = s0 * ang[0] + stable[0]
+        cp, sp = math.cos(psi), math.sin(psi)
+    cb, sb = math.cos(beta), math.sin(beta)
+    cg, sg = math.cos(gam), math.sin(gam)
+    # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
+    r1x, r1y, r1z = cg, 0.0, sg
+    r2x, r2y, r2z = -sb * sg, cb, sb * cg
+    c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
+    c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
+    c20, c21, c22 = -cb * sg, -sb, cb * cg
+    # C_n^b W and −C_n^b g
+    ex = c00 * W[0] + c10 * W[1] + c20 * W[2]
+    ey = c01 * W[0] + c11 * W[1] + c21 * W[2]
+    ez = c02 * W[0] + c12 * W[1] + c22 * W[2]
+    fx = -(c00 * g[0] + c10 * g[1] + c20 * g[2])
+    fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
+    fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
+    # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
+    dp, db, dg = s0 * rate[0], s1 * rate[1], s2 * rate[2]
+    wx = -cg * db - sg * cb * dp
+    wy = dg - sb * dp
+    wz = -sg * db + cg * cb * dp
+    if lever:
+        ddp, ddb, ddg = s0 * acc[0], s1 * acc[1], s2 * acc[2]
+        ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
+        ay = ddg - cb * db * dp - sb * ddp
+        az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
+        # ω × r, then ω̇ × r + ω × (ω × r) + 2 ω_e × (ω × r)
+        qx = wy * r[2] - wz * r[1]
+        qy = wz * r[0] - wx * r[2]
+        qz = wx * r[1] - wy * r[0]
+        fx += (ay * r[2] - az * r[1]) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy)
+        fy += (az * r[0] - ax * r[2]) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz)
+        fz += (ax * r[1] - ay * r[0]) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx)
+    if in_gyros:
+        return wx + ex, wy + ey, wz + ez, fx, fy, fz
+    return fixed_gyro[0], fixed_gyro[1], fixed_gyro[2], fx, fy, fz
+
+
 def _ideal_loop(angles, rates, accels, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
     n, N = angles.shape[0], angles.shape[1]
-    s0, s1, s2 = scale[0], scale[1], scale[2]
-    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
-    cp, sp = math.cos(stable[0]), math.sin(stable[0])
+    sc, st, We, gn = (scale[0], scale[1], scale[2]), (stable[0], stable[1], stable[2]), (W[0], W[1], W[2]), (g[0], g[1], g[2])
+    ra, fg = (r[0], r[1], r[2]), (fixed_gyro[0], fixed_gyro[1], fixed_gyro[2])
+    yaw = sc[0] != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp, sp = math.cos(st[0]), math.sin(st[0])
+    acc = (0.0, 0.0, 0.0)
     for i in range(n):
         for k in range(N):
-            # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
-            beta = s1 * angles[i, k, 1] + stable[1]
-            gam = s2 * angles[i, k, 2] + stable[2]
-            if yaw:
-                psi = s0 * angles[i, k, 0] + stable[0]
-                cp, sp = math.cos(psi), math.sin(psi)
-            cb, sb = math.cos(beta), math.sin(beta)
-            cg, sg = math.cos(gam), math.sin(gam)
-            # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
-            r1x, r1y, r1z = cg, 0.0, sg
-            r2x, r2y, r2z = -sb * sg, cb, sb * cg
-            c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
-            c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
-            c20, c21, c22 = -cb * sg, -sb, cb * cg
-            # C_n^b W and −C_n^b g
-            ex = c00 * W[0] + c10 * W[1] + c20 * W[2]
-            ey = c01 * W[0] + c11 * W[1] + c21 * W[2]
-            ez = c02 * W[0] + c12 * W[1] + c22 * W[2]
-            fx = -(c00 * g[0] + c10 * g[1] + c20 * g[2])
-            fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
-            fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
-            # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
-            dp, db, dg = s0 * rates[i, k, 0], s1 * rates[i, k, 1], s2 * rates[i, k, 2]
-            wx = -cg * db - sg * cb * dp
-            wy = dg - sb * dp
-            wz = -sg * db + cg * cb * dp
+            ang, rate = (angles[i, k, 0], angles[i, k, 1], angles[i, k, 2]), (rates[i, k, 0], rates[i, k, 1], rates[i, k, 2])
             if lever:
-                ddp, ddb, ddg = s0 * accels[i, k, 0], s1 * accels[i, k, 1], s2 * accels[i, k, 2]
-                ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
-                ay = ddg - cb * db * dp - sb * ddp
-                az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
-                # ω × r, then ω̇ × r + ω × (ω × r) + 2 ω_e × (ω × r)
-                qx = wy * r[2] - wz * r[1]
-                qy = wz * r[0] - wx * r[2]
-                qz = wx * r[1] - wy * r[0]
-                fx += (ay * r[2] - az * r[1]) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy)
-                fy += (az * r[0] - ax * r[2]) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz)
-                fz += (ax * r[1] - ay * r[0]) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx)
-            if in_gyros:
-                dtheta[i, k, 0] += weight * (wx + ex)
-                dtheta[i, k, 1] += weight * (wy + ey)
-                dtheta[i, k, 2] += weight * (wz + ez)
-            else:
-                dtheta[i, k, 0] += weight * fixed_gyro[0]
-                dtheta[i, k, 1] += weight * fixed_gyro[1]
-                dtheta[i, k, 2] += weight * fixed_gyro[2]
+                acc = (accels[i, k, 0], accels[i, k, 1], accels[i, k, 2])
+            gx, gy, gz, fx, fy, fz = _node_rates(ang, rate, acc, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
+            dtheta[i, k, 0] += weight * gx
+            dtheta[i, k, 1] += weight * gy
+            dtheta[i, k, 2] += weight * gz
             dv[i, k, 0] += weight * fx
             dv[i, k, 1] += weight * fy
             dv[i, k, 2] += weight * fz
@@ -278,6 +301,102 @@ def add_sensor_terms(increments, bias, *, scale=None, noise=None) -> None:
     s = np.ones(3) if scale is None else _shaped(scale, "scale", (3,))
     z = np.zeros((1, 1, 3)) if noise is None else _read_only(_shaped(noise, "noise", (n, N, 3)))
     _jit(_sensor_terms_loop)(x, s, scale is not None, b, _read_only(z), noise is not None)
+
+
+def _increments_loop(first, second, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, scales, with_scale, bias, with_bias, gyro_noise, accel_noise, with_noise, dtheta, dv):
+    angles1, rates1, accels1 = first
+    angles2, rates2, accels2 = second
+    n, N = angles1.shape[0], angles1.shape[1]
+    sc, st, We, gn = (scale[0], scale[1], scale[2]), (stable[0], stable[1], stable[2]), (W[0], W[1], W[2]), (g[0], g[1], g[2])
+    ra, fg = (r[0], r[1], r[2]), (fixed_gyro[0], fixed_gyro[1], fixed_gyro[2])
+    yaw = sc[0] != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp, sp = math.cos(st[0]), math.sin(st[0])
+    acc1 = acc2 = (0.0, 0.0, 0.0)
+    for i in range(n):
+        for k in range(N):
+            ang1, rate1 = (angles1[i, k, 0], angles1[i, k, 1], angles1[i, k, 2]), (rates1[i, k, 0], rates1[i, k, 1], rates1[i, k, 2])
+            ang2, rate2 = (angles2[i, k, 0], angles2[i, k, 1], angles2[i, k, 2]), (rates2[i, k, 0], rates2[i, k, 1], rates2[i, k, 2])
+            if lever:
+                acc1 = (accels1[i, k, 0], accels1[i, k, 1], accels1[i, k, 2])
+                acc2 = (accels2[i, k, 0], accels2[i, k, 1], accels2[i, k, 2])
+            u = _node_rates(ang1, rate1, acc1, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
+            v = _node_rates(ang2, rate2, acc2, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
+            for a in range(6):
+                # the sums of accumulate_ideal_increments from zeros, then add_sensor_terms' product and sums
+                y = (0.0 + weight * u[a]) + weight * v[a]
+                s, c = a // 3, a % 3
+                if with_scale[s]:
+                    y = y * scales[s, c]
+                if with_bias:
+                    y = y + bias[s, i, c]
+                if with_noise[s]:
+                    y = y + (gyro_noise[i, k, c] if s == 0 else accel_noise[i, k, c])
+                if s == 0:
+                    dtheta[i, k, c] = y
+                else:
+                    dv[i, k, c] = y
+
+
+def sensor_increments(first, second, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, *, scale=None, gyro=None, accel=None):
+    """The increments of both Gauss nodes in one pass, a sensor's terms applied: new arrays, written once.
+
+    Equal to the last bit to :func:`accumulate_ideal_increments` of ``first``
+    and then ``second`` into zeros, followed by :func:`add_sensor_terms` of
+    ``gyro`` and ``accel`` (the same operations in the same order), without
+    reading back or zeroing the records in between.
+
+    Parameters
+    ----------
+    first, second : tuple
+        ``(angles, rates, accels)`` at the two nodes, as :func:`accumulate_ideal_increments`
+        takes them (``accels`` may be None without a lever arm).
+    stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros, weight
+        As :func:`accumulate_ideal_increments` (one weight for both nodes).
+    scale : array_like, optional, keyword-only
+        ``(3,)`` factors of the rocking per axis [1] (default ones).
+    gyro, accel : tuple, optional, keyword-only
+        ``(bias, scale, noise)`` of the gyros and the accelerometers, as
+        :func:`add_sensor_terms` takes them (``scale`` and ``noise`` may be
+        None); both or neither (default: the ideal increments).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``dtheta, dv``, each ``(n, N, 3)`` [rad, m/s].
+
+    Raises
+    ------
+    ValueError
+        For a wrong shape, a vector that is not three finite numbers, or only one of ``gyro`` and ``accel``.
+    """
+    if (gyro is None) != (accel is None):
+        raise ValueError("Expected `gyro` and `accel` both given (a sensor's terms) or both None")
+    n, N = _shaped(first[0], "angles", (None, None, 3)).shape[:2]
+    named = {"scale": np.ones(3) if scale is None else scale, "stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
+    vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
+    lever = bool(np.any(vectors[4]))
+    nodes = [
+        (_shaped(angles, "angles", (n, N, 3)), _shaped(rates, "rates", (n, N, 3)), _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))) for angles, rates, accels in (first, second)
+    ]
+    scales, with_scale = np.ones((2, 3)), [False, False]
+    bias = np.zeros((2, n, 3))
+    noise, with_noise = [np.zeros((1, 1, 3)), np.zeros((1, 1, 3))], [False, False]
+    for s, terms in enumerate((gyro, accel)):
+        if terms is None:
+            continue
+        b, sc, z = terms
+        bias[s] = _shaped(b, "bias", (n, 3))
+        if sc is not None:
+            scales[s], with_scale[s] = _shaped(sc, "scale", (3,)), True
+        if z is not None:
+            noise[s], with_noise[s] = _shaped(z, "noise", (n, N, 3)), True
+    out = np.empty((2, n, N, 3))  # both records in one block: one allocation
+    # read-only views, whether or not the arrays are (the kept unit evaluations are): one compiled signature
+    _jit(_increments_loop)(
+        *(tuple(_read_only(x) for x in node) for node in nodes), *vectors, bool(in_gyros), lever, float(weight), scales, tuple(with_scale), bias, gyro is not None,
+        _read_only(noise[0]), _read_only(noise[1]), tuple(with_noise), out[0], out[1],
+    )  # fmt: skip
+    return out[0], out[1]
 
 
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
