@@ -303,37 +303,111 @@ def add_sensor_terms(increments, bias, *, scale=None, noise=None) -> None:
     _jit(_sensor_terms_loop)(x, s, scale is not None, b, _read_only(z), noise is not None)
 
 
+#: Samples of a trial per block of :func:`sensor_increments` (its working arrays stay in the first-level cache).
+_BLOCK = 64
+
+
 def _increments_loop(first, second, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, scales, with_scale, bias, with_bias, gyro_noise, accel_noise, with_noise, dtheta, dv):
+    # _node_rates's operations, block by block of samples: the sines and cosines first (library calls), then the
+    # arithmetic in a loop without calls or branches that the compiler vectorises over the samples (each lane
+    # the same IEEE operations, so the same bits), then the sensor terms
     angles1, rates1, accels1 = first
     angles2, rates2, accels2 = second
     n, N = angles1.shape[0], angles1.shape[1]
-    sc, st, We, gn = (scale[0], scale[1], scale[2]), (stable[0], stable[1], stable[2]), (W[0], W[1], W[2]), (g[0], g[1], g[2])
-    ra, fg = (r[0], r[1], r[2]), (fixed_gyro[0], fixed_gyro[1], fixed_gyro[2])
-    yaw = sc[0] != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
-    cp, sp = math.cos(st[0]), math.sin(st[0])
-    acc1 = acc2 = (0.0, 0.0, 0.0)
+    s0, s1, s2 = scale[0], scale[1], scale[2]
+    W0, W1, W2, g0, g1, g2, r0, r1, r2 = W[0], W[1], W[2], g[0], g[1], g[2], r[0], r[1], r[2]
+    fg0, fg1, fg2 = fixed_gyro[0], fixed_gyro[1], fixed_gyro[2]
+    (gyro_scaled, accel_scaled), (gyro_noisy, accel_noisy) = with_scale, with_noise
+    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp0, sp0 = math.cos(stable[0]), math.sin(stable[0])
+    trig = np.empty((2, 6, _BLOCK))  # per node: cos β, sin β, cos γ, sin γ, cos ψ, sin ψ
+    rate = np.empty((2, 3, _BLOCK))
+    acc = np.zeros((2, 3, _BLOCK))  # zeros without a lever arm (its terms are then left out)
+    out = np.empty((6, _BLOCK))
     for i in range(n):
-        for k in range(N):
-            ang1, rate1 = (angles1[i, k, 0], angles1[i, k, 1], angles1[i, k, 2]), (rates1[i, k, 0], rates1[i, k, 1], rates1[i, k, 2])
-            ang2, rate2 = (angles2[i, k, 0], angles2[i, k, 1], angles2[i, k, 2]), (rates2[i, k, 0], rates2[i, k, 1], rates2[i, k, 2])
-            if lever:
-                acc1 = (accels1[i, k, 0], accels1[i, k, 1], accels1[i, k, 2])
-                acc2 = (accels2[i, k, 0], accels2[i, k, 1], accels2[i, k, 2])
-            u = _node_rates(ang1, rate1, acc1, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
-            v = _node_rates(ang2, rate2, acc2, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
-            for a in range(6):
-                # the sums of accumulate_ideal_increments from zeros, then add_sensor_terms' product and sums
-                y = (0.0 + weight * u[a]) + weight * v[a]
-                s, c = a // 3, a % 3
-                if with_scale[s]:
-                    y = y * scales[s, c]
-                if with_bias:
-                    y = y + bias[s, i, c]
-                if with_noise[s]:
-                    y = y + (gyro_noise[i, k, c] if s == 0 else accel_noise[i, k, c])
-                if s == 0:
+        for k0 in range(0, N, _BLOCK):
+            m = min(_BLOCK, N - k0)
+            for q in range(m):
+                k = k0 + q
+                for node in range(2):
+                    a_k = angles1[i, k] if node == 0 else angles2[i, k]
+                    beta = s1 * a_k[1] + stable[1]
+                    gam = s2 * a_k[2] + stable[2]
+                    trig[node, 0, q], trig[node, 1, q] = math.cos(beta), math.sin(beta)
+                    trig[node, 2, q], trig[node, 3, q] = math.cos(gam), math.sin(gam)
+                    if yaw:
+                        psi = s0 * a_k[0] + stable[0]
+                        trig[node, 4, q], trig[node, 5, q] = math.cos(psi), math.sin(psi)
+                    else:
+                        trig[node, 4, q], trig[node, 5, q] = cp0, sp0
+                for a in range(3):
+                    rate[0, a, q] = rates1[i, k, a]
+                    rate[1, a, q] = rates2[i, k, a]
+                if lever:
+                    for a in range(3):
+                        acc[0, a, q] = accels1[i, k, a]
+                        acc[1, a, q] = accels2[i, k, a]
+            for node in range(2):
+                for q in range(m):
+                    cb, sb, cg, sg, cp, sp = trig[node, 0, q], trig[node, 1, q], trig[node, 2, q], trig[node, 3, q], trig[node, 4, q], trig[node, 5, q]
+                    # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
+                    r1x, r1y, r1z = cg, 0.0, sg
+                    r2x, r2y, r2z = -sb * sg, cb, sb * cg
+                    c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
+                    c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
+                    c20, c21, c22 = -cb * sg, -sb, cb * cg
+                    # C_n^b W and −C_n^b g
+                    ex = c00 * W0 + c10 * W1 + c20 * W2
+                    ey = c01 * W0 + c11 * W1 + c21 * W2
+                    ez = c02 * W0 + c12 * W1 + c22 * W2
+                    fx = -(c00 * g0 + c10 * g1 + c20 * g2)
+                    fy = -(c01 * g0 + c11 * g1 + c21 * g2)
+                    fz = -(c02 * g0 + c12 * g1 + c22 * g2)
+                    # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
+                    dp, db, dg = s0 * rate[node, 0, q], s1 * rate[node, 1, q], s2 * rate[node, 2, q]
+                    wx = -cg * db - sg * cb * dp
+                    wy = dg - sb * dp
+                    wz = -sg * db + cg * cb * dp
+                    # the lever-arm terms, computed always and kept with a lever arm (a select, not a branch)
+                    ddp, ddb, ddg = s0 * acc[node, 0, q], s1 * acc[node, 1, q], s2 * acc[node, 2, q]
+                    ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
+                    ay = ddg - cb * db * dp - sb * ddp
+                    az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
+                    qx = wy * r2 - wz * r1
+                    qy = wz * r0 - wx * r2
+                    qz = wx * r1 - wy * r0
+                    lx = fx + ((ay * r2 - az * r1) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy))
+                    ly = fy + ((az * r0 - ax * r2) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz))
+                    lz = fz + ((ax * r1 - ay * r0) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx))
+                    fx, fy, fz = (lx, ly, lz) if lever else (fx, fy, fz)
+                    gx, gy, gz = (wx + ex, wy + ey, wz + ez) if in_gyros else (fg0, fg1, fg2)
+                    # the sums of accumulate_ideal_increments from zeros
+                    if node == 0:
+                        out[0, q], out[1, q], out[2, q] = 0.0 + weight * gx, 0.0 + weight * gy, 0.0 + weight * gz
+                        out[3, q], out[4, q], out[5, q] = 0.0 + weight * fx, 0.0 + weight * fy, 0.0 + weight * fz
+                    else:
+                        out[0, q], out[1, q], out[2, q] = out[0, q] + weight * gx, out[1, q] + weight * gy, out[2, q] + weight * gz
+                        out[3, q], out[4, q], out[5, q] = out[3, q] + weight * fx, out[4, q] + weight * fy, out[5, q] + weight * fz
+            for q in range(m):
+                k = k0 + q
+                # add_sensor_terms' product and sums
+                for c in range(3):
+                    y = out[c, q]
+                    if gyro_scaled:
+                        y = y * scales[0, c]
+                    if with_bias:
+                        y = y + bias[0, i, c]
+                    if gyro_noisy:
+                        y = y + gyro_noise[i, k, c]
                     dtheta[i, k, c] = y
-                else:
+                for c in range(3):
+                    y = out[3 + c, q]
+                    if accel_scaled:
+                        y = y * scales[1, c]
+                    if with_bias:
+                        y = y + bias[1, i, c]
+                    if accel_noisy:
+                        y = y + accel_noise[i, k, c]
                     dv[i, k, c] = y
 
 
