@@ -187,6 +187,28 @@ def test_sensor_terms_in_one_pass_are_the_numpy_operations():
         k.add_sensor_terms(x.copy(), b[:2])
 
 
+def test_compiled_preintegration_steps_each_trial_on_its_own():
+    """The compiled loop steps trials side by side: each trial's epochs are those of the trial alone, to the
+    last bit, whatever its neighbours (a large rotation that takes the exact branch, a NaN, a partial group),
+    and the numpy form's to round-off."""
+    from strapdown.analysis.alignment import kernels as k
+
+    rng = np.random.default_rng(11)
+    n, N, M = 11, 60, 7
+    th, v = rng.normal(size=(n, N, 3)) * 2e-3, rng.normal(size=(n, N, 3)) * 0.1
+    th[2, 20] = [0.3, -0.2, 0.1]  # beyond the series branch of the rotation
+    th[5, 33, 1] = math.nan
+    together = k.preintegrate_loop(th, v, 0.1, M, N // M)
+    for i in range(n):
+        alone = k.preintegrate_loop(th[i : i + 1], v[i : i + 1], 0.1, M, N // M)
+        assert all(np.array_equal(a[i : i + 1], b, equal_nan=True) for a, b in zip(together, alone))
+    ok = [i for i in range(n) if i != 5]
+    ref = preintegrate(th[ok], v[ok], 0.1, M, compiled=False)
+    for a, b in zip(together, (ref.rotation, ref.velocity, ref.moment)):
+        np.testing.assert_allclose(a[ok], b, rtol=0, atol=1e-14 * np.max(np.abs(b)))
+    assert np.all(np.isnan(together[0][5, 33 // M])) and not np.any(np.isnan(together[0][5, 0]))  # the NaN stays in its trial
+
+
 @pytest.mark.parametrize("lever_arm", [[0.0, 0.0, 0.0], [0.5, -0.3, 1.0]], ids=["no-lever", "lever"])
 @pytest.mark.parametrize("yaw", [0.0, 0.3], ids=["no-yaw", "yaw"])
 @pytest.mark.parametrize("in_gyros", [True, False], ids=["gyros-see-it", "tilt-channel"])

@@ -473,68 +473,94 @@ def sensor_increments(first, second, stable, earth_rate, gravity, lever_arm, fix
     return out[0], out[1]
 
 
+#: Trials :func:`preintegrate_loop` steps side by side (each in its own lane of the vector registers).
+_LANES = 8
+
+
 def _preintegrate_loop(th, v, dt, M, E, R, V, S):
+    # _LANES trials side by side: every step of a sample is a loop over the lanes without calls or branches,
+    # which the compiler vectorises (each lane the same IEEE operations in the same order as one trial alone);
+    # the rotation's exact branch, rare, is taken lane by lane after the series.  The lanes' state is one
+    # array, a row per quantity, so that the compiler sees that the rows do not overlap.
     n = th.shape[0]
-    for i in range(n):
-        pa0 = pa1 = pa2 = 0.0  # the previous sample (the last of the previous epoch at an epoch start)
-        pb0 = pb1 = pb2 = 0.0
+    L = _LANES
+    # rows: the sample a, b (0-5), the previous sample pa, pb (6-11; the last of the previous epoch at an epoch start),
+    # q (12-15), Δq (16-19), V (20-22), S (23-25), the rotation vector (26-28) and its square (29)
+    z = np.zeros((30, L))
+    for i0 in range(0, n, L):
+        nl = min(L, n - i0)  # lanes beyond nl step zeros, which are not written
+        for r in range(12):
+            for l in range(L):
+                z[r, l] = 0.0
         for j in range(E):
-            q0, q1, q2, q3 = 1.0, 0.0, 0.0, 0.0
-            V0 = V1 = V2 = 0.0
-            S0 = S1 = S2 = 0.0
+            for l in range(L):
+                z[12, l], z[13, l], z[14, l], z[15, l] = 1.0, 0.0, 0.0, 0.0
+                z[20, l] = z[21, l] = z[22, l] = 0.0
+                z[23, l] = z[24, l] = z[25, l] = 0.0
             for k in range(M):
                 s = j * M + k
-                a0, a1, a2 = th[i, s, 0], th[i, s, 1], th[i, s, 2]
-                b0, b1, b2 = v[i, s, 0], v[i, s, 1], v[i, s, 2]
-                # sculling: b + ½ a×b + a×(a×b)/6 + (pa×b + pb×a)/12
-                c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-                d0, d1, d2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
-                e0 = (pa1 * b2 - pa2 * b1) + (pb1 * a2 - pb2 * a1)
-                e1 = (pa2 * b0 - pa0 * b2) + (pb2 * a0 - pb0 * a2)
-                e2 = (pa0 * b1 - pa1 * b0) + (pb0 * a1 - pb1 * a0)
-                u0 = b0 + 0.5 * c0 + d0 / 6.0 + e0 / 12.0
-                u1 = b1 + 0.5 * c1 + d1 / 6.0 + e1 / 12.0
-                u2 = b2 + 0.5 * c2 + d2 / 6.0 + e2 / 12.0
-                # rotate by the epoch's running attitude: vect(q ∘ {0, u} ∘ q̄)
-                t0 = -q1 * u0 - q2 * u1 - q3 * u2
-                t1 = q0 * u0 + q2 * u2 - q3 * u1
-                t2 = q0 * u1 - q1 * u2 + q3 * u0
-                t3 = q0 * u2 + q1 * u1 - q2 * u0
-                x0 = -t0 * q1 + t1 * q0 - t2 * q3 + t3 * q2
-                x1 = -t0 * q2 + t1 * q3 + t2 * q0 - t3 * q1
-                x2 = -t0 * q3 - t1 * q2 + t2 * q1 + t3 * q0
-                V0 += x0
-                V1 += x1
-                V2 += x2
+                for l in range(nl):
+                    for c in range(3):
+                        z[c, l], z[3 + c, l] = th[i0 + l, s, c], v[i0 + l, s, c]
                 tk = (k + 0.5) * dt
-                S0 += tk * x0
-                S1 += tk * x1
-                S2 += tk * x2
-                # coning: the rotation vector a + pa×a/12, then q ← q ∘ Δq
-                p0 = a0 + (pa1 * a2 - pa2 * a1) / 12.0
-                p1 = a1 + (pa2 * a0 - pa0 * a2) / 12.0
-                p2 = a2 + (pa0 * a1 - pa1 * a0) / 12.0
-                th2 = p0 * p0 + p1 * p1 + p2 * p2
-                if th2 < 1e-4:  # the series branch of quaternion.rotvec_to_quat
+                for l in range(L):
+                    a0, a1, a2, b0, b1, b2 = z[0, l], z[1, l], z[2, l], z[3, l], z[4, l], z[5, l]
+                    pa0, pa1, pa2, pb0, pb1, pb2 = z[6, l], z[7, l], z[8, l], z[9, l], z[10, l], z[11, l]
+                    q0, q1, q2, q3 = z[12, l], z[13, l], z[14, l], z[15, l]
+                    # sculling: b + ½ a×b + a×(a×b)/6 + (pa×b + pb×a)/12
+                    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                    d0, d1, d2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
+                    e0 = (pa1 * b2 - pa2 * b1) + (pb1 * a2 - pb2 * a1)
+                    e1 = (pa2 * b0 - pa0 * b2) + (pb2 * a0 - pb0 * a2)
+                    e2 = (pa0 * b1 - pa1 * b0) + (pb0 * a1 - pb1 * a0)
+                    u0 = b0 + 0.5 * c0 + d0 / 6.0 + e0 / 12.0
+                    u1 = b1 + 0.5 * c1 + d1 / 6.0 + e1 / 12.0
+                    u2 = b2 + 0.5 * c2 + d2 / 6.0 + e2 / 12.0
+                    # rotate by the epoch's running attitude: vect(q ∘ {0, u} ∘ q̄)
+                    t0 = -q1 * u0 - q2 * u1 - q3 * u2
+                    t1 = q0 * u0 + q2 * u2 - q3 * u1
+                    t2 = q0 * u1 - q1 * u2 + q3 * u0
+                    t3 = q0 * u2 + q1 * u1 - q2 * u0
+                    x0 = -t0 * q1 + t1 * q0 - t2 * q3 + t3 * q2
+                    x1 = -t0 * q2 + t1 * q3 + t2 * q0 - t3 * q1
+                    x2 = -t0 * q3 - t1 * q2 + t2 * q1 + t3 * q0
+                    z[20, l] += x0
+                    z[21, l] += x1
+                    z[22, l] += x2
+                    z[23, l] += tk * x0
+                    z[24, l] += tk * x1
+                    z[25, l] += tk * x2
+                    # coning: the rotation vector a + pa×a/12 and its quaternion by the series branch of
+                    # quaternion.rotvec_to_quat (replaced below where the rotation is too large for it)
+                    p0 = a0 + (pa1 * a2 - pa2 * a1) / 12.0
+                    p1 = a1 + (pa2 * a0 - pa0 * a2) / 12.0
+                    p2 = a2 + (pa0 * a1 - pa1 * a0) / 12.0
+                    th2 = p0 * p0 + p1 * p1 + p2 * p2
                     x = th2 * 0.25
                     cw = 1.0 - x / 2.0 + x * x / 24.0 - x * x * x / 720.0
                     sw = 0.5 * (1.0 - x / 6.0 + x * x / 120.0 - x * x * x / 5040.0)
-                else:
-                    tt = math.sqrt(th2)
-                    cw = math.cos(0.5 * tt)
-                    sw = math.sin(0.5 * tt) / tt
-                w0, w1, w2, w3 = cw, sw * p0, sw * p1, sw * p2
-                q0, q1, q2, q3 = (
-                    q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3,
-                    q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2,
-                    q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1,
-                    q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0,
-                )
-                pa0, pa1, pa2 = a0, a1, a2
-                pb0, pb1, pb2 = b0, b1, b2
-            R[i, j, 0], R[i, j, 1], R[i, j, 2], R[i, j, 3] = q0, q1, q2, q3
-            V[i, j, 0], V[i, j, 1], V[i, j, 2] = V0, V1, V2
-            S[i, j, 0], S[i, j, 1], S[i, j, 2] = S0, S1, S2
+                    z[16, l], z[17, l], z[18, l], z[19, l] = cw, sw * p0, sw * p1, sw * p2
+                    z[26, l], z[27, l], z[28, l], z[29, l] = p0, p1, p2, th2
+                    z[6, l], z[7, l], z[8, l], z[9, l], z[10, l], z[11, l] = a0, a1, a2, b0, b1, b2
+                for l in range(L):
+                    th2 = z[29, l]
+                    if not th2 < 1e-4:  # the exact branch
+                        tt = math.sqrt(th2)
+                        cw = math.cos(0.5 * tt)
+                        sw = math.sin(0.5 * tt) / tt
+                        z[16, l], z[17, l], z[18, l], z[19, l] = cw, sw * z[26, l], sw * z[27, l], sw * z[28, l]
+                # q ← q ∘ Δq
+                for l in range(L):
+                    q0, q1, q2, q3 = z[12, l], z[13, l], z[14, l], z[15, l]
+                    w0, w1, w2, w3 = z[16, l], z[17, l], z[18, l], z[19, l]
+                    z[12, l] = q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3
+                    z[13, l] = q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2
+                    z[14, l] = q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1
+                    z[15, l] = q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0
+            for l in range(nl):
+                R[i0 + l, j, 0], R[i0 + l, j, 1], R[i0 + l, j, 2], R[i0 + l, j, 3] = z[12, l], z[13, l], z[14, l], z[15, l]
+                V[i0 + l, j, 0], V[i0 + l, j, 1], V[i0 + l, j, 2] = z[20, l], z[21, l], z[22, l]
+                S[i0 + l, j, 0], S[i0 + l, j, 1], S[i0 + l, j, 2] = z[23, l], z[24, l], z[25, l]
 
 
 def preintegrate_loop(dtheta, dv, dt: float, samples_per_epoch: int, n_epochs: int):
