@@ -11,6 +11,7 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   increments in one pass;
 * :func:`sensor_increments` does both for the two Gauss nodes in a single pass that writes
   each record once (the same operations, so the same bits, as the separate passes);
+* :func:`sinusoid_sum` sums a few sinusoids per trial and axis (the sine rocking's record);
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
   (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
@@ -44,7 +45,7 @@ import numpy as np
 from ..core.validation import as_array, as_int, as_vector
 
 __all__ = [
-    "START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "sensor_increments",
+    "START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "sensor_increments", "sinusoid_sum",
     "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop",
 ]  # fmt: skip
 
@@ -301,6 +302,55 @@ def add_sensor_terms(increments, bias, *, scale=None, noise=None) -> None:
     s = np.ones(3) if scale is None else _shaped(scale, "scale", (3,))
     z = np.zeros((1, 1, 3)) if noise is None else _read_only(_shaped(noise, "noise", (n, N, 3)))
     _jit(_sensor_terms_loop)(x, s, scale is not None, b, _read_only(z), noise is not None)
+
+
+def _sinusoids_loop(cr, ci, cos, sin, out):
+    n, A, M = cr.shape[0], cr.shape[1], cr.shape[2]
+    T = cos.shape[1]
+    for i in range(n):
+        for k in range(T):
+            for a in range(A):
+                y = 0.0
+                for m in range(M):
+                    y = y + (cr[i, a, m] * cos[m, k] - ci[i, a, m] * sin[m, k])
+                out[i, k, a] = y
+
+
+def sinusoid_sum(coefficients, cos, sin) -> np.ndarray:
+    """``Σ_m (Re c_m cos_m(t) − Im c_m sin_m(t))`` per trial and axis, in one compiled pass.
+
+    The operations of the numpy sum of
+    :meth:`strapdown.analysis.alignment.base_motion.MotionRealisation._sinusoids`
+    (from zeros, one sinusoid after the other: a product, a product, their
+    difference, the sum), so the two agree to the last bit; the cosines and
+    sines are the caller's.
+
+    Parameters
+    ----------
+    coefficients : ndarray
+        ``(n, A, M)`` complex coefficients.
+    cos, sin : ndarray
+        ``(M, T)`` ``cos ω_m t`` and ``sin ω_m t`` at the T times.
+
+    Returns
+    -------
+    ndarray
+        ``(n, T, A)``.
+
+    Raises
+    ------
+    ValueError
+        For shapes that do not fit.
+    """
+    c = np.asarray(coefficients)
+    if c.ndim != 3:
+        raise ValueError(f"Expected `coefficients` with shape (n, A, M), got shape {c.shape}")
+    n, A, M = c.shape
+    cos = _shaped(cos, "cos", (M, None))
+    sin = _shaped(sin, "sin", cos.shape)
+    out = np.empty((n, cos.shape[1], A))
+    _jit(_sinusoids_loop)(np.ascontiguousarray(c.real, dtype=float), np.ascontiguousarray(c.imag, dtype=float), cos, sin, out)
+    return out
 
 
 #: Samples of a trial per block of :func:`sensor_increments` (its working arrays stay in the first-level cache).
