@@ -187,6 +187,64 @@ def test_sensor_terms_in_one_pass_are_the_numpy_operations():
         k.add_sensor_terms(x.copy(), b[:2])
 
 
+def test_compiled_preintegration_steps_each_trial_on_its_own():
+    """The compiled loop steps trials side by side: each trial's epochs are those of the trial alone, to the
+    last bit, whatever its neighbours (a large rotation that takes the exact branch, a NaN, a partial group),
+    and the numpy form's to round-off."""
+    from strapdown.analysis.alignment import kernels as k
+
+    rng = np.random.default_rng(11)
+    n, N, M = 11, 60, 7
+    th, v = rng.normal(size=(n, N, 3)) * 2e-3, rng.normal(size=(n, N, 3)) * 0.1
+    th[2, 20] = [0.3, -0.2, 0.1]  # beyond the series branch of the rotation
+    th[5, 33, 1] = math.nan
+    together = k.preintegrate_loop(th, v, 0.1, M, N // M)
+    for i in range(n):
+        alone = k.preintegrate_loop(th[i : i + 1], v[i : i + 1], 0.1, M, N // M)
+        assert all(np.array_equal(a[i : i + 1], b, equal_nan=True) for a, b in zip(together, alone))
+    ok = [i for i in range(n) if i != 5]
+    ref = preintegrate(th[ok], v[ok], 0.1, M, compiled=False)
+    for a, b in zip(together, (ref.rotation, ref.velocity, ref.moment)):
+        np.testing.assert_allclose(a[ok], b, rtol=0, atol=1e-14 * np.max(np.abs(b)))
+    assert np.all(np.isnan(together[0][5, 33 // M])) and not np.any(np.isnan(together[0][5, 0]))  # the NaN stays in its trial
+
+
+@pytest.mark.parametrize("lever_arm", [[0.0, 0.0, 0.0], [0.5, -0.3, 1.0]], ids=["no-lever", "lever"])
+@pytest.mark.parametrize("yaw", [0.0, 0.3], ids=["no-yaw", "yaw"])
+@pytest.mark.parametrize("in_gyros", [True, False], ids=["gyros-see-it", "tilt-channel"])
+def test_both_nodes_and_the_sensor_terms_in_one_pass_are_the_separate_passes(lever_arm, yaw, in_gyros):
+    """sensor_increments: the two nodes accumulated into zeros, then the sensor terms, to the last bit, for every
+    combination of scale factors and noise (and none: the ideal increments); only the gyros' and the
+    accelerometers' terms together."""
+    from strapdown.analysis.alignment import kernels as k
+
+    sc = Scenario(R(60.0), heading=0.5, beta0=0.02, lever_arm=lever_arm, sample_rate=10.0, duration=20.0, rocking_in_gyros=in_gyros)
+    m = NarrowbandMotion(R(np.array([yaw, 2.0, 1.0])), 8.0, 0.1).draw(np.random.default_rng(2), 3, sc.n_samples + 1, sc.dt)
+    nodes = [m.unit_evaluation(sc.n_samples, t, derivatives=2) for t in (0.02, 0.08)]
+    scale = nodes[0][1]
+    W, g = earth_rate_ned(sc.latitude), gravity_ned(sc.latitude)
+    fixed = np.array([1e-5, -2e-5, 3e-5])
+    rng = np.random.default_rng(4)
+    b, z = rng.normal(size=(2, 3, 3)) * 1e-3, rng.normal(size=(2, 3, sc.n_samples, 3)) * 1e-2
+    s = 1.0 + rng.normal(size=(2, 3)) * 1e-4
+    cases = [None] + [((b[0], s[0] if i & 1 else None, z[0] if i & 2 else None), (b[1], s[1] if i & 4 else None, z[1] if i & 8 else None)) for i in range(16)]
+    for terms in cases:
+        ref = [np.zeros((3, sc.n_samples, 3)) for _ in range(2)]
+        for parts, _ in nodes:
+            k.accumulate_ideal_increments(*parts, sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, *ref, scale=scale)
+        if terms is not None:
+            for x, (bias, factor, noise) in zip(ref, terms):
+                k.add_sensor_terms(x, bias, scale=factor, noise=noise)
+        gyro, accel = (None, None) if terms is None else terms
+        out = k.sensor_increments(*(parts for parts, _ in nodes), sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, scale=scale, gyro=gyro, accel=accel)
+        assert all(np.array_equal(x, y) for x, y in zip(out, ref))
+        assert all(x.flags.c_contiguous and x.flags.writeable and x.shape == (3, sc.n_samples, 3) for x in out)
+    with pytest.raises(ValueError, match="`gyro` and `accel` both"):
+        k.sensor_increments(*(parts for parts, _ in nodes), sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, scale=scale, gyro=cases[1][0])
+    with pytest.raises(ValueError, match="`noise`"):
+        k.sensor_increments(*(parts for parts, _ in nodes), sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, gyro=(b[0], None, z[0][:, :10]), accel=(b[1], None, None))
+
+
 @pytest.mark.parametrize(
     "model",
     [NarrowbandMotion(R(np.array([0.3, 2.0, 1.0])), 8.0, 0.1), WhiteMotion(R(np.array([0.3, 1.0, 2.0]))), SineMotion(R(np.array([0.0, 2.0, 1.0])), 7.0), None],

@@ -180,3 +180,16 @@ def test_rescaled_draw_skips_only_the_axes_of_zero_amplitude(pattern):
             assert not np.any(np.delete(p, keep, axis=2))
         angles = scaled.evaluate(300, offset, derivatives=0)[0]
         assert np.array_equal(angles[:, :, keep], (np.asarray(pattern) * whole[0])[:, :, keep])
+
+
+@pytest.mark.parametrize("lines", [1, 3], ids=["sine", "multi-sine"])
+def test_compiled_sum_of_sinusoids_is_the_numpy_sum(lines):
+    """The sum of sinusoids of the sine rockings in one compiled pass: the numpy form's products and sums, to the last bit."""
+    from strapdown.analysis.alignment.base_motion import MultiSineMotion, SineMotion
+
+    a = np.radians([0.2, 1.0, 2.0])
+    model = SineMotion(a, 7.0) if lines == 1 else MultiSineMotion(np.outer([1.0, 0.5, 0.3], a), (7.0, 3.0, 11.0))
+    r = model.draw(np.random.default_rng(5), 4, 301, 0.1)
+    c = r.coefficients * (1j * r.spectrum.omega) ** 2
+    for t in (0.03 + 0.1 * np.arange(300), np.array([0.0, 30.0])):
+        assert np.array_equal(r._sinusoids(c, t, compiled=True), r._sinusoids(c, t, compiled=False))

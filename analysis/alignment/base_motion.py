@@ -60,6 +60,7 @@ import numpy as np
 from ..core import budget
 from ..core.validation import as_array, as_float, as_int, positive
 from ..gyrocompass.rocking import as_generator
+from . import kernels
 
 __all__ = ["Spectrum", "UnitDraw", "MotionRealisation", "StillBase", "SineMotion", "MultiSineMotion", "NarrowbandMotion", "WhiteMotion", "motion_model", "MOTIONS", "mean_transfer", "mean_variance"]
 
@@ -454,9 +455,18 @@ class MotionRealisation:
             return self._fft(c, n)
         return self._sinusoids(c, np.arange(n) * self.dt)
 
-    def _sinusoids(self, c, t):
-        """``Re Σ_m c_m e^{iω_m t}`` at the times t, ``(n_trials, len(t), 3)``, one sinusoid at a time."""
+    def _sinusoids(self, c, t, *, compiled: bool | None = None):
+        """``Re Σ_m c_m e^{iω_m t}`` at the times t, ``(n_trials, len(t), 3)``, one sinusoid at a time.
+
+        ``compiled``: the products and sums in one compiled pass
+        (:func:`~strapdown.analysis.alignment.kernels.sinusoid_sum`, the same
+        bits) or in numpy, kept as the reference; None: the pass when it pays off.
+        """
         w = self.spectrum.omega
+        if kernels.use_compiled(compiled, self.n_trials * t.size * w.size):
+            cos = np.array([np.cos(w[m] * t) for m in range(w.size)]).reshape(w.size, t.size)
+            sin = np.array([np.sin(w[m] * t) for m in range(w.size)]).reshape(w.size, t.size)
+            return kernels.sinusoid_sum(c, cos, sin)
         out = np.zeros((self.n_trials, t.size, 3))
         for m in range(w.size):  # a few sinusoids: Re[c e^{iωt}] = Re c cos ωt − Im c sin ωt
             cos, sin = np.cos(w[m] * t)[:, None], np.sin(w[m] * t)[:, None]

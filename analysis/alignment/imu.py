@@ -249,6 +249,29 @@ def _ideal_rates(scenario: Scenario, angles_r, rates_r, accels_r=None):
     return gyro, f
 
 
+def _still(motion) -> bool:
+    """Whether ``motion`` is no rocking drawn for more than one trial (or for a spectrum): made once and repeated."""
+    return not np.any(motion.coefficients) and (motion.n_trials > 1 or motion.coefficients.shape[-1] > 0)
+
+
+def _compiled_increments(scenario: Scenario, motion, gyro=None, accel=None):
+    """The increments of both Gauss nodes in one compiled pass, with the sensor terms ``gyro`` and ``accel`` if given.
+
+    ``gyro`` and ``accel`` are ``(bias, scale, noise)`` as
+    :func:`~strapdown.analysis.alignment.kernels.sensor_increments` takes them.
+    """
+    N, dt = scenario.n_samples, scenario.dt
+    lat = scenario.latitude
+    W, g = earth_rate_ned(lat), gravity_ned(lat)
+    fixed = attitude_matrix(scenario.stable_angles).T @ W
+    order = 2 if np.any(scenario.lever_arm) else 1
+    nodes = []
+    for node in _GAUSS:
+        parts, scale = motion.unit_evaluation(N, node * dt, derivatives=order)
+        nodes.append((parts[0], parts[1], parts[2] if order == 2 else None))
+    return kernels.sensor_increments(*nodes, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, scale=scale, gyro=gyro, accel=accel)
+
+
 def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None):
     """Ideal angle and velocity increments of a drawn rocking: two-point Gauss quadrature of the exact rates.
 
@@ -280,23 +303,14 @@ def ideal_increments(scenario: Scenario, motion, *, compiled: bool | None = None
     N, dt = scenario.n_samples, scenario.dt
     n = motion.n_trials
     compiled = kernels.use_compiled(compiled, n * N)
-    if not np.any(motion.coefficients) and (n > 1 or motion.coefficients.shape[-1]):  # no rocking: every trial is the first, at rest
+    if _still(motion):  # no rocking: every trial is the first, at rest
         still = MotionRealisation(Spectrum(np.zeros(0), np.zeros((3, 0)), False), np.zeros((1, 3, 0)), motion.dt)
         return tuple(np.repeat(x, n, axis=0) for x in ideal_increments(scenario, still, compiled=compiled))
+    if compiled:
+        return _compiled_increments(scenario, motion)
     dtheta = np.zeros((n, N, 3))
     dv = np.zeros((n, N, 3))
     order = 2 if np.any(scenario.lever_arm) else 1
-    if compiled:
-        lat = scenario.latitude
-        W, g = earth_rate_ned(lat), gravity_ned(lat)
-        fixed = attitude_matrix(scenario.stable_angles).T @ W
-        for node in _GAUSS:
-            parts, scale = motion.unit_evaluation(N, node * dt, derivatives=order)
-            acc = parts[2] if order == 2 else None
-            kernels.accumulate_ideal_increments(
-                parts[0], parts[1], acc, scenario.stable_angles, W, g, scenario.lever_arm, fixed, scenario.rocking_in_gyros, 0.5 * dt, dtheta, dv, scale=scale
-            )
-        return dtheta, dv
     for node in _GAUSS:
         gyro, f = _ideal_rates(scenario, *motion.evaluate(N, node * dt, derivatives=order))
         dtheta += (0.5 * dt) * gyro
@@ -534,7 +548,33 @@ def simulate_imu(
     elif motion.coefficients.shape[-1] != scenario.motion.spectrum(N + 1, dt).omega.size:
         raise ValueError("Expected `draws` of the scenario's rocking model, got another")
     _check_draws(draws, errors, N)
-    dtheta, dv = ideal_increments(scenario, motion)
+    # sensor errors
+    e = errors if errors is not None else SensorErrors()
+    gb = np.broadcast_to(e.gyro_bias, (n, 3)) + e.gyro_bias_sigma * draws.gyro_bias
+    ab = np.broadcast_to(e.accel_bias, (n, 3)) + e.accel_bias_sigma * draws.accel_bias
+    gyro_noise = draws.noise_term("gyro", e.gyro_noise * math.sqrt(dt)) if e.gyro_noise else None
+    accel_noise = draws.noise_term("accel", e.accel_noise * math.sqrt(dt)) if e.accel_noise else None
+    gyro_scale = 1.0 + e.gyro_scale if np.any(e.gyro_scale) else None
+    accel_scale = 1.0 + e.accel_scale if np.any(e.accel_scale) else None
+    compiled = kernels.use_compiled(None, n * N)
+    if compiled and not _still(motion):  # the increments and the sensor terms in one compiled pass
+        dtheta, dv = _compiled_increments(scenario, motion, (gb * dt, gyro_scale, gyro_noise), (ab * dt, accel_scale, accel_noise))
+    else:
+        dtheta, dv = ideal_increments(scenario, motion, compiled=compiled)
+        if compiled:  # scale, bias and noise in one compiled pass
+            kernels.add_sensor_terms(dtheta, gb * dt, scale=gyro_scale, noise=gyro_noise)
+            kernels.add_sensor_terms(dv, ab * dt, scale=accel_scale, noise=accel_noise)
+        else:
+            if gyro_scale is not None:
+                dtheta *= gyro_scale
+            if accel_scale is not None:
+                dv *= accel_scale
+            dtheta += gb[:, None, :] * dt
+            dv += ab[:, None, :] * dt
+            if gyro_noise is not None:
+                dtheta += gyro_noise
+            if accel_noise is not None:
+                dv += accel_noise
     # truth at the sample instants k·stride
     idx = np.arange(0, N + 1, stride)
     if idx[-1] != N:
@@ -547,26 +587,6 @@ def simulate_imu(
     angles = ang + scenario.stable_angles
     C = attitude_matrix(angles)
     velocity = np.einsum("...ij,...j->...i", C, np.cross(body_rate(angles, rate), scenario.lever_arm))
-    # sensor errors
-    e = errors if errors is not None else SensorErrors()
-    gb = np.broadcast_to(e.gyro_bias, (n, 3)) + e.gyro_bias_sigma * draws.gyro_bias
-    ab = np.broadcast_to(e.accel_bias, (n, 3)) + e.accel_bias_sigma * draws.accel_bias
-    gyro_noise = draws.noise_term("gyro", e.gyro_noise * math.sqrt(dt)) if e.gyro_noise else None
-    accel_noise = draws.noise_term("accel", e.accel_noise * math.sqrt(dt)) if e.accel_noise else None
-    if kernels.use_compiled(None, 0):  # scale, bias and noise in one compiled pass (the work was counted by ideal_increments)
-        kernels.add_sensor_terms(dtheta, gb * dt, scale=1.0 + e.gyro_scale if np.any(e.gyro_scale) else None, noise=gyro_noise)
-        kernels.add_sensor_terms(dv, ab * dt, scale=1.0 + e.accel_scale if np.any(e.accel_scale) else None, noise=accel_noise)
-    else:
-        if np.any(e.gyro_scale):
-            dtheta *= 1.0 + e.gyro_scale
-        if np.any(e.accel_scale):
-            dv *= 1.0 + e.accel_scale
-        dtheta += gb[:, None, :] * dt
-        dv += ab[:, None, :] * dt
-        if gyro_noise is not None:
-            dtheta += gyro_noise
-        if accel_noise is not None:
-            dv += accel_noise
     if e.gyro_quantum > 0:
         dtheta = _quantise(dtheta, e.gyro_quantum, draws.gyro_start * e.gyro_quantum)
     if e.accel_quantum > 0:

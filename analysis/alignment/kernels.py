@@ -9,6 +9,9 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   loop over trials and samples;
 * :func:`add_sensor_terms` applies a sensor's scale factors, bias and white noise to those
   increments in one pass;
+* :func:`sensor_increments` does both for the two Gauss nodes in a single pass that writes
+  each record once (the same operations, so the same bits, as the separate passes);
+* :func:`sinusoid_sum` sums a few sinusoids per trial and axis (the sine rocking's record);
 * :func:`preintegrate_loop` condenses sample increments into epoch increments
   (the coning- and sculling-compensated sums of :mod:`~strapdown.analysis.alignment.preintegration`), and
   :func:`chain_loop` chains the epoch rotations into attitudes;
@@ -41,7 +44,10 @@ import numpy as np
 
 from ..core.validation import as_array, as_int, as_vector
 
-__all__ = ["START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop"]
+__all__ = [
+    "START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "sensor_increments", "sinusoid_sum",
+    "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop",
+]  # fmt: skip
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
 START_UP_WORK = 1_000_000
@@ -104,7 +110,10 @@ def use_compiled(compiled: bool | None, work: int) -> bool:
 
 
 #: Functions the loops call, compiled (and swapped in for the Python ones) before the first loop.
-_HELPERS = ("_rodrigues3", "_quat_mul", "_quat_rotate", "_rotvec_quat")
+_HELPERS = ("_node_rates", "_rodrigues3", "_quat_mul", "_quat_rotate", "_rotvec_quat")
+
+#: Helpers inlined into their callers by numba itself: called per sample with many arguments, a call would cost as much as their body.
+_INLINED = ("_node_rates",)
 
 
 def _jit(fn):
@@ -116,64 +125,79 @@ def _jit(fn):
         g = globals()
         for helper in _HELPERS:
             if not isinstance(g[helper], numba.core.registry.CPUDispatcher):
-                g[helper] = numba.njit(cache=True, nogil=True)(g[helper])
+                g[helper] = numba.njit(cache=True, nogil=True, inline="always" if helper in _INLINED else "never")(g[helper])
         _compiled[name] = numba.njit(cache=True, nogil=True)(fn)
     return _compiled[name]
 
 
+def _node_rates(ang, rate, acc, scale, stable, yaw, cp, sp, W, g, r, lever, in_gyros, fixed_gyro):
+    """Ideal gyro rate and specific force at one point of one node: ``(ωx, ωy, ωz, fx, fy, fz)``.
+
+    Every argument is a number or a tuple of three (no array: a compiled caller
+    passes them without reference counting); ``ang``, ``rate`` and ``acc`` are
+    the unit rocking at the point (``acc`` read only with a lever arm), ``cp``
+    and ``sp`` the cosine and sine of the stable heading (used without yaw rocking).
+    """
+    s0, s1, s2 = scale
+    # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
+    beta = s1 * ang[1] + stable[1]
+    gam = s2 * ang[2] + stable[2]
+    if yaw:
+        psi = s0 * ang[0] + stable[0]
+        cp, sp = math.cos(psi), math.sin(psi)
+    cb, sb = math.cos(beta), math.sin(beta)
+    cg, sg = math.cos(gam), math.sin(gam)
+    # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
+    r1x, r1y, r1z = cg, 0.0, sg
+    r2x, r2y, r2z = -sb * sg, cb, sb * cg
+    c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
+    c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
+    c20, c21, c22 = -cb * sg, -sb, cb * cg
+    # C_n^b W and −C_n^b g
+    ex = c00 * W[0] + c10 * W[1] + c20 * W[2]
+    ey = c01 * W[0] + c11 * W[1] + c21 * W[2]
+    ez = c02 * W[0] + c12 * W[1] + c22 * W[2]
+    fx = -(c00 * g[0] + c10 * g[1] + c20 * g[2])
+    fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
+    fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
+    # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
+    dp, db, dg = s0 * rate[0], s1 * rate[1], s2 * rate[2]
+    wx = -cg * db - sg * cb * dp
+    wy = dg - sb * dp
+    wz = -sg * db + cg * cb * dp
+    if lever:
+        ddp, ddb, ddg = s0 * acc[0], s1 * acc[1], s2 * acc[2]
+        ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
+        ay = ddg - cb * db * dp - sb * ddp
+        az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
+        # ω × r, then ω̇ × r + ω × (ω × r) + 2 ω_e × (ω × r)
+        qx = wy * r[2] - wz * r[1]
+        qy = wz * r[0] - wx * r[2]
+        qz = wx * r[1] - wy * r[0]
+        fx += (ay * r[2] - az * r[1]) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy)
+        fy += (az * r[0] - ax * r[2]) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz)
+        fz += (ax * r[1] - ay * r[0]) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx)
+    if in_gyros:
+        return wx + ex, wy + ey, wz + ez, fx, fy, fz
+    return fixed_gyro[0], fixed_gyro[1], fixed_gyro[2], fx, fy, fz
+
+
 def _ideal_loop(angles, rates, accels, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, dtheta, dv):
     n, N = angles.shape[0], angles.shape[1]
-    s0, s1, s2 = scale[0], scale[1], scale[2]
-    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
-    cp, sp = math.cos(stable[0]), math.sin(stable[0])
+    sc, st, We, gn = (scale[0], scale[1], scale[2]), (stable[0], stable[1], stable[2]), (W[0], W[1], W[2]), (g[0], g[1], g[2])
+    ra, fg = (r[0], r[1], r[2]), (fixed_gyro[0], fixed_gyro[1], fixed_gyro[2])
+    yaw = sc[0] != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp, sp = math.cos(st[0]), math.sin(st[0])
+    acc = (0.0, 0.0, 0.0)
     for i in range(n):
         for k in range(N):
-            # the rocking is scale · (angles, rates, accels) per axis (a unit draw at an amplitude)
-            beta = s1 * angles[i, k, 1] + stable[1]
-            gam = s2 * angles[i, k, 2] + stable[2]
-            if yaw:
-                psi = s0 * angles[i, k, 0] + stable[0]
-                cp, sp = math.cos(psi), math.sin(psi)
-            cb, sb = math.cos(beta), math.sin(beta)
-            cg, sg = math.cos(gam), math.sin(gam)
-            # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
-            r1x, r1y, r1z = cg, 0.0, sg
-            r2x, r2y, r2z = -sb * sg, cb, sb * cg
-            c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
-            c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
-            c20, c21, c22 = -cb * sg, -sb, cb * cg
-            # C_n^b W and −C_n^b g
-            ex = c00 * W[0] + c10 * W[1] + c20 * W[2]
-            ey = c01 * W[0] + c11 * W[1] + c21 * W[2]
-            ez = c02 * W[0] + c12 * W[1] + c22 * W[2]
-            fx = -(c00 * g[0] + c10 * g[1] + c20 * g[2])
-            fy = -(c01 * g[0] + c11 * g[1] + c21 * g[2])
-            fz = -(c02 * g[0] + c12 * g[1] + c22 * g[2])
-            # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
-            dp, db, dg = s0 * rates[i, k, 0], s1 * rates[i, k, 1], s2 * rates[i, k, 2]
-            wx = -cg * db - sg * cb * dp
-            wy = dg - sb * dp
-            wz = -sg * db + cg * cb * dp
+            ang, rate = (angles[i, k, 0], angles[i, k, 1], angles[i, k, 2]), (rates[i, k, 0], rates[i, k, 1], rates[i, k, 2])
             if lever:
-                ddp, ddb, ddg = s0 * accels[i, k, 0], s1 * accels[i, k, 1], s2 * accels[i, k, 2]
-                ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
-                ay = ddg - cb * db * dp - sb * ddp
-                az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
-                # ω × r, then ω̇ × r + ω × (ω × r) + 2 ω_e × (ω × r)
-                qx = wy * r[2] - wz * r[1]
-                qy = wz * r[0] - wx * r[2]
-                qz = wx * r[1] - wy * r[0]
-                fx += (ay * r[2] - az * r[1]) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy)
-                fy += (az * r[0] - ax * r[2]) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz)
-                fz += (ax * r[1] - ay * r[0]) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx)
-            if in_gyros:
-                dtheta[i, k, 0] += weight * (wx + ex)
-                dtheta[i, k, 1] += weight * (wy + ey)
-                dtheta[i, k, 2] += weight * (wz + ez)
-            else:
-                dtheta[i, k, 0] += weight * fixed_gyro[0]
-                dtheta[i, k, 1] += weight * fixed_gyro[1]
-                dtheta[i, k, 2] += weight * fixed_gyro[2]
+                acc = (accels[i, k, 0], accels[i, k, 1], accels[i, k, 2])
+            gx, gy, gz, fx, fy, fz = _node_rates(ang, rate, acc, sc, st, yaw, cp, sp, We, gn, ra, lever, in_gyros, fg)
+            dtheta[i, k, 0] += weight * gx
+            dtheta[i, k, 1] += weight * gy
+            dtheta[i, k, 2] += weight * gz
             dv[i, k, 0] += weight * fx
             dv[i, k, 1] += weight * fy
             dv[i, k, 2] += weight * fz
@@ -280,68 +304,313 @@ def add_sensor_terms(increments, bias, *, scale=None, noise=None) -> None:
     _jit(_sensor_terms_loop)(x, s, scale is not None, b, _read_only(z), noise is not None)
 
 
-def _preintegrate_loop(th, v, dt, M, E, R, V, S):
-    n = th.shape[0]
+def _sinusoids_loop(cr, ci, cos, sin, out):
+    n, A, M = cr.shape[0], cr.shape[1], cr.shape[2]
+    T = cos.shape[1]
     for i in range(n):
-        pa0 = pa1 = pa2 = 0.0  # the previous sample (the last of the previous epoch at an epoch start)
-        pb0 = pb1 = pb2 = 0.0
+        for k in range(T):
+            for a in range(A):
+                y = 0.0
+                for m in range(M):
+                    y = y + (cr[i, a, m] * cos[m, k] - ci[i, a, m] * sin[m, k])
+                out[i, k, a] = y
+
+
+def sinusoid_sum(coefficients, cos, sin) -> np.ndarray:
+    """``Σ_m (Re c_m cos_m(t) − Im c_m sin_m(t))`` per trial and axis, in one compiled pass.
+
+    The operations of the numpy sum of
+    :meth:`strapdown.analysis.alignment.base_motion.MotionRealisation._sinusoids`
+    (from zeros, one sinusoid after the other: a product, a product, their
+    difference, the sum), so the two agree to the last bit; the cosines and
+    sines are the caller's.
+
+    Parameters
+    ----------
+    coefficients : ndarray
+        ``(n, A, M)`` complex coefficients.
+    cos, sin : ndarray
+        ``(M, T)`` ``cos ω_m t`` and ``sin ω_m t`` at the T times.
+
+    Returns
+    -------
+    ndarray
+        ``(n, T, A)``.
+
+    Raises
+    ------
+    ValueError
+        For shapes that do not fit.
+    """
+    c = np.asarray(coefficients)
+    if c.ndim != 3:
+        raise ValueError(f"Expected `coefficients` with shape (n, A, M), got shape {c.shape}")
+    n, A, M = c.shape
+    cos = _shaped(cos, "cos", (M, None))
+    sin = _shaped(sin, "sin", cos.shape)
+    out = np.empty((n, cos.shape[1], A))
+    _jit(_sinusoids_loop)(np.ascontiguousarray(c.real, dtype=float), np.ascontiguousarray(c.imag, dtype=float), cos, sin, out)
+    return out
+
+
+#: Samples of a trial per block of :func:`sensor_increments` (its working arrays stay in the first-level cache).
+_BLOCK = 64
+
+
+def _increments_loop(first, second, scale, stable, W, g, r, fixed_gyro, in_gyros, lever, weight, scales, with_scale, bias, with_bias, gyro_noise, accel_noise, with_noise, dtheta, dv):
+    # _node_rates's operations, block by block of samples: the sines and cosines first (library calls), then the
+    # arithmetic in a loop without calls or branches that the compiler vectorises over the samples (each lane
+    # the same IEEE operations, so the same bits), then the sensor terms
+    angles1, rates1, accels1 = first
+    angles2, rates2, accels2 = second
+    n, N = angles1.shape[0], angles1.shape[1]
+    s0, s1, s2 = scale[0], scale[1], scale[2]
+    W0, W1, W2, g0, g1, g2, r0, r1, r2 = W[0], W[1], W[2], g[0], g[1], g[2], r[0], r[1], r[2]
+    fg0, fg1, fg2 = fixed_gyro[0], fixed_gyro[1], fixed_gyro[2]
+    (gyro_scaled, accel_scaled), (gyro_noisy, accel_noisy) = with_scale, with_noise
+    yaw = s0 != 0.0  # without yaw rocking ψ is the stable heading: its cosine and sine once
+    cp0, sp0 = math.cos(stable[0]), math.sin(stable[0])
+    trig = np.empty((2, 6, _BLOCK))  # per node: cos β, sin β, cos γ, sin γ, cos ψ, sin ψ
+    rate = np.empty((2, 3, _BLOCK))
+    acc = np.zeros((2, 3, _BLOCK))  # zeros without a lever arm (its terms are then left out)
+    out = np.empty((6, _BLOCK))
+    for i in range(n):
+        for k0 in range(0, N, _BLOCK):
+            m = min(_BLOCK, N - k0)
+            for q in range(m):
+                k = k0 + q
+                for node in range(2):
+                    a_k = angles1[i, k] if node == 0 else angles2[i, k]
+                    beta = s1 * a_k[1] + stable[1]
+                    gam = s2 * a_k[2] + stable[2]
+                    trig[node, 0, q], trig[node, 1, q] = math.cos(beta), math.sin(beta)
+                    trig[node, 2, q], trig[node, 3, q] = math.cos(gam), math.sin(gam)
+                    if yaw:
+                        psi = s0 * a_k[0] + stable[0]
+                        trig[node, 4, q], trig[node, 5, q] = math.cos(psi), math.sin(psi)
+                    else:
+                        trig[node, 4, q], trig[node, 5, q] = cp0, sp0
+                for a in range(3):
+                    rate[0, a, q] = rates1[i, k, a]
+                    rate[1, a, q] = rates2[i, k, a]
+                if lever:
+                    for a in range(3):
+                        acc[0, a, q] = accels1[i, k, a]
+                        acc[1, a, q] = accels2[i, k, a]
+            for node in range(2):
+                for q in range(m):
+                    cb, sb, cg, sg, cp, sp = trig[node, 0, q], trig[node, 1, q], trig[node, 2, q], trig[node, 3, q], trig[node, 4, q], trig[node, 5, q]
+                    # C_b^n = R_z(ψ) R_x(−β) R_y(γ) (tilt_attitude.attitude_matrix); columns are the body axes in NED
+                    r1x, r1y, r1z = cg, 0.0, sg
+                    r2x, r2y, r2z = -sb * sg, cb, sb * cg
+                    c00, c01, c02 = cp * r1x - sp * r2x, cp * r1y - sp * r2y, cp * r1z - sp * r2z
+                    c10, c11, c12 = sp * r1x + cp * r2x, sp * r1y + cp * r2y, sp * r1z + cp * r2z
+                    c20, c21, c22 = -cb * sg, -sb, cb * cg
+                    # C_n^b W and −C_n^b g
+                    ex = c00 * W0 + c10 * W1 + c20 * W2
+                    ey = c01 * W0 + c11 * W1 + c21 * W2
+                    ez = c02 * W0 + c12 * W1 + c22 * W2
+                    fx = -(c00 * g0 + c10 * g1 + c20 * g2)
+                    fy = -(c01 * g0 + c11 * g1 + c21 * g2)
+                    fz = -(c02 * g0 + c12 * g1 + c22 * g2)
+                    # body rate ω_nb^b of the angle rates (tilt_attitude.body_rate)
+                    dp, db, dg = s0 * rate[node, 0, q], s1 * rate[node, 1, q], s2 * rate[node, 2, q]
+                    wx = -cg * db - sg * cb * dp
+                    wy = dg - sb * dp
+                    wz = -sg * db + cg * cb * dp
+                    # the lever-arm terms, computed always and kept with a lever arm (a select, not a branch)
+                    ddp, ddb, ddg = s0 * acc[node, 0, q], s1 * acc[node, 1, q], s2 * acc[node, 2, q]
+                    ax = -cg * ddb + sg * dg * db - (cg * dg * cb - sg * sb * db) * dp - sg * cb * ddp
+                    ay = ddg - cb * db * dp - sb * ddp
+                    az = -cg * dg * db - sg * ddb + (-sg * dg * cb - cg * sb * db) * dp + cg * cb * ddp
+                    qx = wy * r2 - wz * r1
+                    qy = wz * r0 - wx * r2
+                    qz = wx * r1 - wy * r0
+                    lx = fx + ((ay * r2 - az * r1) + (wy * qz - wz * qy) + 2.0 * (ey * qz - ez * qy))
+                    ly = fy + ((az * r0 - ax * r2) + (wz * qx - wx * qz) + 2.0 * (ez * qx - ex * qz))
+                    lz = fz + ((ax * r1 - ay * r0) + (wx * qy - wy * qx) + 2.0 * (ex * qy - ey * qx))
+                    fx, fy, fz = (lx, ly, lz) if lever else (fx, fy, fz)
+                    gx, gy, gz = (wx + ex, wy + ey, wz + ez) if in_gyros else (fg0, fg1, fg2)
+                    # the sums of accumulate_ideal_increments from zeros
+                    if node == 0:
+                        out[0, q], out[1, q], out[2, q] = 0.0 + weight * gx, 0.0 + weight * gy, 0.0 + weight * gz
+                        out[3, q], out[4, q], out[5, q] = 0.0 + weight * fx, 0.0 + weight * fy, 0.0 + weight * fz
+                    else:
+                        out[0, q], out[1, q], out[2, q] = out[0, q] + weight * gx, out[1, q] + weight * gy, out[2, q] + weight * gz
+                        out[3, q], out[4, q], out[5, q] = out[3, q] + weight * fx, out[4, q] + weight * fy, out[5, q] + weight * fz
+            for q in range(m):
+                k = k0 + q
+                # add_sensor_terms' product and sums
+                for c in range(3):
+                    y = out[c, q]
+                    if gyro_scaled:
+                        y = y * scales[0, c]
+                    if with_bias:
+                        y = y + bias[0, i, c]
+                    if gyro_noisy:
+                        y = y + gyro_noise[i, k, c]
+                    dtheta[i, k, c] = y
+                for c in range(3):
+                    y = out[3 + c, q]
+                    if accel_scaled:
+                        y = y * scales[1, c]
+                    if with_bias:
+                        y = y + bias[1, i, c]
+                    if accel_noisy:
+                        y = y + accel_noise[i, k, c]
+                    dv[i, k, c] = y
+
+
+def sensor_increments(first, second, stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros: bool, weight: float, *, scale=None, gyro=None, accel=None):
+    """The increments of both Gauss nodes in one pass, a sensor's terms applied: new arrays, written once.
+
+    Equal to the last bit to :func:`accumulate_ideal_increments` of ``first``
+    and then ``second`` into zeros, followed by :func:`add_sensor_terms` of
+    ``gyro`` and ``accel`` (the same operations in the same order), without
+    reading back or zeroing the records in between.
+
+    Parameters
+    ----------
+    first, second : tuple
+        ``(angles, rates, accels)`` at the two nodes, as :func:`accumulate_ideal_increments`
+        takes them (``accels`` may be None without a lever arm).
+    stable, earth_rate, gravity, lever_arm, fixed_gyro, in_gyros, weight
+        As :func:`accumulate_ideal_increments` (one weight for both nodes).
+    scale : array_like, optional, keyword-only
+        ``(3,)`` factors of the rocking per axis [1] (default ones).
+    gyro, accel : tuple, optional, keyword-only
+        ``(bias, scale, noise)`` of the gyros and the accelerometers, as
+        :func:`add_sensor_terms` takes them (``scale`` and ``noise`` may be
+        None); both or neither (default: the ideal increments).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``dtheta, dv``, each ``(n, N, 3)`` [rad, m/s].
+
+    Raises
+    ------
+    ValueError
+        For a wrong shape, a vector that is not three finite numbers, or only one of ``gyro`` and ``accel``.
+    """
+    if (gyro is None) != (accel is None):
+        raise ValueError("Expected `gyro` and `accel` both given (a sensor's terms) or both None")
+    n, N = _shaped(first[0], "angles", (None, None, 3)).shape[:2]
+    named = {"scale": np.ones(3) if scale is None else scale, "stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
+    vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
+    lever = bool(np.any(vectors[4]))
+    nodes = [
+        (_shaped(angles, "angles", (n, N, 3)), _shaped(rates, "rates", (n, N, 3)), _shaped(accels, "accels", (n, N, 3)) if lever else np.zeros((1, 1, 3))) for angles, rates, accels in (first, second)
+    ]
+    scales, with_scale = np.ones((2, 3)), [False, False]
+    bias = np.zeros((2, n, 3))
+    noise, with_noise = [np.zeros((1, 1, 3)), np.zeros((1, 1, 3))], [False, False]
+    for s, terms in enumerate((gyro, accel)):
+        if terms is None:
+            continue
+        b, sc, z = terms
+        bias[s] = _shaped(b, "bias", (n, 3))
+        if sc is not None:
+            scales[s], with_scale[s] = _shaped(sc, "scale", (3,)), True
+        if z is not None:
+            noise[s], with_noise[s] = _shaped(z, "noise", (n, N, 3)), True
+    out = np.empty((2, n, N, 3))  # both records in one block: one allocation
+    # read-only views, whether or not the arrays are (the kept unit evaluations are): one compiled signature
+    _jit(_increments_loop)(
+        *(tuple(_read_only(x) for x in node) for node in nodes), *vectors, bool(in_gyros), lever, float(weight), scales, tuple(with_scale), bias, gyro is not None,
+        _read_only(noise[0]), _read_only(noise[1]), tuple(with_noise), out[0], out[1],
+    )  # fmt: skip
+    return out[0], out[1]
+
+
+#: Trials :func:`preintegrate_loop` steps side by side (each in its own lane of the vector registers).
+_LANES = 8
+
+
+def _preintegrate_loop(th, v, dt, M, E, R, V, S):
+    # _LANES trials side by side: every step of a sample is a loop over the lanes without calls or branches,
+    # which the compiler vectorises (each lane the same IEEE operations in the same order as one trial alone);
+    # the rotation's exact branch, rare, is taken lane by lane after the series.  The lanes' state is one
+    # array, a row per quantity, so that the compiler sees that the rows do not overlap.
+    n = th.shape[0]
+    L = _LANES
+    # rows: the sample a, b (0-5), the previous sample pa, pb (6-11; the last of the previous epoch at an epoch start),
+    # q (12-15), Δq (16-19), V (20-22), S (23-25), the rotation vector (26-28) and its square (29)
+    z = np.zeros((30, L))
+    for i0 in range(0, n, L):
+        nl = min(L, n - i0)  # lanes beyond nl step zeros, which are not written
+        for r in range(12):
+            for l in range(L):
+                z[r, l] = 0.0
         for j in range(E):
-            q0, q1, q2, q3 = 1.0, 0.0, 0.0, 0.0
-            V0 = V1 = V2 = 0.0
-            S0 = S1 = S2 = 0.0
+            for l in range(L):
+                z[12, l], z[13, l], z[14, l], z[15, l] = 1.0, 0.0, 0.0, 0.0
+                z[20, l] = z[21, l] = z[22, l] = 0.0
+                z[23, l] = z[24, l] = z[25, l] = 0.0
             for k in range(M):
                 s = j * M + k
-                a0, a1, a2 = th[i, s, 0], th[i, s, 1], th[i, s, 2]
-                b0, b1, b2 = v[i, s, 0], v[i, s, 1], v[i, s, 2]
-                # sculling: b + ½ a×b + a×(a×b)/6 + (pa×b + pb×a)/12
-                c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-                d0, d1, d2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
-                e0 = (pa1 * b2 - pa2 * b1) + (pb1 * a2 - pb2 * a1)
-                e1 = (pa2 * b0 - pa0 * b2) + (pb2 * a0 - pb0 * a2)
-                e2 = (pa0 * b1 - pa1 * b0) + (pb0 * a1 - pb1 * a0)
-                u0 = b0 + 0.5 * c0 + d0 / 6.0 + e0 / 12.0
-                u1 = b1 + 0.5 * c1 + d1 / 6.0 + e1 / 12.0
-                u2 = b2 + 0.5 * c2 + d2 / 6.0 + e2 / 12.0
-                # rotate by the epoch's running attitude: vect(q ∘ {0, u} ∘ q̄)
-                t0 = -q1 * u0 - q2 * u1 - q3 * u2
-                t1 = q0 * u0 + q2 * u2 - q3 * u1
-                t2 = q0 * u1 - q1 * u2 + q3 * u0
-                t3 = q0 * u2 + q1 * u1 - q2 * u0
-                x0 = -t0 * q1 + t1 * q0 - t2 * q3 + t3 * q2
-                x1 = -t0 * q2 + t1 * q3 + t2 * q0 - t3 * q1
-                x2 = -t0 * q3 - t1 * q2 + t2 * q1 + t3 * q0
-                V0 += x0
-                V1 += x1
-                V2 += x2
+                for l in range(nl):
+                    for c in range(3):
+                        z[c, l], z[3 + c, l] = th[i0 + l, s, c], v[i0 + l, s, c]
                 tk = (k + 0.5) * dt
-                S0 += tk * x0
-                S1 += tk * x1
-                S2 += tk * x2
-                # coning: the rotation vector a + pa×a/12, then q ← q ∘ Δq
-                p0 = a0 + (pa1 * a2 - pa2 * a1) / 12.0
-                p1 = a1 + (pa2 * a0 - pa0 * a2) / 12.0
-                p2 = a2 + (pa0 * a1 - pa1 * a0) / 12.0
-                th2 = p0 * p0 + p1 * p1 + p2 * p2
-                if th2 < 1e-4:  # the series branch of quaternion.rotvec_to_quat
+                for l in range(L):
+                    a0, a1, a2, b0, b1, b2 = z[0, l], z[1, l], z[2, l], z[3, l], z[4, l], z[5, l]
+                    pa0, pa1, pa2, pb0, pb1, pb2 = z[6, l], z[7, l], z[8, l], z[9, l], z[10, l], z[11, l]
+                    q0, q1, q2, q3 = z[12, l], z[13, l], z[14, l], z[15, l]
+                    # sculling: b + ½ a×b + a×(a×b)/6 + (pa×b + pb×a)/12
+                    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                    d0, d1, d2 = a1 * c2 - a2 * c1, a2 * c0 - a0 * c2, a0 * c1 - a1 * c0
+                    e0 = (pa1 * b2 - pa2 * b1) + (pb1 * a2 - pb2 * a1)
+                    e1 = (pa2 * b0 - pa0 * b2) + (pb2 * a0 - pb0 * a2)
+                    e2 = (pa0 * b1 - pa1 * b0) + (pb0 * a1 - pb1 * a0)
+                    u0 = b0 + 0.5 * c0 + d0 / 6.0 + e0 / 12.0
+                    u1 = b1 + 0.5 * c1 + d1 / 6.0 + e1 / 12.0
+                    u2 = b2 + 0.5 * c2 + d2 / 6.0 + e2 / 12.0
+                    # rotate by the epoch's running attitude: vect(q ∘ {0, u} ∘ q̄)
+                    t0 = -q1 * u0 - q2 * u1 - q3 * u2
+                    t1 = q0 * u0 + q2 * u2 - q3 * u1
+                    t2 = q0 * u1 - q1 * u2 + q3 * u0
+                    t3 = q0 * u2 + q1 * u1 - q2 * u0
+                    x0 = -t0 * q1 + t1 * q0 - t2 * q3 + t3 * q2
+                    x1 = -t0 * q2 + t1 * q3 + t2 * q0 - t3 * q1
+                    x2 = -t0 * q3 - t1 * q2 + t2 * q1 + t3 * q0
+                    z[20, l] += x0
+                    z[21, l] += x1
+                    z[22, l] += x2
+                    z[23, l] += tk * x0
+                    z[24, l] += tk * x1
+                    z[25, l] += tk * x2
+                    # coning: the rotation vector a + pa×a/12 and its quaternion by the series branch of
+                    # quaternion.rotvec_to_quat (replaced below where the rotation is too large for it)
+                    p0 = a0 + (pa1 * a2 - pa2 * a1) / 12.0
+                    p1 = a1 + (pa2 * a0 - pa0 * a2) / 12.0
+                    p2 = a2 + (pa0 * a1 - pa1 * a0) / 12.0
+                    th2 = p0 * p0 + p1 * p1 + p2 * p2
                     x = th2 * 0.25
                     cw = 1.0 - x / 2.0 + x * x / 24.0 - x * x * x / 720.0
                     sw = 0.5 * (1.0 - x / 6.0 + x * x / 120.0 - x * x * x / 5040.0)
-                else:
-                    tt = math.sqrt(th2)
-                    cw = math.cos(0.5 * tt)
-                    sw = math.sin(0.5 * tt) / tt
-                w0, w1, w2, w3 = cw, sw * p0, sw * p1, sw * p2
-                q0, q1, q2, q3 = (
-                    q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3,
-                    q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2,
-                    q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1,
-                    q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0,
-                )
-                pa0, pa1, pa2 = a0, a1, a2
-                pb0, pb1, pb2 = b0, b1, b2
-            R[i, j, 0], R[i, j, 1], R[i, j, 2], R[i, j, 3] = q0, q1, q2, q3
-            V[i, j, 0], V[i, j, 1], V[i, j, 2] = V0, V1, V2
-            S[i, j, 0], S[i, j, 1], S[i, j, 2] = S0, S1, S2
+                    z[16, l], z[17, l], z[18, l], z[19, l] = cw, sw * p0, sw * p1, sw * p2
+                    z[26, l], z[27, l], z[28, l], z[29, l] = p0, p1, p2, th2
+                    z[6, l], z[7, l], z[8, l], z[9, l], z[10, l], z[11, l] = a0, a1, a2, b0, b1, b2
+                for l in range(L):
+                    th2 = z[29, l]
+                    if not th2 < 1e-4:  # the exact branch
+                        tt = math.sqrt(th2)
+                        cw = math.cos(0.5 * tt)
+                        sw = math.sin(0.5 * tt) / tt
+                        z[16, l], z[17, l], z[18, l], z[19, l] = cw, sw * z[26, l], sw * z[27, l], sw * z[28, l]
+                # q ← q ∘ Δq
+                for l in range(L):
+                    q0, q1, q2, q3 = z[12, l], z[13, l], z[14, l], z[15, l]
+                    w0, w1, w2, w3 = z[16, l], z[17, l], z[18, l], z[19, l]
+                    z[12, l] = q0 * w0 - q1 * w1 - q2 * w2 - q3 * w3
+                    z[13, l] = q0 * w1 + q1 * w0 + q2 * w3 - q3 * w2
+                    z[14, l] = q0 * w2 - q1 * w3 + q2 * w0 + q3 * w1
+                    z[15, l] = q0 * w3 + q1 * w2 - q2 * w1 + q3 * w0
+            for l in range(nl):
+                R[i0 + l, j, 0], R[i0 + l, j, 1], R[i0 + l, j, 2], R[i0 + l, j, 3] = z[12, l], z[13, l], z[14, l], z[15, l]
+                V[i0 + l, j, 0], V[i0 + l, j, 1], V[i0 + l, j, 2] = z[20, l], z[21, l], z[22, l]
+                S[i0 + l, j, 0], S[i0 + l, j, 1], S[i0 + l, j, 2] = z[23, l], z[24, l], z[25, l]
 
 
 def preintegrate_loop(dtheta, dv, dt: float, samples_per_epoch: int, n_epochs: int):
