@@ -50,7 +50,8 @@ each step by 3-point Gauss–Legendre quadrature.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import functools
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -546,7 +547,26 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None, limits: budget.L
         raise TypeError(f"Expected `scenario` to be a Scenario, got {type(scenario).__name__}")
     h = positive(step, "step")
     budget.check(budget.multistage(scenario.duration / h, what=_steps_text(scenario, h)), limits)
-    t = grid(scenario, step, limits=limits)
+    grid(scenario, step, limits=limits)  # the checks of the grid
+    clean = replace(scenario, sensors=SensorErrors())
+    t, gyro, accel, attitude, angles, velocity = _ideal_signals(clean, repr(clean), h)
+    ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=attitude, angles=angles, velocity=velocity, scenario=scenario)
+    if scenario.sensors.is_ideal:
+        return ideal
+    return corrupt(ideal, scenario.sensors, rng=rng)
+
+
+@functools.lru_cache(maxsize=16)
+def _ideal_signals(scenario: Scenario, text: str, h: float) -> tuple:
+    """Grid, ideal gyro and accelerometer signals and the truth of :func:`sample` (arrays read-only).
+
+    Kept for the last 16 motions: a report samples the same motion at the same
+    step for several studies (the readings, the yaw study and the sensor-error
+    Monte Carlo; the gain checks), which differ only in their sensor errors.
+    The key holds the scenario's ``repr`` besides the scenario, which tells
+    −0.0 from 0.0 (they compare equal).
+    """
+    t = np.arange(int(round(scenario.duration / h)) + 1) * h  # the grid of `grid`, checked by the caller
     x, w = GAUSS3
     at_grid = truth(scenario, t)
     lam = at_grid.attitude_inertial
@@ -554,10 +574,10 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None, limits: budget.L
     gyro = quat.quat_to_rotvec(d_body, canonical=True, validate=False)
     f_nodes = _body_force(scenario, t[:-1, None] + h * x)
     accel = np.einsum("nkj,k->nj", f_nodes, w)
-    ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=at_grid.attitude, angles=at_grid.angles, velocity=at_grid.velocity, scenario=scenario)
-    if scenario.sensors.is_ideal:
-        return ideal
-    return corrupt(ideal, scenario.sensors, rng=rng)
+    out = (t, gyro, accel, at_grid.attitude, at_grid.angles, at_grid.velocity)
+    for a in out:
+        a.setflags(write=False)
+    return out
 
 
 @dataclass(frozen=True)
