@@ -549,23 +549,35 @@ def sample(scenario: Scenario, step: float = 0.02, *, rng=None, limits: budget.L
     budget.check(budget.multistage(scenario.duration / h, what=_steps_text(scenario, h)), limits)
     grid(scenario, step, limits=limits)  # the checks of the grid
     clean = replace(scenario, sensors=SensorErrors())
-    t, gyro, accel, attitude, angles, velocity = _ideal_signals(clean, repr(clean), h)
+    if scenario.duration / h <= _KEPT_STEPS:
+        t, gyro, accel, attitude, angles, velocity = _kept_signals(clean, repr(clean), h)
+    else:
+        t, gyro, accel, attitude, angles, velocity = _ideal_signals(clean, h)
     ideal = SensorData(time=t, step=h, gyro=gyro, accel=accel, attitude=attitude, angles=angles, velocity=velocity, scenario=scenario)
     if scenario.sensors.is_ideal:
         return ideal
     return corrupt(ideal, scenario.sensors, rng=rng)
 
 
-@functools.lru_cache(maxsize=16)
-def _ideal_signals(scenario: Scenario, text: str, h: float) -> tuple:
-    """Grid, ideal gyro and accelerometer signals and the truth of :func:`sample` (arrays read-only).
+#: Longest record [steps] whose ideal signals :func:`sample` keeps (about 4 MB each; the section-5 run at 0.2 s has 25000).
+_KEPT_STEPS = 1 << 15
 
-    Kept for the last 16 motions: a report samples the same motion at the same
-    step for several studies (the readings, the yaw study and the sensor-error
-    Monte Carlo; the gain checks), which differ only in their sensor errors.
-    The key holds the scenario's ``repr`` besides the scenario, which tells
-    −0.0 from 0.0 (they compare equal).
+
+@functools.lru_cache(maxsize=16)
+def _kept_signals(scenario: Scenario, text: str, h: float) -> tuple:
+    """:func:`_ideal_signals`, kept for the last 16 motions of at most :data:`_KEPT_STEPS` steps.
+
+    A report samples the same motion at the same step for several studies
+    (the readings, the yaw study and the sensor-error Monte Carlo; the gain
+    checks), which differ only in their sensor errors.  The key holds the
+    scenario's ``repr`` besides the scenario, which tells −0.0 from 0.0 (they
+    compare equal).
     """
+    return _ideal_signals(scenario, h)
+
+
+def _ideal_signals(scenario: Scenario, h: float) -> tuple:
+    """Grid, ideal gyro and accelerometer signals and the truth of :func:`sample` (arrays read-only)."""
     t = np.arange(int(round(scenario.duration / h)) + 1) * h  # the grid of `grid`, checked by the caller
     x, w = GAUSS3
     at_grid = truth(scenario, t)
