@@ -27,6 +27,18 @@ def test_krylov_is_yaw_pitch_roll_product():
     np.testing.assert_allclose(angles_to_quat(psi, th, ga), q, atol=1e-15)
 
 
+@pytest.mark.parametrize("shape", [(6000, 3), (3000, 3, 3), (5000,)])
+def test_krylov_quaternion_of_large_arrays_in_blocks_is_the_one_pass_value(monkeypatch, shape):
+    """Large arrays form the products of (3.6) block by block: the same bits as in one pass."""
+    from strapdown.analysis.multistage import ship_angles
+
+    rng = np.random.default_rng(3)
+    angles = [3.0 * rng.standard_normal(shape) for _ in range(3)]
+    blocked = angles_to_quat(*angles)
+    monkeypatch.setattr(ship_angles, "_BLOCK", 10**9)  # one pass
+    assert blocked.tobytes() == angles_to_quat(*angles).tobytes()
+
+
 def test_accelerometer_quaternions_small_tilt():
     mu = angles_to_quat(0.0, 0.01, -0.02)
     f = quat.rotate(quat.conjugate(mu), [0.0, 9.81, 0.0])

@@ -142,3 +142,27 @@ def test_rotate_is_the_quaternion_sandwich_exactly():
     np.testing.assert_array_equal(quat.rotate(q, v), sandwich)
     np.testing.assert_array_equal(quat.rotate(q[0], v), quat.vect(quat.multiply(quat.multiply(q[0], quat.vector_to_quat(v)), quat.conjugate(q[0]))))
     assert quat.rotate(q[:, None, :], v[None, :5, :]).shape == (50, 5, 3)
+
+
+@pytest.mark.parametrize(
+    "a_shape, b_shape, v_shape",
+    [
+        ((9000, 4), (9000, 4), (9000, 3)),
+        ((4,), (9000, 4), (9000, 3)),
+        ((3000, 3, 4), (3000, 3, 4), (3000, 3, 3)),
+        ((6000, 1, 4), (1, 3, 4), (6000, 3, 3)),
+        ((2, 5000, 4), (5000, 4), (2, 5000, 3)),
+    ],
+)
+def test_large_products_in_blocks_are_the_whole_array_products(monkeypatch, a_shape, b_shape, v_shape):
+    """multiply and rotate evaluate large arrays block by block: the same values to the bit as in one pass, any broadcasting."""
+    rng = np.random.default_rng(7)
+    a, b = (rng.normal(size=s) * 10.0 ** rng.integers(-8, 8, size=s) for s in (a_shape, b_shape))
+    v = rng.normal(size=v_shape) * 10.0 ** rng.integers(-8, 8, size=v_shape)
+    a.reshape(-1)[0] = np.nan
+    blocked = quat.multiply(a, b), quat.multiply(b, a), quat.rotate(a, v), quat.rotate(b, v)
+    monkeypatch.setattr(quat, "_BLOCK", 10**9)  # one pass
+    whole = quat.multiply(a, b), quat.multiply(b, a), quat.rotate(a, v), quat.rotate(b, v)
+    for x, y in zip(blocked, whole):
+        assert x.shape == y.shape and x.dtype == y.dtype
+        assert x.tobytes() == y.tobytes()

@@ -190,3 +190,24 @@ def test_bounds_are_not_used_when_truth_is_not_the_attitude():
     args = (shifted.gyro, shifted.accel, shifted.attitude, shifted.angles, 9.81, 0.2, *_cascade_inputs(shifted, stages))
     np.testing.assert_array_equal(cascade_loop(*args, store=False, bounds=True)[0], cascade_loop(*args, store=False, bounds=False)[0])
     np.testing.assert_allclose(multistage_peaks(shifted, stages), multistage_peaks(shifted, stages, engine="python"), rtol=1e-12, atol=0)
+
+
+def test_bound_terms_formed_once_give_the_same_peaks():
+    """Terms of the true attitude formed once (a Monte Carlo on one truth) give the peaks of terms formed at every call, bit for bit."""
+    from strapdown.analysis.multistage.sensors import SensorErrors, corrupt
+    from strapdown.analysis.multistage.stage_recursion import bound_terms
+    from strapdown.analysis.multistage.stages import multistage_peaks, plotnikov_1999_stages
+    from strapdown.analysis.multistage.trajectory import Scenario, sample
+
+    ideal = sample(Scenario(duration=1400.0, sensors=SensorErrors()), 0.2)
+    stages = plotnikov_1999_stages(switch_time=150.0)
+    terms = bound_terms(ideal.attitude, ideal.angles)
+    assert terms.shape == (ideal.attitude.shape[0], 8) and not terms.flags.writeable
+    for seed in range(3):
+        data = corrupt(ideal, SensorErrors(gyro_drift=(1e-6, -2e-6, 3e-6), accel_bias=(0.01, -0.02, 0.005), gyro_noise=1e-5, accel_noise=1e-3), rng=seed)
+        np.testing.assert_array_equal(multistage_peaks(data, stages, terms=terms), multistage_peaks(data, stages))
+    shifted = ideal.angles.copy()
+    shifted[:, 0] += 0.3
+    assert bound_terms(ideal.attitude, shifted) is None  # angles that are not those of the attitude: no bounds
+    with pytest.raises(ValueError, match="`terms` with shape"):
+        multistage_peaks(ideal, stages, terms=terms[:-1])

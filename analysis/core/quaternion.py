@@ -16,6 +16,8 @@ array([0., 1., 0.])
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .dual import Dual
@@ -49,6 +51,40 @@ def _arr(x):
         return x
     x = np.asarray(x)
     return x if np.issubdtype(x.dtype, np.inexact) else x.astype(float)
+
+
+#: Elements per block of the blocked products (:func:`multiply`, :func:`rotate`): the temporaries of
+#: a block (a few dozen arrays of this many doubles) stay in the cache instead of one pass over memory each.
+_BLOCK = 4096
+
+
+def _blocks(a, b, a_width: int, b_width: int):
+    """``(a, b, lead, slices)`` for a product of large float arrays evaluated block by block, or None.
+
+    ``a`` and ``b`` are broadcast against each other over their leading axes
+    (views, no copies) to the leading shape ``lead``; the slices cut its first axis into blocks of
+    about :data:`_BLOCK` elements.  Each element of a product depends on the
+    same elements of its inputs only, so the blocks give the values of the
+    whole-array expression bit for bit.  None (the whole-array form) for dual
+    numbers, other dtypes, other widths, shapes that do not broadcast, and
+    arrays small enough for the cache.
+    """
+    if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray) and a.dtype == np.float64 and b.dtype == np.float64):
+        return None
+    if a.size <= a_width * _BLOCK and b.size <= b_width * _BLOCK:  # small inputs (checked first: the common call is small)
+        return None
+    if a.ndim < 1 or b.ndim < 1 or a.shape[-1] != a_width or b.shape[-1] != b_width:
+        return None
+    try:
+        lead = np.broadcast_shapes(a.shape[:-1], b.shape[:-1])
+    except ValueError:
+        return None
+    size = math.prod(lead)
+    if not lead or size <= _BLOCK:
+        return None
+    rows = max(1, _BLOCK // (size // lead[0]))
+    slices = [slice(i, i + rows) for i in range(0, lead[0], rows)]
+    return np.broadcast_to(a, lead + (a_width,)), np.broadcast_to(b, lead + (b_width,)), lead, slices
 
 
 def multiply_parts(a, b):
@@ -101,6 +137,15 @@ def multiply(a, b):
     array([0., 0., 0., 1.])
     """
     a, b = _arr(a), _arr(b)
+    blocked = _blocks(a, b, 4, 4)
+    if blocked is not None:  # large arrays: the same products, block by block
+        a, b, lead, slices = blocked
+        out = np.empty(lead + (4,))
+        for s in slices:
+            x, y, o = a[s], b[s], out[s]
+            for i, part in enumerate(multiply_parts(tuple(x[..., i] for i in range(4)), tuple(y[..., i] for i in range(4)))):
+                o[..., i] = part
+        return out
     parts = multiply_parts(tuple(a[..., i] for i in range(4)), tuple(b[..., i] for i in range(4)))
     return np.stack(parts, axis=-1)
 
@@ -233,18 +278,28 @@ def rotate(q, v):
     Lebedev & Panov (1989), section 1 (``v_I = Λ ∘ v_E ∘ Λ̄``).
     """
     q, v = _arr(q), _arr(v)
+    blocked = _blocks(q, v, 4, 3)
+    if blocked is not None:  # large arrays: the same products, block by block
+        q, v, lead, slices = blocked
+        out = np.empty(lead + (3,))
+        for s in slices:
+            for i, part in enumerate(_rotate_parts(q[s], v[s])):
+                out[s][..., i] = part
+        return out
+    return np.stack(_rotate_parts(q, v), axis=-1)
+
+
+def _rotate_parts(q, v):
+    """The three components of :func:`rotate` (arrays broadcast against each other)."""
     q0, q1, q2, q3 = (q[..., i] for i in range(4))
     v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
     # the products of multiply(multiply(q, vector_to_quat(v)), conjugate(q)), component by component
     w0, w1, w2, w3 = multiply_parts((q0, q1, q2, q3), (v0 * 0.0, v0, v1, v2))
     c1, c2, c3 = -q1, -q2, -q3
-    return np.stack(
-        [
-            w0 * c1 + w1 * q0 + w2 * c3 - w3 * c2,
-            w0 * c2 - w1 * c3 + w2 * q0 + w3 * c1,
-            w0 * c3 + w1 * c2 - w2 * c1 + w3 * q0,
-        ],
-        axis=-1,
+    return (
+        w0 * c1 + w1 * q0 + w2 * c3 - w3 * c2,
+        w0 * c2 - w1 * c3 + w2 * q0 + w3 * c1,
+        w0 * c3 + w1 * c2 - w2 * c1 + w3 * q0,
     )
 
 

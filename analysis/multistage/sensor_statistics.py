@@ -23,6 +23,7 @@ from ...derivations.multistage.published import SECTION5
 from ..core import budget, montecarlo
 from ..core.validation import as_int, nonnegative, positive
 from .sensors import SensorData, SensorErrors, corrupt
+from .stage_recursion import bound_terms
 from .stages import ENGINES, Stage, multistage_peaks, plotnikov_1999_stages
 from .trajectory import Scenario, sample
 
@@ -168,9 +169,11 @@ class PeakErrorKernel:
             (yaw, pitch, roll, tilt) peaks of stage 1, then stage 2, … [rad].
         """
         out = np.empty((n_trials, 4 * len(self.stages)))
+        # every trial has the truth of the ideal record: the true attitude's terms of the peak bounds once per block
+        terms = bound_terms(self.ideal.attitude, self.ideal.angles) if self.engine == "compiled" else None
         for i, trial in enumerate(rng.spawn(n_trials)):
             errors = self.statistics.draw(trial)
-            out[i] = multistage_peaks(corrupt(self.ideal, errors, rng=trial), self.stages, engine=self.engine).ravel()
+            out[i] = multistage_peaks(corrupt(self.ideal, errors, rng=trial), self.stages, engine=self.engine, terms=terms).ravel()
         return out
 
 

@@ -58,14 +58,29 @@ def angles_to_quat(yaw, pitch, roll):
     cp, sp = np.cos(psi), np.sin(psi)
     ct, st = np.cos(theta), np.sin(theta)
     cg, sg = np.cos(gamma), np.sin(gamma)
-    return np.stack(
-        [
-            cp * ct * cg - sp * st * sg,
-            sp * st * cg + cp * ct * sg,
-            sp * ct * cg + cp * st * sg,
-            cp * st * cg - sp * ct * sg,
-        ],
-        axis=-1,
+    if psi.shape == theta.shape == gamma.shape and psi.ndim >= 1 and psi.size > _BLOCK:
+        # large arrays: the same products block by block (elementwise, so the same bits), their temporaries in the cache
+        out = np.empty(psi.shape + (4,))
+        rows = max(1, _BLOCK // (psi.size // psi.shape[0]))
+        for i in range(0, psi.shape[0], rows):
+            b = slice(i, i + rows)
+            for k, part in enumerate(_products(cp[b], sp[b], ct[b], st[b], cg[b], sg[b])):
+                out[b][..., k] = part
+        return out
+    return np.stack(_products(cp, sp, ct, st, cg, sg), axis=-1)
+
+
+#: Elements per block of the products of :func:`angles_to_quat` for large arrays.
+_BLOCK = 4096
+
+
+def _products(cp, sp, ct, st, cg, sg) -> tuple:
+    """The components of (3.6) from the cosines and sines of the half angles."""
+    return (
+        cp * ct * cg - sp * st * sg,
+        sp * st * cg + cp * ct * sg,
+        sp * ct * cg + cp * st * sg,
+        cp * st * cg - sp * ct * sg,
     )
 
 

@@ -50,7 +50,7 @@ from scipy.linalg import expm
 
 from ..core.quaternion import SERIES_ANGLE as _SERIES
 
-__all__ = ["SWITCH_MODES", "KINDS", "BOUND_MARGIN", "correction_map", "stage_loop", "stage_loop_python", "cascade_loop"]
+__all__ = ["SWITCH_MODES", "KINDS", "BOUND_MARGIN", "correction_map", "stage_loop", "stage_loop_python", "cascade_loop", "bound_terms"]
 
 #: How the integral state crosses a change of the gain schedule (module docstring).
 SWITCH_MODES = ("carry", "rescale", "bumpless")
@@ -425,22 +425,32 @@ def _limit(peak):
     return -1.0
 
 
-def _record(i, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store):
+def _true_terms(attitude, out):
+    """:func:`bound_terms` into ``out``: per grid point a11, a13, a22, a32 of the true attitude, sin θ, cos θ and the squared radii of the yaw and roll."""
+    for i in range(attitude.shape[0]):
+        t11, t12, t13, t22, t32, _ = _matrix(attitude[i, 0], attitude[i, 1], attitude[i, 2], attitude[i, 3])
+        xt = _clip1(t12)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = t11, t13, t22, t32
+        out[i, 4], out[i, 5] = xt, math.sqrt(1.0 - xt * xt)
+        out[i, 6], out[i, 7] = t11 * t11 + t13 * t13, t22 * t22 + t32 * t32
+    return out
+
+
+def _record(i, prev, truth, terms, bounds, peaks, limits, nus, comps, errors, store):
     """Composite (2.6), angle errors and running peaks at grid point ``i``; False if the composite is not finite or zero.
 
     With ``bounds`` an error whose bound from the true attitude (:data:`BOUND_MARGIN` below
     its running peak) shows it cannot raise the peak is not evaluated (module docstring);
-    ``limits`` holds the squared-sine bounds of the yaw, pitch and roll peaks (:func:`_limit`).
+    ``terms`` holds the true attitude's terms of the bounds (:func:`bound_terms`), ``limits``
+    the squared-sine bounds of the yaw, pitch and roll peaks (:func:`_limit`).
     """
     m = prev.shape[0]
     p0, p1, p2, p3 = prev[0, 0], prev[0, 1], prev[0, 2], prev[0, 3]
     ok = True
     t11 = t13 = t22 = t32 = xt = ct = yaw_t = roll_t = 0.0
     if bounds:
-        t11, t12, t13, t22, t32, _ = _matrix(attitude[i, 0], attitude[i, 1], attitude[i, 2], attitude[i, 3])
-        xt = _clip1(t12)
-        ct = math.sqrt(1.0 - xt * xt)
-        yaw_t, roll_t = t11 * t11 + t13 * t13, t22 * t22 + t32 * t32
+        t11, t13, t22, t32 = terms[i, 0], terms[i, 1], terms[i, 2], terms[i, 3]
+        xt, ct, yaw_t, roll_t = terms[i, 4], terms[i, 5], terms[i, 6], terms[i, 7]
     for j in range(m):
         if j > 0:
             p0, p1, p2, p3 = _qmul(prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3], p0, p1, p2, p3)
@@ -488,7 +498,7 @@ def _record(i, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors,
     return ok
 
 
-def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store, bounds, peaks, nus, comps, errors):
+def _cascade_loop(gyro, accel, attitude, truth, terms, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store, bounds, peaks, nus, comps, errors):
     n_steps = gyro.shape[0]
     m = kinds.shape[0]
     v = np.empty((m, 4))
@@ -503,7 +513,7 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
         for k in range(4):
             v[j, k] = nu0[j, k]
             prev[j, k] = nu0[j, k] / n
-    ok = _record(0, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store)
+    ok = _record(0, prev, truth, terms, bounds, peaks, limits, nus, comps, errors, store)
     for i in range(n_steps):
         b0, b1, b2, b3 = _rotvec_quat(gyro[i, 0], gyro[i, 1], gyro[i, 2])
         f0, f1, f2 = accel[i, 0], accel[i, 1], accel[i, 2]
@@ -538,12 +548,12 @@ def _cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs,
                 w0, w1, w2, w3 = _qmul(p0, p1, p2, p3, b0, b1, b2, b3)
                 b0, b1, b2, b3 = _qmul(w0, w1, w2, w3, c0, -c1, -c2, -c3)
             prev[j, 0], prev[j, 1], prev[j, 2], prev[j, 3] = c0, c1, c2, c3
-        if not _record(i + 1, prev, truth, attitude, bounds, peaks, limits, nus, comps, errors, store):
+        if not _record(i + 1, prev, truth, terms, bounds, peaks, limits, nus, comps, errors, store):
             ok = False
     return ok
 
 
-def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store=True, bounds=True):
+def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, store=True, bounds=True, terms=None):
     """Run a cascade of stages in one compiled pass: estimates, composite (2.6), angle errors and their peaks.
 
     Parameters
@@ -586,6 +596,10 @@ def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, 
         :data:`BOUND_MARGIN` below its running peak (the peaks are the same).
         Used only if ``truth`` holds the Krylov angles of ``attitude``
         (checked at 17 grid points).
+    terms : ndarray, shape (N+1, 8), optional
+        :func:`bound_terms` of ``attitude`` and ``truth``, for many records on
+        one truth (a Monte Carlo): formed once instead of at every call (and
+        the check of ``truth`` with it); None: formed here when ``bounds`` is used.
 
     Returns
     -------
@@ -632,12 +646,44 @@ def cascade_loop(gyro, accel, attitude, truth, gravity, step, kinds, masks, cs, 
     rows = max(n_steps + 1, 1) if store else 0
     peaks = np.zeros((m, 4))
     nus, comps, errors = np.empty((m, rows, 4)), np.empty((m, rows, 4)), np.empty((m, rows, 3))
-    bounds = bool(bounds) and not store and _consistent(attitude, truth)
+    if bool(bounds) and not store:
+        terms = bound_terms(attitude, truth) if terms is None else _shaped(terms, "terms", (n_steps + 1, 8))
+    else:
+        terms = None
+    bounds = terms is not None
     loop = _jit(_cascade_loop)
-    ok = loop(gyro, accel, attitude, truth, float(gravity), float(step), kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, bool(store), bounds, peaks, nus, comps, errors)
+    terms = np.empty((0, 8)) if terms is None else terms
+    ok = loop(gyro, accel, attitude, truth, terms, float(gravity), float(step), kinds, masks, cs, rhos, switches, seg_start, n_seg, maps, gains, nu0, bool(store), bounds, peaks, nus, comps, errors)
     if not ok:
         raise ValueError("Expected a finite, nonzero composite attitude, got one that is not (unstable gains or non-finite inputs?)")
     return peaks, nus, comps, errors
+
+
+def bound_terms(attitude, truth):
+    """The true attitude's terms of the bounds of :func:`cascade_loop` at every grid point, or None where they do not apply.
+
+    Parameters
+    ----------
+    attitude : array_like, shape (N+1, 4)
+        True attitude μ at the grid points.
+    truth : array_like, shape (N+1, 3)
+        True Krylov angles (ψ, θ, γ) at the grid points [rad].
+
+    Returns
+    -------
+    ndarray, shape (N+1, 8), or None
+        Per grid point a11, a13, a22, a32 of the matrix (1.7) of μ, sin θ and
+        cos θ, ``a11² + a13²`` and ``a22² + a32²`` (read-only); None if
+        ``truth`` does not hold the Krylov angles of ``attitude`` (checked at
+        17 grid points), where the bounds are not used.
+    """
+    attitude = _shaped(attitude, "attitude", (None, 4))
+    truth = _shaped(truth, "truth", (attitude.shape[0], 3))
+    if not _consistent(attitude, truth):
+        return None
+    out = _jit(_true_terms)(attitude, np.empty((attitude.shape[0], 8)))
+    out.setflags(write=False)
+    return out
 
 
 def _shaped(x, name: str, shape: tuple) -> np.ndarray:

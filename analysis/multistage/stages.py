@@ -531,10 +531,10 @@ def _checked(data, stages, engine) -> list:
     return stages
 
 
-def _compiled_cascade(data: SensorData, stages: list, store: bool) -> tuple:
+def _compiled_cascade(data: SensorData, stages: list, store: bool, terms=None) -> tuple:
     from .stage_recursion import cascade_loop
 
-    return cascade_loop(data.gyro, data.accel, data.attitude, data.angles, data.scenario.gravity, data.step, *_cascade_inputs(data, stages), store=store)
+    return cascade_loop(data.gyro, data.accel, data.attitude, data.angles, data.scenario.gravity, data.step, *_cascade_inputs(data, stages), store=store, terms=terms)
 
 
 def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> MultistageResult:
@@ -604,7 +604,7 @@ def run_multistage(data: SensorData, stages, *, engine: str = "compiled") -> Mul
     return MultistageResult(time=data.time, stages=np.array(nus), composite=comps, errors=errors, truth=data.angles)
 
 
-def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> np.ndarray:
+def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled", terms=None) -> np.ndarray:
     """Peak errors of the cascade over the whole run, without keeping the series.
 
     The same as ``run_multistage(data, stages).peaks()`` (to round-off), for
@@ -618,6 +618,10 @@ def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> n
         Stage 1 first (as for :func:`run_multistage`).
     engine : {"compiled", "python"}
         As for :func:`run_multistage`.
+    terms : ndarray, optional
+        :func:`strapdown.analysis.multistage.stage_recursion.bound_terms` of
+        ``data.attitude`` and ``data.angles`` (compiled engine), for many
+        records on one truth: formed once instead of at every call.
 
     Returns
     -------
@@ -637,7 +641,7 @@ def multistage_peaks(data: SensorData, stages, *, engine: str = "compiled") -> n
     """
     stages = _checked(data, stages, engine)
     if engine == "compiled":
-        return _compiled_cascade(data, stages, False)[0]
+        return _compiled_cascade(data, stages, False, terms)[0]
     return np.array([tuple(p) for p in run_multistage(data, stages, engine=engine).peaks()])
 
 
