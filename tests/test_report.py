@@ -214,3 +214,33 @@ def test_drawn_ticks_only_draws_the_same_png_with_fewer_ticks():
     pixels, ticks = png(trimmed)
     assert pixels == own
     assert ticks[0] < own_ticks[0] and ticks[1] < own_ticks[1] and ticks[3] == own_ticks[3]
+
+
+def test_unplaced_empty_labels_draws_the_same_png():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import unplaced_empty_labels
+
+    def figure():
+        fig, (a, b) = plt.subplots(1, 2, figsize=(6, 2.5), sharey=True)
+        a.plot([0.0, 1.0], [2.0, 3.0])
+        b.plot([0.0, 1.0], [3.0, 2.0])
+        a.set_xlabel("time [s]")
+        a.set_ylabel("rate [deg/h]")
+        return fig
+
+    def png(fig):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+        plt.close(fig)
+        return buf.getvalue()
+
+    own = png(figure())
+    pinned = figure()
+    unplaced_empty_labels(pinned)
+    a, b = pinned.axes
+    assert a.xaxis.label.get_position() != (0.5, 0.5) and b.yaxis.label.get_position() == (0.5, 0.5)
+    assert png(pinned) == own

@@ -24,7 +24,19 @@ import functools
 
 import numpy as np
 
-__all__ = ["MANTISSA_BITS", "configure_matplotlib", "round_bits", "quantise", "at_round_off", "fixed_layout", "layout_overflow", "layout_overlaps", "agg_canvas", "drawn_ticks_only"]
+__all__ = [
+    "MANTISSA_BITS",
+    "configure_matplotlib",
+    "round_bits",
+    "quantise",
+    "at_round_off",
+    "fixed_layout",
+    "layout_overflow",
+    "layout_overlaps",
+    "agg_canvas",
+    "drawn_ticks_only",
+    "unplaced_empty_labels",
+]
 
 #: Significant bits kept of every drawn coordinate.
 MANTISSA_BITS = 24
@@ -382,6 +394,26 @@ def drawn_ticks_only(fig) -> None:
             ):
                 if isinstance(formatter, (ticker.LogFormatter, ticker.NullFormatter)) and not isinstance(locator, (ticker.NullLocator, in_view)):
                     set_locator(in_view(locator))
+
+
+def unplaced_empty_labels(fig) -> None:
+    """Keep matplotlib from placing the axis labels of ``fig`` that have no text.
+
+    An axis label goes below (or beside) the tick labels of its axis: at every
+    draw matplotlib measures them and the spine again to place it, even when the
+    label is empty and draws nothing (the inner panels of a grid).  Such a label
+    is pinned to the middle of its axes instead (``set_label_coords``); nothing
+    drawn changes.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; its empty axis labels are pinned.
+    """
+    for ax in fig.get_axes():
+        for axis in (ax.xaxis, ax.yaxis):
+            if not axis.label.get_text():
+                axis.set_label_coords(0.5, 0.5)
 
 
 @functools.cache
