@@ -180,3 +180,67 @@ def test_agg_canvas_draws_the_same_png_as_matplotlibs_own_with_one_parser():
     agg_canvas(first), agg_canvas(second)
     assert first.canvas.get_renderer().mathtext_parser is second.canvas.get_renderer().mathtext_parser
     assert png(first) == own and png(second) == own
+
+
+def test_drawn_ticks_only_draws_the_same_png_with_fewer_ticks():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import drawn_ticks_only, quantise
+
+    def figure():
+        fig, (a, b) = plt.subplots(1, 2, figsize=(6, 2.5))
+        a.loglog([3e-4, 2e2], [7e1, 4e-5], label="$H^4$")
+        a.legend()
+        b.semilogx([0.15, 35.0], [-2.0, 3.0])  # a linear y axis keeps its locator
+        quantise(fig)
+        return fig
+
+    def png(fig):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+        ticks = [len(axis.majorTicks) + len(axis.minorTicks) for ax in fig.axes for axis in (ax.xaxis, ax.yaxis)]
+        plt.close(fig)
+        return buf.getvalue(), ticks
+
+    own, own_ticks = png(figure())
+    trimmed = figure()
+    linear = trimmed.axes[1].yaxis.get_major_locator()
+    drawn_ticks_only(trimmed)
+    drawn_ticks_only(trimmed)  # a second call leaves the locators as they are
+    assert trimmed.axes[1].yaxis.get_major_locator() is linear
+    pixels, ticks = png(trimmed)
+    assert pixels == own
+    assert ticks[0] < own_ticks[0] and ticks[1] < own_ticks[1] and ticks[3] == own_ticks[3]
+
+
+def test_unplaced_empty_labels_draws_the_same_png():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from strapdown.analysis.report.rendering import unplaced_empty_labels
+
+    def figure():
+        fig, (a, b) = plt.subplots(1, 2, figsize=(6, 2.5), sharey=True)
+        a.plot([0.0, 1.0], [2.0, 3.0])
+        b.plot([0.0, 1.0], [3.0, 2.0])
+        a.set_xlabel("time [s]")
+        a.set_ylabel("rate [deg/h]")
+        return fig
+
+    def png(fig):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+        plt.close(fig)
+        return buf.getvalue()
+
+    own = png(figure())
+    pinned = figure()
+    unplaced_empty_labels(pinned)
+    a, b = pinned.axes
+    assert a.xaxis.label.get_position() != (0.5, 0.5) and b.yaxis.label.get_position() == (0.5, 0.5)
+    assert png(pinned) == own

@@ -42,7 +42,7 @@ from typing import Any
 
 from ...derivations.reproducible import reproducible
 from . import output, warm_up
-from .rendering import agg_canvas, configure_matplotlib, quantise
+from .rendering import agg_canvas, configure_matplotlib, drawn_ticks_only, quantise, unplaced_empty_labels
 
 __all__ = ["Section", "Erratum", "Context", "discover", "section_names", "generate", "configure_matplotlib", "SEED"]
 
@@ -256,7 +256,9 @@ class Context:
         The figure is saved at its own size, drawn once: its layout is fixed
         when it is built (:func:`.rendering.fixed_layout`), because a layout
         engine or ``bbox_inches="tight"`` measures every text in extra passes
-        that cost more than the drawing itself.  The cycle collector is paused
+        that cost more than the drawing itself.  Log axes make tick objects only
+        for the ticks in view (:func:`.rendering.drawn_ticks_only`), and empty axis
+        labels are not placed (:func:`.rendering.unplaced_empty_labels`).  The cycle collector is paused
         while the figure is drawn and encoded (it would otherwise walk the heap
         many times over the drawing's short-lived objects); the figure's
         reference cycles are collected by a later pass, after it is closed.
@@ -286,6 +288,8 @@ class Context:
         else:
             metadata = {"Software": None}
         quantise(fig)
+        drawn_ticks_only(fig)
+        unplaced_empty_labels(fig)
         if suffix == ".png":
             agg_canvas(fig)
         buf = io.BytesIO()
