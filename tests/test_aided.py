@@ -113,8 +113,16 @@ def test_the_compiled_navigator_equals_the_numpy_steps_to_the_last_bit(monkeypat
     for compiled in (False, True):
         monkeypatch.setattr(kernels, "use_compiled", lambda c, work, _v=compiled: _v)
         runs[compiled] = aided_alignment(inp, GYRO, ACCEL, n_trials=5, rng=11)
+    # the loop's libm and numpy's ufuncs agree to the bit on most machines; numpy's own AVX-512 tan and pow
+    # are an ulp apart from libm's on some arguments, and then the two forms agree to round-off only
+    x = np.linspace(-1.5, 1.5, 4001)
+    same_libm = np.array_equal(np.tan(x), [math.tan(t) for t in x]) and np.array_equal(np.power(x + 2.0, 1.5), [(t + 2.0) ** 1.5 for t in x])
     for name in ("heading_error", "nees", "nis"):
-        assert np.array_equal(getattr(runs[True], name), getattr(runs[False], name)), name
+        a, b = getattr(runs[True], name), getattr(runs[False], name)
+        if same_libm:
+            assert np.array_equal(a, b), name
+        else:
+            np.testing.assert_allclose(a, b, rtol=1e-12, atol=0.0, err_msg=name)
     # and the comparison can tell: another stream gives other errors
     other = aided_alignment(inp, GYRO, ACCEL, n_trials=5, rng=12)
     assert not np.array_equal(other.heading_error, runs[True].heading_error)

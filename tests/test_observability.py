@@ -123,7 +123,10 @@ def test_degree_of_observability_is_the_floor_over_the_prior_for_the_azimuth():
     floor = tuning.gyro_bias / (EARTH_RATE * math.cos(lat))
     expected = floor * tuning.prior_heading / math.hypot(floor, tuning.prior_heading) / tuning.prior_heading
     assert r.posterior_ratio[2] == pytest.approx(expected, rel=0.02)
-    assert r.gramian_eigenvalues[-3:].max() < 1e-8 < r.gramian_eigenvalues[-4]
+    # three null directions: zero to the round-off of the largest eigenvalue (n ε λ_max, the numerical-rank rule), the rest far above it
+    ev = r.gramian_eigenvalues
+    round_off = ev.size * np.finfo(float).eps * ev[0]
+    assert np.abs(ev[-3:]).max() < round_off < 1e-4 * ev[-4]
 
 
 def test_rocking_about_the_lever_arm_is_unobservable():
