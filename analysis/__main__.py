@@ -1,8 +1,6 @@
 """``python -m strapdown.analysis``: the ``strapdown`` command line."""
 
-import sys
-
-from .cli import main
+from .cli import script
 
 if __name__ == "__main__":  # importing the module (documentation tools do) runs nothing
-    sys.exit(main())
+    script()
