@@ -101,6 +101,46 @@ def test_first_order_loop_equals_the_numpy_form_to_the_last_bit(tau):
     assert not np.array_equal(other, inc)
 
 
+@pytest.mark.parametrize("tau", [0.7, math.inf])
+@pytest.mark.parametrize("k", [3, 1])
+@pytest.mark.parametrize("compiled", [True, False])
+def test_first_order_into_a_running_total_equals_adding_its_increments_to_the_last_bit(tau, k, compiled):
+    # the increments added in place (draws into a given buffer) against a new array added afterwards
+    from strapdown.analysis.alignment.sensor_models import _first_order
+
+    base = np.random.default_rng(7).standard_normal((4, 257, k)) * 1e-3
+    inc, mean = _first_order(np.random.default_rng(3), (4, 257, k), 0.1, tau, 2.5e-7, compiled=False)
+    total, draws = base.copy(), np.full((2, 4, 257, k), np.nan)
+    got, got_mean = _first_order(np.random.default_rng(3), (4, 257, k), 0.1, tau, 2.5e-7, compiled=compiled, total=total, draws=draws)
+    assert got is total and np.array_equal(got, base + inc) and np.array_equal(got_mean, mean)
+
+
+def test_simulate_sensor_errors_equals_its_terms_added_one_by_one():
+    # the running total of simulate_sensor_errors against the terms drawn as new arrays, in the same order
+    from strapdown.analysis.alignment.sensor_models import _first_order
+
+    spec, n, N, dt = GRADES[1].gyro, 3, 501, 0.1
+    got = simulate_sensor_errors(spec, n_trials=n, n_samples=N, dt=dt, rng=5)
+    g = np.random.default_rng(5)
+    turn_on = spec.turn_on_bias * g.standard_normal((n, 3))
+    inc, mean = np.broadcast_to(turn_on[:, None, :] * dt, (n, N, 3)).copy(), turn_on.copy()
+    inc += spec.random_walk * math.sqrt(dt) * g.standard_normal((n, N, 3))
+    for tau, q in [*zip(*spec.gauss_markov()), (math.inf, spec.rate_random_walk**2)]:
+        d, m = _first_order(g, (n, N, 3), dt, float(tau), float(q))
+        inc += d
+        mean += m
+    assert np.array_equal(got.increments, inc) and np.array_equal(got.mean_bias, mean) and np.array_equal(got.turn_on, turn_on)
+
+
+def test_first_order_add_refuses_a_total_it_cannot_write():
+    from strapdown.analysis.alignment import kernels
+
+    with pytest.raises(TypeError, match="total"):
+        kernels.first_order_add(np.zeros((2, 4, 10, 3)), np.zeros((4, 1, 3)), 0.9, 0.1, np.eye(2), np.zeros((4, 10, 3), dtype=np.float32))
+    with pytest.raises(ValueError, match="total"):
+        kernels.first_order_add(np.zeros((2, 4, 10, 3)), np.zeros((4, 1, 3)), 0.9, 0.1, np.eye(2), np.zeros((4, 11, 3)))
+
+
 def test_first_order_loop_refuses_shapes_that_do_not_fit():
     from strapdown.analysis.alignment import kernels
 

@@ -17,7 +17,8 @@ sample or epoch, which numpy spreads over dozens of small array operations:
   :func:`chain_loop` chains the epoch rotations into attitudes;
 * :func:`first_order_loop` turns unit draws into the exact increments of a
   first-order Gauss–Markov process or a random walk (the flicker and rate
-  random walk terms of :mod:`~strapdown.analysis.alignment.sensor_models`), fused in one pass;
+  random walk terms of :mod:`~strapdown.analysis.alignment.sensor_models`), fused in one pass, and
+  :func:`first_order_add` adds them to a running total and sums them in the same pass;
 * :func:`navigator_loop` steps the GNSS-aided navigator of
   :mod:`~strapdown.analysis.alignment.aided` over the epochs between two fixes, for every trial;
 * :func:`fine_alignment_loop` runs the closed-loop error-state filter of
@@ -46,7 +47,7 @@ from ..core.validation import as_array, as_int, as_vector
 
 __all__ = [
     "START_UP_WORK", "use_compiled", "accumulate_ideal_increments", "add_sensor_terms", "sensor_increments", "sinusoid_sum",
-    "preintegrate_loop", "chain_loop", "first_order_loop", "navigator_loop", "fine_alignment_loop",
+    "preintegrate_loop", "chain_loop", "first_order_loop", "first_order_add", "navigator_loop", "fine_alignment_loop",
 ]  # fmt: skip
 
 #: Samples (trials × samples, or the equivalent) the numpy forms take in about the time numba's start-up costs.
@@ -697,15 +698,20 @@ def chain_loop(start, rotations):
     return out
 
 
-def _first_order_loop(e, x0, phi, c, l00, l10, l11, out):
+def _first_order_loop(e, x0, phi, c, l00, l10, l11, add, out, sums):
     n, N, k = out.shape
     for i in range(n):
         for a in range(k):
             x = x0[i, 0, a]
-            out[i, 0, a] = c * x + (l10 * e[0, i, 0, a] + l11 * e[1, i, 0, a])
+            d = c * x + (l10 * e[0, i, 0, a] + l11 * e[1, i, 0, a])
+            s = d
+            out[i, 0, a] = out[i, 0, a] + d if add else d
             for t in range(1, N):
                 x = l00 * e[0, i, t - 1, a] + phi * x
-                out[i, t, a] = c * x + (l10 * e[0, i, t, a] + l11 * e[1, i, t, a])
+                d = c * x + (l10 * e[0, i, t, a] + l11 * e[1, i, t, a])
+                s += d
+                out[i, t, a] = out[i, t, a] + d if add else d
+            sums[i, a] = s
 
 
 def first_order_loop(draws, start, transition: float, coupling: float, noise_factor) -> np.ndarray:
@@ -746,8 +752,46 @@ def first_order_loop(draws, start, transition: float, coupling: float, noise_fac
     x0 = _shaped(start, "start", (n, 1, k))
     L = _shaped(noise_factor, "noise_factor", (2, 2))
     out = np.empty((n, N, k))
-    _jit(_first_order_loop)(e, x0, float(transition), float(coupling), float(L[0, 0]), float(L[1, 0]), float(L[1, 1]), out)
+    _jit(_first_order_loop)(e, x0, float(transition), float(coupling), float(L[0, 0]), float(L[1, 0]), float(L[1, 1]), False, out, np.empty((n, k)))
     return out
+
+
+def first_order_add(draws, start, transition: float, coupling: float, noise_factor, total) -> np.ndarray:
+    """Add the increments of :func:`first_order_loop` to ``total`` in place and return their sums over the samples.
+
+    One pass instead of three (the increments, ``total += increments`` and
+    ``increments.sum(axis=1)``) and no ``(n, N, k)`` temporary: each element of
+    ``total`` gets the same sum as in ``total + increments``, and the sums are
+    taken in sample order, as numpy's ``sum(axis=1)`` takes them for ``k > 1``
+    (for ``k = 1`` numpy sums pairwise, so the bits may differ there).
+
+    Parameters
+    ----------
+    draws, start, transition, coupling, noise_factor
+        As for :func:`first_order_loop`.
+    total : ndarray
+        ``(n, N, k)`` writable C-contiguous float64 array, added to in place.
+
+    Returns
+    -------
+    ndarray
+        ``(n, k)`` sum of each trial's and axis's increments.
+
+    Raises
+    ------
+    ValueError
+        For shapes that do not fit ``draws``.
+    TypeError
+        For a ``total`` that cannot be written in place.
+    """
+    e = _shaped(draws, "draws", (2, None, None, None))
+    n, N, k = e.shape[1:]
+    x0 = _shaped(start, "start", (n, 1, k))
+    L = _shaped(noise_factor, "noise_factor", (2, 2))
+    out = _shaped(total, "total", (n, N, k), output=True)
+    sums = np.empty((n, k))
+    _jit(_first_order_loop)(e, x0, float(transition), float(coupling), float(L[0, 0]), float(L[1, 0]), float(L[1, 1]), True, out, sums)
+    return sums
 
 
 def _quat_mul(a0, a1, a2, a3, b0, b1, b2, b3):

@@ -271,13 +271,17 @@ class SensorErrorIncrements:
     mean_bias: np.ndarray
 
 
-def _first_order(g, shape, dt: float, tau: float, variance: float, compiled: bool | None = None):
+def _first_order(g, shape, dt: float, tau: float, variance: float, compiled: bool | None = None, *, total=None, draws=None):
     """Exact increments ``∫ x dt`` over each interval of a stationary first-order process (or a random walk from zero).
 
     ``x' = −x/τ + w``; τ = inf is the random walk with ``E w² = variance`` per second.
     Returns ``(increments, mean level)``.  ``compiled``: the fused loop of
     :func:`~strapdown.analysis.alignment.kernels.first_order_loop` or the numpy form (None: whichever pays off,
     :func:`~strapdown.analysis.alignment.kernels.use_compiled`); both give the same bits.
+    ``total``: an ``(n, N, k)`` array the increments are added to in place and that is
+    returned in their stead (the same bits as ``total += increments``; compiled, in the pass that
+    makes them, :func:`~strapdown.analysis.alignment.kernels.first_order_add`).  ``draws``: a ``(2, n, N, k)``
+    array the unit draws are written into instead of a new one (the same draws).
     """
     from scipy.signal import lfilter
 
@@ -289,17 +293,23 @@ def _first_order(g, shape, dt: float, tau: float, variance: float, compiled: boo
         x0 = math.sqrt(variance) * g.standard_normal((n, 1, k))
     F, Q = kalman.discretise(A, Qc, dt)
     L = np.linalg.cholesky(Q + 1e-300 * np.eye(2))
-    e = g.standard_normal((2, n, N, k))
+    e = g.standard_normal((2, n, N, k)) if draws is None else g.standard_normal(out=draws)
     phi, c = F[0, 0], F[1, 0]
     if kernels.use_compiled(compiled, n * N * k):  # the same operations fused in one pass, equal to the last bit
+        if total is not None and k > 1:  # numpy sums over the samples in order only for k > 1 (pairwise for k = 1)
+            return total, kernels.first_order_add(e, x0, phi, c, L, total) / (N * dt)
         inc = kernels.first_order_loop(e, x0, phi, c, L)
-        return inc, inc.sum(axis=1) / (N * dt)
-    e1, e2 = L[0, 0] * e[0], L[1, 0] * e[0] + L[1, 1] * e[1]
-    # x_{j+1} = φ x_j + e1_j from x_0: the levels at the interval starts
-    drive = np.concatenate([x0, e1[:, :-1]], axis=1)
-    x = lfilter([1.0], [1.0, -phi], drive, axis=1)
-    inc = c * x + e2
-    return inc, inc.sum(axis=1) / (N * dt)
+    else:
+        e1, e2 = L[0, 0] * e[0], L[1, 0] * e[0] + L[1, 1] * e[1]
+        # x_{j+1} = φ x_j + e1_j from x_0: the levels at the interval starts
+        drive = np.concatenate([x0, e1[:, :-1]], axis=1)
+        x = lfilter([1.0], [1.0, -phi], drive, axis=1)
+        inc = c * x + e2
+    mean = inc.sum(axis=1) / (N * dt)
+    if total is None:
+        return inc, mean
+    total += inc
+    return total, mean
 
 
 def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, dt: float, rng=None, limits: budget.Limits | None = None) -> SensorErrorIncrements:
@@ -355,9 +365,11 @@ def simulate_sensor_errors(spec: SensorSpec, *, n_trials: int, n_samples: int, d
     mean = turn_on.copy()
     if spec.random_walk:
         inc += spec.random_walk * math.sqrt(h) * g.standard_normal((n, N, 3))
+    # every term's draws in one buffer, its increments added to `inc` as they are made (the same bits
+    # as a new array per term): no (2, n, N, 3) and (n, N, 3) temporaries per term
+    draws = np.empty((2, n, N, 3)) if terms else None
     for tau, q in terms:
-        d, m = _first_order(g, (n, N, 3), h, float(tau), float(q))
-        inc += d
+        _, m = _first_order(g, (n, N, 3), h, float(tau), float(q), total=inc, draws=draws)
         mean += m
     return SensorErrorIncrements(inc, turn_on, mean)
 
