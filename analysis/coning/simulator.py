@@ -318,6 +318,14 @@ def _scan(q):
     even = _qmul(tuple(c[..., :-1] for c in odd), tuple(c[..., 2::2] for c in q))  # c_{2i}, i ≥ 1
     out = []
     for k in range(4):
+        if isinstance(q[k], np.ndarray):
+            # interleave by slice assignment: the values of the stack below, without its two temporaries
+            c = np.empty(lead + (2 * odd[k].shape[-1],), dtype=np.result_type(q[k], even[k], odd[k]))
+            c[..., :1] = q[k][..., :1]
+            c[..., 2::2] = even[k]
+            c[..., 1::2] = odd[k]
+            out.append(c[..., :n])
+            continue
         e = np.concatenate([q[k][..., :1], even[k]], axis=-1)
         out.append(np.reshape(np.stack([e, odd[k]], axis=-1), lead + (2 * odd[k].shape[-1],))[..., :n])
     return tuple(out)

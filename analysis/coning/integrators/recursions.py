@@ -91,12 +91,25 @@ def _name(alpha_lag, previous_lag, one_accumulator):
     return ", ".join(parts)
 
 
-def _rows_cross(a, b):
-    """Cross products of the rows of two (n, 3) arrays (numpy's cross costs more on short rows)."""
+def _columns_cross(a, b):
+    """Cross products of the columns of two (3, n) arrays (each component a contiguous row, so each product runs on contiguous memory)."""
     out = np.empty_like(a)
-    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
-    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
-    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+    return out
+
+
+def _by_position(x, n):
+    """Increments (k·N, 3) as (N, 3, k): sample position, component, step (C order)."""
+    return x.reshape(-1, n, 3).transpose(1, 2, 0).copy()
+
+
+def _before_step(x):
+    """The increment before the first sample of each step, (3, k), from ``x`` of :func:`_by_position`: zero before the record."""
+    out = np.empty_like(x[0])
+    out[:, 0] = 0.0
+    out[:, 1:] = x[-1][:, :-1]
     return out
 
 
@@ -139,37 +152,45 @@ def recursion(*, alpha_lag: int = 1, previous_lag: int = 1, one_accumulator: boo
 
     def run(gyro, samples_per_step, accel=None):
         n = samples_per_step
-        p = gyro.reshape(-1, n, 3)
-        prev_p = np.concatenate([np.zeros((1, 3)), gyro[:-1]], axis=0).reshape(-1, n, 3)
-        b = None if accel is None else accel.reshape(-1, n, 3)
-        prev_b = None if accel is None else np.concatenate([np.zeros((1, 3)), accel[:-1]], axis=0).reshape(-1, n, 3)
-        steps = p.shape[0]
-        alpha = [np.zeros((steps, 3))]  # alpha[m] = α_m (accumulated through sample m)
-        beta = np.zeros((steps, 3))
-        nu = [np.zeros((steps, 3))]
-        gamma = np.zeros((steps, 3))
-        acc = np.zeros((steps, 3))
+        # Component-major (N, 3, steps): the same elementwise operations as on
+        # (steps, 3) rows, on contiguous memory instead of every third value.
+        p = _by_position(gyro, n)
+        b = None if accel is None else _by_position(accel, n)
+        steps = p.shape[2]
+        zero = np.zeros((3, steps))
+        alpha = [zero]  # alpha[m] = α_m (accumulated through sample m)
+        beta = zero
+        nu = [zero]
+        gamma = zero
+        acc = zero
         for m in range(n):
-            d = p[:, m]
-            last = prev_p[:, m] if previous_lag else d
+            d = p[m]
+            if previous_lag:
+                last = p[m - 1] if m else _before_step(p)
+            else:
+                last = d
             if one_accumulator:
-                acc = acc + d + 0.5 * _rows_cross(acc + last / 6.0, d)
+                acc = acc + d + 0.5 * _columns_cross(acc + last / 6.0, d)
                 continue
-            a_read = alpha[m + 1 - alpha_lag] if m + 1 - alpha_lag >= 0 else np.zeros((steps, 3))
-            beta = beta + 0.5 * _rows_cross(a_read + last / 6.0, d)
+            a_read = alpha[m + 1 - alpha_lag] if m + 1 - alpha_lag >= 0 else zero
+            read = a_read + last / 6.0
+            beta = beta + 0.5 * _columns_cross(read, d)
             if b is not None:
-                db = b[:, m]
-                last_b = prev_b[:, m] if previous_lag else db
-                nu_read = nu[m + 1 - alpha_lag] if m + 1 - alpha_lag >= 0 else np.zeros((steps, 3))
-                gamma = gamma + 0.5 * (_rows_cross(a_read + last / 6.0, db) + _rows_cross(nu_read + last_b / 6.0, d))
+                db = b[m]
+                if previous_lag:
+                    last_b = b[m - 1] if m else _before_step(b)
+                else:
+                    last_b = db
+                nu_read = nu[m + 1 - alpha_lag] if m + 1 - alpha_lag >= 0 else zero
+                gamma = gamma + 0.5 * (_columns_cross(read, db) + _columns_cross(nu_read + last_b / 6.0, d))
                 nu.append(nu[-1] + db)
             alpha.append(alpha[-1] + d)
         if one_accumulator:
-            return acc
-        rotation = alpha[-1] + beta
+            return np.ascontiguousarray(acc.T)
+        rotation = np.ascontiguousarray((alpha[-1] + beta).T)
         if b is None:
             return rotation
-        return rotation, nu[-1] + 0.5 * _rows_cross(alpha[-1], nu[-1]) + gamma
+        return rotation, np.ascontiguousarray((nu[-1] + 0.5 * _columns_cross(alpha[-1], nu[-1]) + gamma).T)
 
     return Integrator(run, velocity=velocity, name=_name(alpha_lag, previous_lag, one_accumulator))
 
