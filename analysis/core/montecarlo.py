@@ -278,8 +278,22 @@ def _block_rows(errors: np.ndarray, aux):
     m = errors.mean(axis=1)
     ms = np.einsum("ij,ij->i", errors, errors) / errors.shape[1]
     row = (m.sum(), (m * m).sum(), ms.sum(), (ms * ms).sum(), (ms * m).sum())
-    aux_row = None if aux is None else np.concatenate([aux.sum(axis=0), np.einsum("ij,ij->j", aux, aux)])
+    aux_row = None if aux is None else np.concatenate([_column_sums(aux), np.einsum("ij,ij->j", aux, aux)])
     return row, aux_row
+
+
+def _column_sums(a: np.ndarray) -> np.ndarray:
+    """``a.sum(axis=0)`` of a C-ordered ``(n, k)`` array, the same sums in the same order.
+
+    With ``k ≥ 2`` contiguous columns numpy's reduction adds the rows one after
+    another (an inner loop of ``k`` per row, several times slower than a pass
+    down the columns); :func:`numpy.add.accumulate` makes the same additions in
+    the same order in one pass.  One column is summed pairwise by ``sum``:
+    it, and any other layout, keeps ``sum``.
+    """
+    if a.ndim == 2 and a.shape[0] and a.shape[1] >= 2 and a.flags.c_contiguous:
+        return np.add.accumulate(a, axis=0)[-1]
+    return a.sum(axis=0)
 
 
 def map_tasks(executor, tasks: Sequence[Callable], *, progress: bool = False, desc: str = "Monte Carlo") -> list:

@@ -609,12 +609,15 @@ class TaylorControls:
                 powers[axis, 1] = base
                 for k in range(2, self.degree + 1):
                     powers[axis, k] = powers[axis, k - 1] * base
+        # a column of ``out`` is strided: each is written once, centred on the way from a contiguous
+        # power or product (a mixed product goes through one reused contiguous buffer)
+        product = np.empty(xi.size)
         for col, (i, j) in enumerate(exps):
             if i and j:
-                np.multiply(powers["u", i], powers["v", j], out=out[:, col])
+                value = np.multiply(powers["u", i], powers["v", j], out=product)
             else:
-                out[:, col] = powers["u", i] if i else powers["v", j]
-            out[:, col] -= self.moments_xi[i] * self.moments_eta[j]
+                value = powers["u", i] if i else powers["v", j]
+            np.subtract(value, self.moments_xi[i] * self.moments_eta[j], out=out[:, col])
         return out
 
     def residuals(self, errors, monomials) -> np.ndarray:
