@@ -155,6 +155,16 @@ def test_savefig_hands_each_figure_to_the_check_before_closing(tmp_path):
     assert (tmp_path / "figures" / "x.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def _png(fig) -> bytes:
+    """The PNG bytes of ``fig`` as the report writes them (no software stamp), the figure closed."""
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+    plt.close(fig)
+    return buf.getvalue()
+
+
 def test_agg_canvas_draws_the_same_png_as_matplotlibs_own_with_one_parser():
     import matplotlib
 
@@ -169,17 +179,11 @@ def test_agg_canvas_draws_the_same_png_as_matplotlibs_own_with_one_parser():
         ax.legend()
         return fig
 
-    def png(fig):
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
-        plt.close(fig)
-        return buf.getvalue()
-
-    own = png(figure())
+    own = _png(figure())
     first, second = figure(), figure()
     agg_canvas(first), agg_canvas(second)
     assert first.canvas.get_renderer().mathtext_parser is second.canvas.get_renderer().mathtext_parser
-    assert png(first) == own and png(second) == own
+    assert _png(first) == own and _png(second) == own
 
 
 def test_drawn_ticks_only_draws_the_same_png_with_fewer_ticks():
@@ -232,15 +236,9 @@ def test_unplaced_empty_labels_draws_the_same_png():
         a.set_ylabel("rate [deg/h]")
         return fig
 
-    def png(fig):
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
-        plt.close(fig)
-        return buf.getvalue()
-
-    own = png(figure())
+    own = _png(figure())
     pinned = figure()
     unplaced_empty_labels(pinned)
     a, b = pinned.axes
     assert a.xaxis.label.get_position() != (0.5, 0.5) and b.yaxis.label.get_position() == (0.5, 0.5)
-    assert png(pinned) == own
+    assert _png(pinned) == own
