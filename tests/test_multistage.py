@@ -30,12 +30,12 @@ def test_krylov_is_yaw_pitch_roll_product():
 @pytest.mark.parametrize("shape", [(6000, 3), (3000, 3, 3), (5000,)])
 def test_krylov_quaternion_of_large_arrays_in_blocks_is_the_one_pass_value(monkeypatch, shape):
     """Large arrays form the products of (3.6) block by block: the same bits as in one pass."""
-    from strapdown.analysis.multistage import ship_angles
+    from strapdown.analysis.core import blocks
 
     rng = np.random.default_rng(3)
     angles = [3.0 * rng.standard_normal(shape) for _ in range(3)]
     blocked = angles_to_quat(*angles)
-    monkeypatch.setattr(ship_angles, "_BLOCK", 10**9)  # one pass
+    monkeypatch.setattr(blocks, "BLOCK", 10**9)  # one pass
     assert blocked.tobytes() == angles_to_quat(*angles).tobytes()
 
 

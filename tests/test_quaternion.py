@@ -6,6 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from strapdown.analysis.core import blocks
 from strapdown.analysis.core import quaternion as quat
 
 finite = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
@@ -161,7 +162,7 @@ def test_large_products_in_blocks_are_the_whole_array_products(monkeypatch, a_sh
     v = rng.normal(size=v_shape) * 10.0 ** rng.integers(-8, 8, size=v_shape)
     a.reshape(-1)[0] = np.nan
     blocked = quat.multiply(a, b), quat.multiply(b, a), quat.rotate(a, v), quat.rotate(b, v)
-    monkeypatch.setattr(quat, "_BLOCK", 10**9)  # one pass
+    monkeypatch.setattr(blocks, "BLOCK", 10**9)  # one pass
     whole = quat.multiply(a, b), quat.multiply(b, a), quat.rotate(a, v), quat.rotate(b, v)
     for x, y in zip(blocked, whole):
         assert x.shape == y.shape and x.dtype == y.dtype

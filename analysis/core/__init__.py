@@ -27,4 +27,6 @@ progress
     Progress bars on stderr, shown only when stderr is a terminal.
 roundoff
     The float64 round-off floor of a simulated drift rate.
+blocks
+    Elementwise array expressions evaluated in cache-sized blocks (the same bits, fewer passes over memory).
 """

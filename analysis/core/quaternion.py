@@ -16,10 +16,9 @@ array([0., 1., 0.])
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from . import blocks
 from .dual import Dual
 from .validation import as_quaternion, as_vector
 
@@ -53,17 +52,12 @@ def _arr(x):
     return x if np.issubdtype(x.dtype, np.inexact) else x.astype(float)
 
 
-#: Elements per block of the blocked products (:func:`multiply`, :func:`rotate`): the temporaries of
-#: a block (a few dozen arrays of this many doubles) stay in the cache instead of one pass over memory each.
-_BLOCK = 4096
-
-
 def _blocks(a, b, a_width: int, b_width: int):
     """``(a, b, lead, slices)`` for a product of large float arrays evaluated block by block, or None.
 
     ``a`` and ``b`` are broadcast against each other over their leading axes
     (views, no copies) to the leading shape ``lead``; the slices cut its first axis into blocks of
-    about :data:`_BLOCK` elements.  Each element of a product depends on the
+    about :data:`~strapdown.analysis.core.blocks.BLOCK` elements.  Each element of a product depends on the
     same elements of its inputs only, so the blocks give the values of the
     whole-array expression bit for bit.  None (the whole-array form) for dual
     numbers, other dtypes, other widths, shapes that do not broadcast, and
@@ -71,7 +65,7 @@ def _blocks(a, b, a_width: int, b_width: int):
     """
     if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray) and a.dtype == np.float64 and b.dtype == np.float64):
         return None
-    if a.size <= a_width * _BLOCK and b.size <= b_width * _BLOCK:  # small inputs (checked first: the common call is small)
+    if a.size <= a_width * blocks.BLOCK and b.size <= b_width * blocks.BLOCK:  # small inputs (checked first: the common call is small)
         return None
     if a.ndim < 1 or b.ndim < 1 or a.shape[-1] != a_width or b.shape[-1] != b_width:
         return None
@@ -79,11 +73,9 @@ def _blocks(a, b, a_width: int, b_width: int):
         lead = np.broadcast_shapes(a.shape[:-1], b.shape[:-1])
     except ValueError:
         return None
-    size = math.prod(lead)
-    if not lead or size <= _BLOCK:
+    slices = blocks.row_slices(lead)
+    if slices is None:
         return None
-    rows = max(1, _BLOCK // (size // lead[0]))
-    slices = [slice(i, i + rows) for i in range(0, lead[0], rows)]
     return np.broadcast_to(a, lead + (a_width,)), np.broadcast_to(b, lead + (b_width,)), lead, slices
 
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core import quaternion as quat
+from ..core.blocks import row_slices
 from ..core.validation import as_array, as_quaternion
 
 __all__ = ["angles_to_quat", "quat_to_angles", "wrap_angle"]
@@ -58,20 +59,14 @@ def angles_to_quat(yaw, pitch, roll):
     cp, sp = np.cos(psi), np.sin(psi)
     ct, st = np.cos(theta), np.sin(theta)
     cg, sg = np.cos(gamma), np.sin(gamma)
-    if psi.shape == theta.shape == gamma.shape and psi.ndim >= 1 and psi.size > _BLOCK:
-        # large arrays: the same products block by block (elementwise, so the same bits), their temporaries in the cache
+    slices = row_slices(psi.shape) if psi.shape == theta.shape == gamma.shape else None
+    if slices is not None:  # large arrays: the same products block by block (elementwise, so the same bits)
         out = np.empty(psi.shape + (4,))
-        rows = max(1, _BLOCK // (psi.size // psi.shape[0]))
-        for i in range(0, psi.shape[0], rows):
-            b = slice(i, i + rows)
+        for b in slices:
             for k, part in enumerate(_products(cp[b], sp[b], ct[b], st[b], cg[b], sg[b])):
                 out[b][..., k] = part
         return out
     return np.stack(_products(cp, sp, ct, st, cg, sg), axis=-1)
-
-
-#: Elements per block of the products of :func:`angles_to_quat` for large arrays.
-_BLOCK = 4096
 
 
 def _products(cp, sp, ct, st, cg, sg) -> tuple:
