@@ -243,6 +243,8 @@ def test_both_nodes_and_the_sensor_terms_in_one_pass_are_the_separate_passes(lev
         k.sensor_increments(*(parts for parts, _ in nodes), sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, scale=scale, gyro=cases[1][0])
     with pytest.raises(ValueError, match="`noise`"):
         k.sensor_increments(*(parts for parts, _ in nodes), sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05, gyro=(b[0], None, z[0][:, :10]), accel=(b[1], None, None))
+    with pytest.raises(ValueError, match="`second` as \\(angles, rates, accels\\)"):
+        k.sensor_increments(nodes[0][0], nodes[1][0][:2], sc.stable_angles, W, g, sc.lever_arm, fixed, in_gyros, 0.05)
 
 
 @pytest.mark.parametrize(

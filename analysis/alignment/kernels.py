@@ -492,10 +492,13 @@ def sensor_increments(first, second, stable, earth_rate, gravity, lever_arm, fix
     Raises
     ------
     ValueError
-        For a wrong shape, a vector that is not three finite numbers, or only one of ``gyro`` and ``accel``.
+        For ``first`` or ``second`` not three arrays, a wrong shape, a vector that is not three finite numbers, or only one of ``gyro`` and ``accel``.
     """
     if (gyro is None) != (accel is None):
         raise ValueError("Expected `gyro` and `accel` both given (a sensor's terms) or both None")
+    for name, node in (("first", first), ("second", second)):
+        if not (isinstance(node, tuple | list) and len(node) == 3):
+            raise ValueError(f"Expected `{name}` as (angles, rates, accels), got {type(node).__name__} of length {len(node) if hasattr(node, '__len__') else 'none'}")
     n, N = _shaped(first[0], "angles", (None, None, 3)).shape[:2]
     named = {"scale": np.ones(3) if scale is None else scale, "stable": stable, "earth_rate": earth_rate, "gravity": gravity, "lever_arm": lever_arm, "fixed_gyro": fixed_gyro}
     vectors = [np.ascontiguousarray(_shaped(as_vector(v, name), name, (3,))) for name, v in named.items()]
